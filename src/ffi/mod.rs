@@ -1,0 +1,658 @@
+//! The C ABI. It only translates: pointer and handle checks, conversions between C and
+//! core types, status codes, and a panic boundary inside every exported body.
+//!
+//! Handle checks rely on a magic tag in each OrientFilter that orient_filter_free
+//! overwrites. A freed handle is reported as long as its memory has not been handed out
+//! again, and a pointer that never was a handle is reported if it is readable and
+//! aligned; no tag can make reading an unmapped address safe.
+
+mod error;
+mod types;
+
+pub use types::*;
+
+use crate::filters::{Config, Filter, Init, Kind, Sample};
+use crate::math::{Frame, Quat, Vec3};
+use core::ffi::{c_char, CStr};
+use error::{detail_ptr, fail, from_core, guard, guard_value, status_message};
+use once_cell::sync::Lazy;
+use std::ffi::CString;
+
+const MAGIC_LIVE: u64 = 0x4f52_4945_4e54_2e31; // "ORIENT.1"
+const MAGIC_DEAD: u64 = 0xdead_f11e_dead_f11e;
+
+/// An orientation filter. Opaque: create with orient_filter_new(), release with
+/// orient_filter_free(). One handle must not be used from two threads at once;
+/// different handles are independent.
+pub struct OrientFilter {
+    magic: u64,
+    filter: Filter,
+}
+
+type Res = Result<(), OrientStatus>;
+
+fn null() -> OrientStatus {
+    fail(OrientStatus::NullPointer, format_args!("a required pointer argument is NULL"))
+}
+
+/// Checks a handle and borrows it.
+///
+/// # Safety
+/// `h` is NULL or points to readable memory of at least `size_of::<OrientFilter>()` bytes.
+unsafe fn handle<'a>(h: *const OrientFilter) -> Result<&'a OrientFilter, OrientStatus> {
+    if h.is_null() {
+        return Err(null());
+    }
+    if (h as usize) % core::mem::align_of::<OrientFilter>() != 0 || (*h).magic != MAGIC_LIVE {
+        return Err(fail(OrientStatus::InvalidHandle, format_args!("not a live OrientFilter handle: {h:p}")));
+    }
+    Ok(&*h)
+}
+
+/// Checks a handle and borrows it mutably. Same contract as [`handle`].
+unsafe fn handle_mut<'a>(h: *mut OrientFilter) -> Result<&'a mut OrientFilter, OrientStatus> {
+    handle(h)?;
+    Ok(&mut *h)
+}
+
+/// Writes through an out-pointer after a NULL check.
+unsafe fn put<T>(out: *mut T, value: T) -> Res {
+    if out.is_null() {
+        return Err(null());
+    }
+    out.write(value);
+    Ok(())
+}
+
+fn kind_from(kind: i32) -> Result<Kind, OrientStatus> {
+    let k = match kind {
+        1 => Kind::Madgwick,
+        2 => Kind::Mahony,
+        3 => Kind::Complementary,
+        4 => Kind::Ekf,
+        5 => Kind::Gmvdk,
+        _ => return Err(fail(OrientStatus::InvalidArgument, format_args!("unknown filter kind {kind}"))),
+    };
+    if !k.is_supported() {
+        return Err(fail(
+            OrientStatus::UnsupportedKind,
+            format_args!("filter kind '{}' is not built in this version", k.name()),
+        ));
+    }
+    Ok(k)
+}
+
+fn kind_to(kind: Kind) -> i32 {
+    (match kind {
+        Kind::Madgwick => OrientKind::Madgwick,
+        Kind::Mahony => OrientKind::Mahony,
+        Kind::Complementary => OrientKind::Complementary,
+        Kind::Ekf => OrientKind::Ekf,
+        Kind::Gmvdk => OrientKind::Gmvdk,
+    }) as i32
+}
+
+fn frame_from(frame: i32) -> Result<Frame, OrientStatus> {
+    match frame {
+        0 => Ok(Frame::Enu),
+        1 => Ok(Frame::Ned),
+        2 => Ok(Frame::Nwu),
+        _ => Err(fail(OrientStatus::InvalidArgument, format_args!("unknown frame {frame}"))),
+    }
+}
+
+fn frame_to(frame: Frame) -> i32 {
+    (match frame {
+        Frame::Enu => OrientFrame::Enu,
+        Frame::Ned => OrientFrame::Ned,
+        Frame::Nwu => OrientFrame::Nwu,
+    }) as i32
+}
+
+fn vec_from(v: OrientVec3) -> Vec3 {
+    Vec3::new(v.x, v.y, v.z)
+}
+
+fn vec_to(v: Vec3) -> OrientVec3 {
+    OrientVec3 { x: v.x, y: v.y, z: v.z }
+}
+
+fn quat_from(q: OrientQuaternion) -> Quat {
+    Quat::new(q.w, q.x, q.y, q.z)
+}
+
+fn quat_to(q: Quat) -> OrientQuaternion {
+    OrientQuaternion { w: q.w, x: q.x, y: q.y, z: q.z }
+}
+
+const SAMPLE_ALL: u32 = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL | ORIENT_SAMPLE_MAG;
+
+fn sample_from(s: &OrientSample) -> Result<Sample, OrientStatus> {
+    if s.flags & !SAMPLE_ALL != 0 || s.reserved != 0 {
+        return Err(fail(
+            OrientStatus::InvalidArgument,
+            format_args!("unknown sample flag bits {:#x} or non-zero reserved field", s.flags & !SAMPLE_ALL),
+        ));
+    }
+    let has = |bit: u32, v: OrientVec3| (s.flags & bit != 0).then(|| vec_from(v));
+    Ok(Sample {
+        dt: s.dt,
+        gyro: has(ORIENT_SAMPLE_GYRO, s.gyro),
+        accel: has(ORIENT_SAMPLE_ACCEL, s.accel),
+        mag: has(ORIENT_SAMPLE_MAG, s.mag),
+    })
+}
+
+fn config_to(c: &Config) -> OrientConfig {
+    let (init, initial) = match c.init {
+        Init::AccMag => (OrientInit::AccMag, Quat::IDENTITY),
+        Init::Identity => (OrientInit::Identity, Quat::IDENTITY),
+        Init::Given(q) => (OrientInit::Given, q),
+    };
+    OrientConfig {
+        struct_size: core::mem::size_of::<OrientConfig>() as u32,
+        kind: kind_to(c.kind()),
+        frame: frame_to(c.frame),
+        init: init as i32,
+        initial: quat_to(initial),
+        params: *c.slots(),
+    }
+}
+
+/// Checks a C configuration and turns it into a core one.
+unsafe fn config_from(c: *const OrientConfig) -> Result<Config, OrientStatus> {
+    if c.is_null() {
+        return Err(null());
+    }
+    // Read the size first: an older or newer caller's struct may be shorter or longer.
+    let size = core::ptr::addr_of!((*c).struct_size).read();
+    if size as usize != core::mem::size_of::<OrientConfig>() {
+        return Err(fail(
+            OrientStatus::VersionMismatch,
+            format_args!(
+                "OrientConfig.struct_size is {size}, this library's is {}",
+                core::mem::size_of::<OrientConfig>()
+            ),
+        ));
+    }
+    let c = &*c;
+    let kind = kind_from(c.kind)?;
+    let frame = frame_from(c.frame)?;
+    let init = match c.init {
+        0 => Init::AccMag,
+        1 => Init::Identity,
+        2 => Init::Given(quat_from(c.initial)),
+        other => return Err(fail(OrientStatus::InvalidArgument, format_args!("unknown init mode {other}"))),
+    };
+    Config::from_slots(kind, frame, init, &c.params).map_err(from_core)
+}
+
+/// C strings for the parameter tables, built once.
+struct ParamStrings {
+    name: CString,
+    unit: CString,
+    doc: CString,
+}
+
+static PARAM_STRINGS: Lazy<Vec<(Kind, Vec<ParamStrings>)>> = Lazy::new(|| {
+    let c = |s: &str| CString::new(s).unwrap_or_default();
+    Kind::ALL
+        .into_iter()
+        .map(|k| {
+            let strings = k
+                .params()
+                .map(|p| ParamStrings { name: c(p.name), unit: c(p.unit), doc: c(p.doc) })
+                .collect();
+            (k, strings)
+        })
+        .collect()
+});
+
+/// The library version, e.g. "0.1.0" (static, NUL-terminated).
+#[no_mangle]
+pub extern "C" fn orient_version() -> *const c_char {
+    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr() as *const c_char
+}
+
+/// ORIENT_ABI_VERSION of the loaded library; compare with the header's to detect a
+/// mismatched binary.
+#[no_mangle]
+pub extern "C" fn orient_abi_version() -> u32 {
+    ORIENT_ABI_VERSION
+}
+
+/// A fixed English message for a status code (static, NUL-terminated; never NULL).
+#[no_mangle]
+pub extern "C" fn orient_status_message(status: i32) -> *const c_char {
+    guard_value(b"\0".as_ptr() as *const c_char, || status_message(status).as_ptr() as *const c_char)
+}
+
+/// Detail of the last failed call on this thread (NUL-terminated, "" if none). Valid
+/// until the next failing orient call on the same thread; never NULL.
+#[no_mangle]
+pub extern "C" fn orient_last_error() -> *const c_char {
+    guard_value(b"\0".as_ptr() as *const c_char, detail_ptr)
+}
+
+/// beta from the maximum gyroscope error of each axis, Madgwick 2010 eq. (33):
+/// beta = sqrt(3/4) * gyro_error (both rad/s). NaN for a negative or non-finite input.
+#[no_mangle]
+pub extern "C" fn orient_madgwick_beta(gyro_error: f64) -> f64 {
+    if gyro_error.is_finite() && gyro_error >= 0.0 {
+        crate::filters::madgwick::beta_from_gyro_error(gyro_error)
+    } else {
+        f64::NAN
+    }
+}
+
+/// Fills `config` with the defaults of `kind` (one of ORIENT_KIND_*): ENU, initial
+/// orientation from the first accelerometer/magnetometer sample, every parameter at its
+/// documented default. ORIENT_STATUS_UNSUPPORTED_KIND for kinds not built yet.
+#[no_mangle]
+pub unsafe extern "C" fn orient_config_default(kind: i32, config: *mut OrientConfig) -> OrientStatus {
+    guard(|| {
+        let k = kind_from(kind)?;
+        let c = Config::new(k).map_err(from_core)?;
+        put(config, config_to(&c))
+    })
+}
+
+/// Sets parameter slot `id` of `config` after checking it against the kind's range.
+#[no_mangle]
+pub unsafe extern "C" fn orient_config_set_param(
+    config: *mut OrientConfig,
+    id: u32,
+    value: f64,
+) -> OrientStatus {
+    guard(|| {
+        let mut c = config_from(config)?;
+        c.set_param(id, value).map_err(from_core)?;
+        (*config).params[id as usize] = value;
+        Ok(())
+    })
+}
+
+/// Reads parameter slot `id` of `config` into `value`.
+#[no_mangle]
+pub unsafe extern "C" fn orient_config_get_param(
+    config: *const OrientConfig,
+    id: u32,
+    value: *mut f64,
+) -> OrientStatus {
+    guard(|| {
+        let c = config_from(config)?;
+        put(value, c.param(id).map_err(from_core)?)
+    })
+}
+
+/// Number of parameters of `kind` (common ones included), for orient_param_info().
+#[no_mangle]
+pub unsafe extern "C" fn orient_param_count(kind: i32, count: *mut u32) -> OrientStatus {
+    guard(|| {
+        let k = kind_from(kind)?;
+        put(count, k.params().count() as u32)
+    })
+}
+
+/// Describes parameter number `index` (0 <= index < orient_param_count) of `kind`.
+#[no_mangle]
+pub unsafe extern "C" fn orient_param_info(
+    kind: i32,
+    index: u32,
+    info: *mut OrientParamInfo,
+) -> OrientStatus {
+    guard(|| {
+        let k = kind_from(kind)?;
+        let Some(spec) = k.params().nth(index as usize) else {
+            return Err(fail(
+                OrientStatus::InvalidArgument,
+                format_args!("parameter index {index} out of range"),
+            ));
+        };
+        let strings = PARAM_STRINGS
+            .iter()
+            .find(|(kk, _)| *kk == k)
+            .and_then(|(_, s)| s.get(index as usize))
+            .ok_or_else(|| fail(OrientStatus::Panic, format_args!("parameter string table out of step")))?;
+        put(
+            info,
+            OrientParamInfo {
+                id: spec.id,
+                reserved: 0,
+                name: strings.name.as_ptr(),
+                unit: strings.unit.as_ptr(),
+                description: strings.doc.as_ptr(),
+                default_value: spec.default,
+                min: spec.min,
+                max: spec.max,
+            },
+        )
+    })
+}
+
+/// Looks up the slot of the parameter called `name` (NUL-terminated) for `kind`.
+#[no_mangle]
+pub unsafe extern "C" fn orient_param_find(kind: i32, name: *const c_char, id: *mut u32) -> OrientStatus {
+    guard(|| {
+        let k = kind_from(kind)?;
+        if name.is_null() {
+            return Err(null());
+        }
+        let name = CStr::from_ptr(name).to_str().unwrap_or("");
+        let spec = k.param_by_name(name).ok_or_else(|| {
+            fail(OrientStatus::UnknownParam, format_args!("no parameter '{name}' for this kind"))
+        })?;
+        put(id, spec.id)
+    })
+}
+
+/// Creates a filter from `config`. On success `*out` is a new handle; on failure it is
+/// set to NULL (when `out` is not NULL).
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_new(
+    config: *const OrientConfig,
+    out: *mut *mut OrientFilter,
+) -> OrientStatus {
+    guard(|| {
+        if out.is_null() {
+            return Err(null());
+        }
+        out.write(core::ptr::null_mut());
+        let c = config_from(config)?;
+        let filter = Filter::new(&c).map_err(from_core)?;
+        out.write(Box::into_raw(Box::new(OrientFilter { magic: MAGIC_LIVE, filter })));
+        Ok(())
+    })
+}
+
+/// Releases a filter. NULL is a no-op (ORIENT_STATUS_OK); a handle that was already
+/// freed is reported with ORIENT_STATUS_INVALID_HANDLE (see the handle-check limits).
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_free(filter: *mut OrientFilter) -> OrientStatus {
+    guard(|| {
+        if filter.is_null() {
+            return Ok(());
+        }
+        let h = handle_mut(filter)?;
+        h.magic = MAGIC_DEAD;
+        drop(Box::from_raw(filter));
+        Ok(())
+    })
+}
+
+/// The kind (ORIENT_KIND_*) of a filter.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_kind(filter: *const OrientFilter, kind: *mut i32) -> OrientStatus {
+    guard(|| put(kind, kind_to(handle(filter)?.filter.kind())))
+}
+
+/// Changes parameter slot `id` of a running filter; the orientation is kept.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_set_param(
+    filter: *mut OrientFilter,
+    id: u32,
+    value: f64,
+) -> OrientStatus {
+    guard(|| handle_mut(filter)?.filter.set_param(id, value).map_err(from_core))
+}
+
+/// Reads parameter slot `id` of a filter.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_get_param(
+    filter: *const OrientFilter,
+    id: u32,
+    value: *mut f64,
+) -> OrientStatus {
+    guard(|| put(value, handle(filter)?.filter.param(id).map_err(from_core)?))
+}
+
+/// One update. On any status but OK the filter's state is exactly as before.
+///
+/// Checks, in order: dt finite and > 0 (INVALID_DT); flags and reserved
+/// (INVALID_ARGUMENT); gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
+/// ORIENT_PARAM_GYRO_RANGE (SATURATED); accelerometer and magnetometer, when present:
+/// finite (NON_FINITE), norm not zero (ZERO_VECTOR) nor overflowing (TOO_LARGE),
+/// accelerometer within ORIENT_PARAM_ACCEL_RANGE (SATURATED); under ORIENT_INIT_ACC_MAG
+/// the first accepted sample must carry an accelerometer (NOT_INITIALIZED). A
+/// magnetometer parallel to gravity gives no heading: that step uses the IMU update.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_update(
+    filter: *mut OrientFilter,
+    sample: *const OrientSample,
+) -> OrientStatus {
+    guard(|| {
+        let h = handle_mut(filter)?;
+        if sample.is_null() {
+            return Err(null());
+        }
+        let s = sample_from(&*sample)?;
+        h.filter.update(&s).map_err(from_core)
+    })
+}
+
+/// Updates with `n` samples in order. When `quaternions` is not NULL it receives the
+/// orientation after each sample (room for `n`). Stops at the first bad sample: the
+/// samples before it stay applied, the bad one changes nothing, and `*processed` (when
+/// not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
+/// when `n` is 0.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_update_batch(
+    filter: *mut OrientFilter,
+    samples: *const OrientSample,
+    n: usize,
+    quaternions: *mut OrientQuaternion,
+    processed: *mut usize,
+) -> OrientStatus {
+    guard(|| {
+        if !processed.is_null() {
+            processed.write(0);
+        }
+        let h = handle_mut(filter)?;
+        if n == 0 {
+            return Ok(());
+        }
+        if samples.is_null() {
+            return Err(null());
+        }
+        if n > isize::MAX as usize / core::mem::size_of::<OrientSample>() {
+            return Err(fail(
+                OrientStatus::CountTooLarge,
+                format_args!("n = {n} samples cannot fit in memory"),
+            ));
+        }
+        let samples = core::slice::from_raw_parts(samples, n);
+        for (i, s) in samples.iter().enumerate() {
+            let result = sample_from(s).and_then(|s| h.filter.update(&s).map_err(from_core));
+            if let Err(status) = result {
+                if !processed.is_null() {
+                    processed.write(i);
+                }
+                let detail = CStr::from_ptr(detail_ptr()).to_bytes();
+                let detail = core::str::from_utf8(detail).unwrap_or("");
+                // Copy out first: the detail buffer is rewritten below.
+                let mut copy = [0u8; 200];
+                let len = detail.len().min(copy.len());
+                copy[..len].copy_from_slice(&detail.as_bytes()[..len]);
+                let detail = core::str::from_utf8(&copy[..len]).unwrap_or("");
+                return Err(fail(status, format_args!("sample {i}: {detail}")));
+            }
+            if !quaternions.is_null() {
+                quaternions.add(i).write(quat_to(h.filter.quaternion()));
+            }
+        }
+        if !processed.is_null() {
+            processed.write(n);
+        }
+        Ok(())
+    })
+}
+
+/// The orientation (sensor to earth, configured frame). Identity before initialisation.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_quaternion(
+    filter: *const OrientFilter,
+    q: *mut OrientQuaternion,
+) -> OrientStatus {
+    guard(|| put(q, quat_to(handle(filter)?.filter.quaternion())))
+}
+
+/// Euler angles (yaw, pitch, roll; Z-Y'-X'') of the orientation, radians.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_euler(
+    filter: *const OrientFilter,
+    euler: *mut OrientEuler,
+) -> OrientStatus {
+    guard(|| {
+        let e = handle(filter)?.filter.euler();
+        put(euler, OrientEuler { yaw: e.yaw, pitch: e.pitch, roll: e.roll })
+    })
+}
+
+/// Rotation matrix of the orientation, row-major, 9 doubles: v_earth = R * v_sensor.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_rotation_matrix(
+    filter: *const OrientFilter,
+    matrix: *mut f64,
+) -> OrientStatus {
+    guard(|| {
+        let m = handle(filter)?.filter.rotation_matrix();
+        if matrix.is_null() {
+            return Err(null());
+        }
+        for (i, v) in m.iter().flatten().enumerate() {
+            matrix.add(i).write(*v);
+        }
+        Ok(())
+    })
+}
+
+/// What the accelerometer reads at rest in the current orientation (gravity's reaction,
+/// pointing up), sensor frame, m/s^2, magnitude ORIENT_PARAM_GRAVITY.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_gravity(
+    filter: *const OrientFilter,
+    gravity: *mut OrientVec3,
+) -> OrientStatus {
+    guard(|| put(gravity, vec_to(handle(filter)?.filter.gravity())))
+}
+
+/// Last accelerometer reading minus orient_filter_gravity(), sensor frame, m/s^2.
+/// ORIENT_STATUS_NO_DATA before the first accelerometer reading.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_linear_accel(
+    filter: *const OrientFilter,
+    accel: *mut OrientVec3,
+) -> OrientStatus {
+    guard(|| {
+        let a = handle(filter)?.filter.linear_accel();
+        let a = a.ok_or_else(|| fail(OrientStatus::NoData, format_args!("no accelerometer reading yet")))?;
+        put(accel, vec_to(a))
+    })
+}
+
+/// orient_filter_linear_accel() rotated into the earth frame, m/s^2.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_linear_accel_earth(
+    filter: *const OrientFilter,
+    accel: *mut OrientVec3,
+) -> OrientStatus {
+    guard(|| {
+        let a = handle(filter)?.filter.linear_accel_earth();
+        let a = a.ok_or_else(|| fail(OrientStatus::NoData, format_args!("no accelerometer reading yet")))?;
+        put(accel, vec_to(a))
+    })
+}
+
+/// ORIENT_FLAG_* bits of the filter's state.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_flags(filter: *const OrientFilter, flags: *mut u32) -> OrientStatus {
+    guard(|| put(flags, handle(filter)?.filter.flags()))
+}
+
+/// Back to the state right after orient_filter_new(); parameters set since are kept.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_reset(filter: *mut OrientFilter) -> OrientStatus {
+    guard(|| {
+        handle_mut(filter)?.filter.reset();
+        Ok(())
+    })
+}
+
+/// Sets the orientation (configured frame; normalised). NON_FINITE, ZERO_VECTOR or
+/// TOO_LARGE for an unusable quaternion. The filter counts as initialised afterwards.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_set_quaternion(
+    filter: *mut OrientFilter,
+    q: *const OrientQuaternion,
+) -> OrientStatus {
+    guard(|| {
+        let h = handle_mut(filter)?;
+        if q.is_null() {
+            return Err(null());
+        }
+        h.filter.set_quaternion(quat_from(*q)).map_err(from_core)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::filters::params;
+
+    #[test]
+    fn header_constants_match_the_core() {
+        assert_eq!(ORIENT_MAX_PARAMS, params::MAX_PARAMS);
+        assert_eq!(ORIENT_PARAM_GRAVITY, params::id::GRAVITY);
+        assert_eq!(ORIENT_PARAM_GYRO_RANGE, params::id::GYRO_RANGE);
+        assert_eq!(ORIENT_PARAM_ACCEL_RANGE, params::id::ACCEL_RANGE);
+        assert_eq!(ORIENT_PARAM_MADGWICK_BETA_IMU, params::id::MADGWICK_BETA_IMU);
+        assert_eq!(ORIENT_PARAM_MADGWICK_BETA_MARG, params::id::MADGWICK_BETA_MARG);
+        use crate::filters::flags;
+        assert_eq!(ORIENT_FLAG_INITIALIZED, flags::INITIALIZED);
+        assert_eq!(ORIENT_FLAG_ACCEL_USED, flags::ACCEL_USED);
+        assert_eq!(ORIENT_FLAG_MAG_USED, flags::MAG_USED);
+        assert_eq!(core::mem::size_of::<OrientSample>(), 88);
+        assert_eq!(core::mem::size_of::<OrientConfig>(), 560);
+    }
+
+    #[test]
+    fn double_free_and_null_are_reported_not_crashes() {
+        unsafe {
+            let mut c = core::mem::MaybeUninit::<OrientConfig>::uninit();
+            assert_eq!(orient_config_default(OrientKind::Madgwick as i32, c.as_mut_ptr()), OrientStatus::Ok);
+            let mut h = core::ptr::null_mut();
+            assert_eq!(orient_filter_new(c.as_ptr(), &mut h), OrientStatus::Ok);
+            assert_eq!(orient_filter_free(core::ptr::null_mut()), OrientStatus::Ok);
+            let mut q = OrientQuaternion::default();
+            assert_eq!(orient_filter_quaternion(h, core::ptr::null_mut()), OrientStatus::NullPointer);
+            assert_eq!(orient_filter_quaternion(h, &mut q), OrientStatus::Ok);
+            assert_eq!(q, OrientQuaternion { w: 1.0, x: 0.0, y: 0.0, z: 0.0 });
+            // A foreign but readable, aligned object is not a handle.
+            let mut fake = [0u64; 16];
+            let fake_h = fake.as_mut_ptr() as *mut OrientFilter;
+            assert_eq!(orient_filter_reset(fake_h), OrientStatus::InvalidHandle);
+            assert_eq!(orient_filter_free(h), OrientStatus::Ok);
+        }
+    }
+
+    #[test]
+    fn param_tables_are_reachable_by_index_and_name() {
+        unsafe {
+            let k = OrientKind::Madgwick as i32;
+            let mut n = 0;
+            assert_eq!(orient_param_count(k, &mut n), OrientStatus::Ok);
+            assert_eq!(n, 5);
+            let mut info = core::mem::MaybeUninit::<OrientParamInfo>::uninit();
+            for i in 0..n {
+                assert_eq!(orient_param_info(k, i, info.as_mut_ptr()), OrientStatus::Ok);
+                let info = info.assume_init();
+                let mut id = 99;
+                assert_eq!(orient_param_find(k, info.name, &mut id), OrientStatus::Ok);
+                assert_eq!(id, info.id);
+            }
+            assert_eq!(orient_param_info(k, n, info.as_mut_ptr()), OrientStatus::InvalidArgument);
+            assert_eq!(orient_param_count(OrientKind::Ekf as i32, &mut n), OrientStatus::UnsupportedKind);
+            assert_eq!(orient_param_count(77, &mut n), OrientStatus::InvalidArgument);
+        }
+    }
+}

@@ -1,0 +1,406 @@
+//! Madgwick's gradient-descent orientation filter, IMU and MARG, with magnetic distortion
+//! compensation.
+//!
+//! Source: S. O. H. Madgwick, "An efficient orientation filter for inertial and
+//! inertial/magnetic sensor arrays", 2010 (`shared/papers/madgwick-2010-gradient-descent.txt`).
+//! Equation numbers below are the paper's.
+//!
+//! The paper writes the orientation as `ᴱₛq̂ = [q1 q2 q3 q4]` with the objective
+//! `f = q* ⊗ d ⊗ q − s` (6): a field `d` known in the earth frame is seen in the
+//! sensor as `s = q* ⊗ d ⊗ q`. That is orient's convention (`v_earth = q ⊗ v_body ⊗ q*`)
+//! with `q1..q4 = w, x, y, z`. The earth frame of the equations has gravity's reaction
+//! along +z (10) and the horizontal field along +x (14): magnetic North-West-Up, the
+//! filter's native frame; [`crate::Filter`] rotates it into the configured frame.
+//!
+//! Choices where the text is ambiguous:
+//! - (16) and (17) multiply the reference field by 2 (`2 b_x`, `2 b_z`); the widely copied
+//!   2012 C code uses `b` where these need `2b`. This follows the paper.
+//! - (17) is damaged in the extracted text (printed as a 6×2 block). It is read as the
+//!   3×4 Jacobian of (16), which the unit tests check against a finite difference.
+//! - (31)-(32) use the previous estimate `q̂_est,t−1` and the normalised magnetometer, so
+//!   `|b| = 1`. When the field has no horizontal component (`b_x = 0`, magnetometer
+//!   parallel to gravity) (18) has no unique minimum; that step uses the IMU form (12)-(13).
+//! - A step without an accelerometer integrates the gyroscope alone: (29) with (30)'s
+//!   correction term absent.
+//! - β for a step follows the sensors used in it: `beta_imu` for (12)-(13), `beta_marg`
+//!   for (18)-(19), the two values the paper found optimal (section V).
+
+use super::params::{id, ParamSpec};
+use crate::math::{Quat, Vec3};
+
+/// Madgwick's settings, in user units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MadgwickSettings {
+    /// β (rad/s) for steps with accelerometer only, eq. (30). Default 0.041: the paper's
+    /// optimum for its IMU implementation (section V, Fig. 4). Set from a gyroscope error
+    /// with [`beta_from_gyro_error`], eq. (33).
+    pub beta_imu: f64,
+    /// β (rad/s) for steps with accelerometer and magnetometer, eq. (30). Default 0.033:
+    /// the paper's optimum for its MARG implementation (section V, Fig. 4).
+    pub beta_marg: f64,
+}
+
+impl Default for MadgwickSettings {
+    fn default() -> Self {
+        MadgwickSettings { beta_imu: 0.041, beta_marg: 0.033 }
+    }
+}
+
+/// β from the maximum gyroscope measurement error `ω̃_max` (rad/s) of each axis, eq. (33):
+/// `β = ‖½ q̂ ⊗ [0 ω̃ ω̃ ω̃]‖ = √(3/4) ω̃_max`.
+pub fn beta_from_gyro_error(gyro_error_max: f64) -> f64 {
+    (0.75f64).sqrt() * gyro_error_max
+}
+
+pub(crate) const PARAMS: [ParamSpec; 2] = [
+    ParamSpec {
+        id: id::MADGWICK_BETA_IMU,
+        name: "beta_imu",
+        unit: "rad/s",
+        doc: "Gradient step beta for steps without magnetometer, eq. (30); default 0.041 \
+              (Madgwick 2010, section V, optimum of the IMU implementation). \
+              beta = sqrt(3/4) * max gyro error, eq. (33).",
+        default: 0.041,
+        min: 0.0,
+        max: 100.0,
+    },
+    ParamSpec {
+        id: id::MADGWICK_BETA_MARG,
+        name: "beta_marg",
+        unit: "rad/s",
+        doc: "Gradient step beta for steps with magnetometer, eq. (30); default 0.033 \
+              (Madgwick 2010, section V, optimum of the MARG implementation).",
+        default: 0.033,
+        min: 0.0,
+        max: 100.0,
+    },
+];
+
+/// Objective function for gravity, eq. (12): `f_g = q* ⊗ [0 0 0 1] ⊗ q − â`.
+#[inline]
+pub fn objective_g(q: Quat, a: Vec3) -> [f64; 3] {
+    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    [2.0 * (q2 * q4 - q1 * q3) - a.x, 2.0 * (q1 * q2 + q3 * q4) - a.y, 2.0 * (0.5 - q2 * q2 - q3 * q3) - a.z]
+}
+
+/// Jacobian of (12), eq. (13): rows are the components of `f_g`, columns `q1..q4`.
+#[inline]
+pub fn jacobian_g(q: Quat) -> [[f64; 4]; 3] {
+    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    [
+        [-2.0 * q3, 2.0 * q4, -2.0 * q1, 2.0 * q2],
+        [2.0 * q2, 2.0 * q1, 2.0 * q4, 2.0 * q3],
+        [0.0, -4.0 * q2, -4.0 * q3, 0.0],
+    ]
+}
+
+/// Objective function for the magnetic field, eq. (16), with `ᴱb̂ = [0 b_x 0 b_z]` (14).
+#[inline]
+pub fn objective_b(q: Quat, bx: f64, bz: f64, m: Vec3) -> [f64; 3] {
+    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    [
+        2.0 * bx * (0.5 - q3 * q3 - q4 * q4) + 2.0 * bz * (q2 * q4 - q1 * q3) - m.x,
+        2.0 * bx * (q2 * q3 - q1 * q4) + 2.0 * bz * (q1 * q2 + q3 * q4) - m.y,
+        2.0 * bx * (q1 * q3 + q2 * q4) + 2.0 * bz * (0.5 - q2 * q2 - q3 * q3) - m.z,
+    ]
+}
+
+/// Jacobian of (16), eq. (17): rows are the components of `f_b`, columns `q1..q4`.
+#[inline]
+pub fn jacobian_b(q: Quat, bx: f64, bz: f64) -> [[f64; 4]; 3] {
+    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    [
+        [-2.0 * bz * q3, 2.0 * bz * q4, -4.0 * bx * q3 - 2.0 * bz * q1, -4.0 * bx * q4 + 2.0 * bz * q2],
+        [
+            -2.0 * bx * q4 + 2.0 * bz * q2,
+            2.0 * bx * q3 + 2.0 * bz * q1,
+            2.0 * bx * q2 + 2.0 * bz * q4,
+            -2.0 * bx * q1 + 2.0 * bz * q3,
+        ],
+        [2.0 * bx * q3, 2.0 * bx * q4 - 4.0 * bz * q2, 2.0 * bx * q1 - 4.0 * bz * q3, 2.0 * bx * q2],
+    ]
+}
+
+/// Reference direction of the field, eqs. (31)-(32): the measured field `m̂` rotated into
+/// the earth frame by the previous estimate, `ᴱh = q ⊗ m̂ ⊗ q*`, then
+/// `b_x = √(h_x² + h_y²)`, `b_z = h_z`.
+#[inline]
+pub fn reference_field(q: Quat, m: Vec3) -> (f64, f64) {
+    let h = q.rotate(m);
+    ((h.x * h.x + h.y * h.y).sqrt(), h.z)
+}
+
+/// `Jᵀ f` for a 3×4 Jacobian and a 3-vector, as a quaternion (eq. (8)).
+#[inline]
+fn jt_f(j: &[[f64; 4]; 3], f: &[f64; 3]) -> Quat {
+    let col = |c: usize| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2];
+    Quat::new(col(0), col(1), col(2), col(3))
+}
+
+/// The IMU gradient `∇f = J_gᵀ f_g`, eq. (21) first case.
+#[inline]
+pub fn gradient_imu(q: Quat, a: Vec3) -> Quat {
+    jt_f(&jacobian_g(q), &objective_g(q, a))
+}
+
+/// The MARG gradient `∇f = J_g,bᵀ f_g,b`, eqs. (18), (19), (21) second case.
+#[inline]
+pub fn gradient_marg(q: Quat, a: Vec3, bx: f64, bz: f64, m: Vec3) -> Quat {
+    jt_f(&jacobian_g(q), &objective_g(q, a)) + jt_f(&jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m))
+}
+
+/// Which measurements one update used.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Step {
+    pub used_accel: bool,
+    pub used_mag: bool,
+}
+
+/// Madgwick's filter. Its state is the orientation alone, in its native North-West-Up frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Madgwick {
+    pub settings: MadgwickSettings,
+    q: Quat,
+}
+
+impl Madgwick {
+    pub fn new(settings: MadgwickSettings) -> Madgwick {
+        Madgwick { settings, q: Quat::IDENTITY }
+    }
+
+    /// The estimate `ᴱₛq̂_est` (sensor to earth, North-West-Up).
+    pub fn quaternion(&self) -> Quat {
+        self.q
+    }
+
+    /// Sets the estimate; `q` must be a unit quaternion.
+    pub fn set_quaternion(&mut self, q: Quat) {
+        self.q = q;
+    }
+
+    /// One filter step, eqs. (29)-(30). `gyro` in rad/s, `accel` and `mag` in any unit
+    /// (they are normalised) and not zero, `dt` in seconds and positive.
+    ///
+    /// The state changes only when the new estimate is finite; otherwise it stays as it
+    /// was and `None` is returned.
+    pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        let q = self.q;
+        // (3): rate of change of orientation measured by the gyroscope.
+        let q_dot_omega = (q * Quat::pure(gyro)).scale(0.5);
+        let mut step = Step::default();
+        let q_dot = match accel {
+            None => q_dot_omega,
+            Some(accel) => {
+                step.used_accel = true;
+                let a = accel.normalized();
+                let marg = mag.and_then(|mag| {
+                    let m = mag.normalized();
+                    let (bx, bz) = reference_field(q, m);
+                    (bx > 0.0).then(|| gradient_marg(q, a, bx, bz, m))
+                });
+                step.used_mag = marg.is_some();
+                let (gradient, beta) = match marg {
+                    Some(g) => (g, self.settings.beta_marg),
+                    None => (gradient_imu(q, a), self.settings.beta_imu),
+                };
+                let n = gradient.norm();
+                if n > 0.0 {
+                    // (30): remove β in the direction of the normalised gradient.
+                    let s = beta / n;
+                    Quat::new(
+                        q_dot_omega.w - s * gradient.w,
+                        q_dot_omega.x - s * gradient.x,
+                        q_dot_omega.y - s * gradient.y,
+                        q_dot_omega.z - s * gradient.z,
+                    )
+                } else {
+                    q_dot_omega
+                }
+            }
+        };
+        // (29): integrate, then keep the estimate on the unit sphere.
+        let q_new = q + q_dot.scale(dt);
+        let n2 = q_new.norm_squared();
+        if !(n2.is_finite() && n2 > 0.0) {
+            return None;
+        }
+        let q_new = q_new.scale(1.0 / n2.sqrt());
+        if !q_new.is_finite() {
+            return None;
+        }
+        self.q = q_new;
+        Some(step)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Vec3;
+
+    fn sample_q() -> Quat {
+        Quat::new(0.7, -0.2, 0.5, 0.3).normalized()
+    }
+
+    /// The objective (6) computed directly with quaternion products.
+    fn objective_direct(q: Quat, d: Vec3, s: Vec3) -> [f64; 3] {
+        let v = q.rotate_inverse(d);
+        [v.x - s.x, v.y - s.y, v.z - s.z]
+    }
+
+    #[test]
+    fn eq12_matches_the_general_objective_term_by_term() {
+        let q = sample_q();
+        let a = Vec3::new(0.1, -0.3, 0.9).normalized();
+        let f = objective_g(q, a);
+        let direct = objective_direct(q, Vec3::new(0.0, 0.0, 1.0), a);
+        // Term by term with independent arithmetic (q1..q4 = w, x, y, z):
+        let (q1, q2, q3, q4) = (q.w, q.x, q.y, q.z);
+        let hand = [
+            2.0 * q2 * q4 - 2.0 * q1 * q3 - a.x,
+            2.0 * q1 * q2 + 2.0 * q3 * q4 - a.y,
+            1.0 - 2.0 * q2 * q2 - 2.0 * q3 * q3 - a.z,
+        ];
+        for i in 0..3 {
+            assert!((f[i] - direct[i]).abs() < 1e-15, "row {i}");
+            assert!((f[i] - hand[i]).abs() < 1e-15, "row {i}");
+        }
+    }
+
+    #[test]
+    fn eq16_uses_2b_and_matches_the_general_objective() {
+        let q = sample_q();
+        let (bx, bz) = (0.4, -0.9165);
+        let m = Vec3::new(0.3, 0.5, -0.8).normalized();
+        let f = objective_b(q, bx, bz, m);
+        let direct = objective_direct(q, Vec3::new(bx, 0.0, bz), m);
+        for i in 0..3 {
+            assert!((f[i] - direct[i]).abs() < 1e-15, "row {i}: {} vs {}", f[i], direct[i]);
+        }
+        // With b halved, as in the 2012 C code, the field would not match: the factor 2
+        // is needed.
+        let wrong = objective_direct(q, Vec3::new(bx / 2.0, 0.0, bz / 2.0), m);
+        assert!((f[0] - wrong[0]).abs() > 1e-3);
+    }
+
+    /// Central finite difference of a 3-vector function of q, column by column.
+    fn numeric_jacobian(f: impl Fn(Quat) -> [f64; 3], q: Quat) -> [[f64; 4]; 3] {
+        let h = 1e-6;
+        let mut j = [[0.0; 4]; 3];
+        for c in 0..4 {
+            let mut dq = [0.0; 4];
+            dq[c] = h;
+            let plus = f(Quat::new(q.w + dq[0], q.x + dq[1], q.y + dq[2], q.z + dq[3]));
+            let minus = f(Quat::new(q.w - dq[0], q.x - dq[1], q.y - dq[2], q.z - dq[3]));
+            for r in 0..3 {
+                j[r][c] = (plus[r] - minus[r]) / (2.0 * h);
+            }
+        }
+        j
+    }
+
+    #[test]
+    fn eq13_and_eq17_are_the_jacobians_of_eq12_and_eq16() {
+        let q = sample_q();
+        let a = Vec3::new(0.2, 0.1, 0.97).normalized();
+        let (bx, bz) = (0.35, -0.93);
+        let m = Vec3::new(0.1, 0.4, -0.9).normalized();
+        let jg = numeric_jacobian(|q| objective_g(q, a), q);
+        let jb = numeric_jacobian(|q| objective_b(q, bx, bz, m), q);
+        let (ag, ab) = (jacobian_g(q), jacobian_b(q, bx, bz));
+        for r in 0..3 {
+            for c in 0..4 {
+                assert!((jg[r][c] - ag[r][c]).abs() < 1e-8, "J_g[{r}][{c}]");
+                assert!((jb[r][c] - ab[r][c]).abs() < 1e-8, "J_b[{r}][{c}]");
+            }
+        }
+    }
+
+    #[test]
+    fn gradient_is_the_gradient_of_half_the_squared_objective() {
+        // ∇(½‖f‖²) = Jᵀ f, eq. (8); check with a finite difference of the scalar objective.
+        let q = sample_q();
+        let a = Vec3::new(-0.3, 0.2, 0.93).normalized();
+        let m = Vec3::new(0.5, -0.1, -0.85).normalized();
+        let (bx, bz) = reference_field(q, m);
+        let cost = |q: Quat| {
+            let g = objective_g(q, a);
+            let b = objective_b(q, bx, bz, m);
+            0.5 * (g.iter().chain(b.iter()).map(|v| v * v).sum::<f64>())
+        };
+        let grad = gradient_marg(q, a, bx, bz, m);
+        let h = 1e-6;
+        let num = |d: Quat| (cost(q + d.scale(h)) - cost(q + d.scale(-h))) / (2.0 * h);
+        let numeric = Quat::new(
+            num(Quat::new(1.0, 0.0, 0.0, 0.0)),
+            num(Quat::new(0.0, 1.0, 0.0, 0.0)),
+            num(Quat::new(0.0, 0.0, 1.0, 0.0)),
+            num(Quat::new(0.0, 0.0, 0.0, 1.0)),
+        );
+        for (g, n) in [(grad.w, numeric.w), (grad.x, numeric.x), (grad.y, numeric.y), (grad.z, numeric.z)] {
+            assert!((g - n).abs() < 1e-8, "{grad:?} vs {numeric:?}");
+        }
+        // And it vanishes at the true orientation.
+        let truth = sample_q();
+        let a_true = truth.rotate_inverse(Vec3::new(0.0, 0.0, 1.0));
+        let m_true = truth.rotate_inverse(Vec3::new(0.6, 0.0, -0.8));
+        let (bx, bz) = reference_field(truth, m_true);
+        assert!((bx - 0.6).abs() < 1e-12 && (bz + 0.8).abs() < 1e-12);
+        assert!(gradient_marg(truth, a_true, bx, bz, m_true).norm() < 1e-12);
+    }
+
+    #[test]
+    fn reference_field_keeps_the_measured_inclination() {
+        // (32): b has the inclination of h and no y component; |b| = |m̂| = 1.
+        let q = sample_q();
+        let m = Vec3::new(0.2, -0.7, 0.4).normalized();
+        let (bx, bz) = reference_field(q, m);
+        let h = q.rotate(m);
+        assert!((bx * bx + bz * bz - 1.0).abs() < 1e-15);
+        assert_eq!(bz, h.z);
+        assert!(bx >= 0.0);
+    }
+
+    #[test]
+    fn beta_from_gyro_error_is_eq33() {
+        let w = 0.1;
+        let q = sample_q();
+        let direct = (q * Quat::new(0.0, w, w, w)).scale(0.5).norm();
+        assert!((beta_from_gyro_error(w) - direct).abs() < 1e-15);
+    }
+
+    #[test]
+    fn converges_from_a_wrong_initial_attitude() {
+        let truth = Quat::from_axis_angle(Vec3::new(0.2, 1.0, -0.4), 1.1);
+        let accel = truth.rotate_inverse(Vec3::new(0.0, 0.0, 9.81));
+        let mag = truth.rotate_inverse(Vec3::new(18.0, 0.0, -42.0));
+        let mut f = Madgwick::new(MadgwickSettings { beta_imu: 0.5, beta_marg: 0.5 });
+        // Start 150° away.
+        f.set_quaternion(Quat::from_axis_angle(Vec3::new(1.0, 0.3, 0.0), 2.6) * truth);
+        let start = f.quaternion().angle_to(truth);
+        for _ in 0..4000 {
+            f.update(0.01, Vec3::ZERO, Some(accel), Some(mag)).unwrap();
+        }
+        let end = f.quaternion().angle_to(truth);
+        assert!(start > 2.0 && end < 1e-3, "start {start} end {end}");
+    }
+
+    #[test]
+    fn gyro_only_step_integrates_eq4() {
+        let mut f = Madgwick::new(MadgwickSettings::default());
+        let w = Vec3::new(0.0, 0.0, 1.0);
+        f.update(0.01, w, None, None).unwrap();
+        let q = f.quaternion();
+        let expected = Quat::new(1.0, 0.0, 0.0, 0.005).normalized();
+        assert_eq!(q, expected);
+    }
+
+    #[test]
+    fn overflowing_step_leaves_the_state_alone() {
+        let mut f = Madgwick::new(MadgwickSettings::default());
+        f.set_quaternion(sample_q());
+        let before = f.clone();
+        assert!(f.update(1e300, Vec3::new(1e300, 1e300, 0.0), None, None).is_none());
+        assert_eq!(f, before);
+    }
+}

@@ -1,0 +1,680 @@
+//! The filters, and [`Filter`]: one lifecycle and one set of outputs for every kind.
+//!
+//! Everything here is safe Rust with no FFI types; `update` does not allocate.
+
+pub mod madgwick;
+pub mod params;
+
+use crate::math::{Euler, Frame, Quat, Vec3};
+use core::fmt;
+use madgwick::{Madgwick, MadgwickSettings};
+use params::{id, ParamSpec, COMMON, MAX_PARAMS};
+
+/// The filter kinds. Hosts swap filters by changing this value alone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Kind {
+    /// Madgwick 2010, gradient descent (IMU and MARG).
+    Madgwick,
+    /// Mahony's nonlinear complementary filter (not built yet).
+    Mahony,
+    /// McGinnis 2014 PI complementary filter (not built yet).
+    Complementary,
+    /// Kim & Golnaraghi 2004 quaternion EKF (not built yet).
+    Ekf,
+    /// GMVDK 2024 double-SLERP filter (not built yet).
+    Gmvdk,
+}
+
+impl Kind {
+    pub const ALL: [Kind; 5] = [Kind::Madgwick, Kind::Mahony, Kind::Complementary, Kind::Ekf, Kind::Gmvdk];
+
+    /// The lower-case name used by the replay tool: `madgwick`, `mahony`, ...
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Madgwick => "madgwick",
+            Kind::Mahony => "mahony",
+            Kind::Complementary => "complementary",
+            Kind::Ekf => "ekf",
+            Kind::Gmvdk => "gmvdk",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Kind> {
+        Kind::ALL.into_iter().find(|k| k.name().eq_ignore_ascii_case(name))
+    }
+
+    /// True when this build implements the kind.
+    pub fn is_supported(self) -> bool {
+        matches!(self, Kind::Madgwick)
+    }
+
+    /// The settings this kind has beyond the common ones.
+    fn own_params(self) -> &'static [ParamSpec] {
+        match self {
+            Kind::Madgwick => &madgwick::PARAMS,
+            _ => &[],
+        }
+    }
+
+    /// Every parameter of this kind: the common ones, then its own.
+    pub fn params(self) -> impl Iterator<Item = &'static ParamSpec> {
+        COMMON.iter().chain(self.own_params())
+    }
+
+    /// The parameter in slot `id`, if this kind has one there.
+    pub fn param(self, id: u32) -> Option<&'static ParamSpec> {
+        self.params().find(|p| p.id == id)
+    }
+
+    /// The parameter called `name`, if this kind has one.
+    pub fn param_by_name(self, name: &str) -> Option<&'static ParamSpec> {
+        self.params().find(|p| p.name == name)
+    }
+}
+
+/// How the filter gets its first orientation.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Init {
+    /// From the first sample that has an accelerometer reading (and, if it has one, the
+    /// magnetometer): see [`Frame::attitude_from`]. That sample is then also used for a
+    /// normal update. Until then the filter reports that it is not initialised.
+    #[default]
+    AccMag,
+    /// The identity orientation in the configured frame.
+    Identity,
+    /// This orientation, in the configured frame (normalised on use).
+    Given(Quat),
+}
+
+/// Which quantity a problem was found in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Field {
+    Dt,
+    Gyro,
+    Accel,
+    Mag,
+    Quaternion,
+}
+
+impl Field {
+    fn name(self) -> &'static str {
+        match self {
+            Field::Dt => "dt",
+            Field::Gyro => "gyroscope",
+            Field::Accel => "accelerometer",
+            Field::Mag => "magnetometer",
+            Field::Quaternion => "quaternion",
+        }
+    }
+}
+
+/// Why a call was refused. A refused call changes nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Error {
+    /// The kind is known but not built yet.
+    UnsupportedKind(Kind),
+    /// This kind has no parameter in that slot.
+    UnknownParam(u32),
+    /// A parameter value outside its range or not finite.
+    ParamOutOfRange { id: u32, value: f64 },
+    /// A NaN or infinite value in a present field.
+    NonFinite(Field),
+    /// dt is zero, negative or not finite.
+    InvalidDt(f64),
+    /// A vector whose norm is zero or too small to normalise.
+    ZeroVector(Field),
+    /// A vector whose squared norm overflows.
+    TooLarge(Field),
+    /// A reading at or beyond the configured full-scale range.
+    Saturated(Field),
+    /// A sensor the filter needs is absent from the sample.
+    MissingSensor(Field),
+    /// The filter waits for an accelerometer reading to initialise.
+    NotInitialized,
+    /// The update would have produced a non-finite orientation.
+    Numeric,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::UnsupportedKind(k) => write!(f, "filter kind '{}' is not built yet", k.name()),
+            Error::UnknownParam(id) => write!(f, "this filter kind has no parameter {id}"),
+            Error::ParamOutOfRange { id, value } => {
+                write!(f, "parameter {id}: value {value} is out of range")
+            }
+            Error::NonFinite(field) => write!(f, "{} has a NaN or infinite value", field.name()),
+            Error::InvalidDt(dt) => write!(f, "dt must be finite and > 0 s, got {dt}"),
+            Error::ZeroVector(field) => {
+                write!(f, "{} vector is zero or too small to normalise", field.name())
+            }
+            Error::TooLarge(field) => write!(f, "{} vector is too large (norm overflows)", field.name()),
+            Error::Saturated(field) => {
+                write!(f, "{} reading is at or beyond its configured range", field.name())
+            }
+            Error::MissingSensor(field) => {
+                write!(f, "sample has no {} reading, which this filter needs", field.name())
+            }
+            Error::NotInitialized => write!(f, "filter waits for an accelerometer reading to initialise"),
+            Error::Numeric => write!(f, "update would produce a non-finite orientation"),
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+/// One sensor sample. Units: gyro rad/s, accel m/s², mag any unit (consistent over a
+/// run); `dt` in seconds since the previous sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Sample {
+    pub dt: f64,
+    pub gyro: Option<Vec3>,
+    pub accel: Option<Vec3>,
+    pub mag: Option<Vec3>,
+}
+
+/// A filter's configuration: kind, frame, initial orientation and parameter slots.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Config {
+    kind: Kind,
+    pub frame: Frame,
+    pub init: Init,
+    params: [f64; MAX_PARAMS],
+}
+
+impl Config {
+    /// The defaults of `kind`: ENU, initialised from the first accelerometer (and
+    /// magnetometer) sample, every parameter at its documented default.
+    pub fn new(kind: Kind) -> Result<Config, Error> {
+        if !kind.is_supported() {
+            return Err(Error::UnsupportedKind(kind));
+        }
+        let mut params = [0.0; MAX_PARAMS];
+        for p in kind.params() {
+            params[p.id as usize] = p.default;
+        }
+        Ok(Config { kind, frame: Frame::Enu, init: Init::AccMag, params })
+    }
+
+    /// A configuration from raw slots, every known slot checked against its range.
+    /// Slots this kind does not use are ignored.
+    pub fn from_slots(
+        kind: Kind,
+        frame: Frame,
+        init: Init,
+        slots: &[f64; MAX_PARAMS],
+    ) -> Result<Config, Error> {
+        let mut config = Config::new(kind)?;
+        config.frame = frame;
+        config.init = init;
+        for p in kind.params() {
+            config.set_param(p.id, slots[p.id as usize])?;
+        }
+        Ok(config)
+    }
+
+    pub fn kind(&self) -> Kind {
+        self.kind
+    }
+
+    /// The value in slot `id`.
+    pub fn param(&self, id: u32) -> Result<f64, Error> {
+        self.kind.param(id).map(|p| self.params[p.id as usize]).ok_or(Error::UnknownParam(id))
+    }
+
+    /// Sets slot `id` after checking the value against the parameter's range.
+    pub fn set_param(&mut self, id: u32, value: f64) -> Result<(), Error> {
+        let spec = self.kind.param(id).ok_or(Error::UnknownParam(id))?;
+        if !spec.accepts(value) {
+            return Err(Error::ParamOutOfRange { id, value });
+        }
+        self.params[id as usize] = value;
+        Ok(())
+    }
+
+    /// Sets the parameter called `name`; `None` when the kind has no such parameter.
+    pub fn set(&mut self, name: &str, value: f64) -> Option<Result<(), Error>> {
+        let spec = self.kind.param_by_name(name)?;
+        Some(self.set_param(spec.id, value))
+    }
+
+    /// All slots (unused ones are zero).
+    pub fn slots(&self) -> &[f64; MAX_PARAMS] {
+        &self.params
+    }
+
+    fn slot(&self, id: u32) -> f64 {
+        self.params[id as usize]
+    }
+}
+
+/// State flags reported by [`Filter::flags`].
+pub mod flags {
+    /// The filter has an orientation (always set unless waiting for acc/mag init).
+    pub const INITIALIZED: u32 = 1;
+    /// The last accepted update used the accelerometer.
+    pub const ACCEL_USED: u32 = 2;
+    /// The last accepted update used the magnetometer.
+    pub const MAG_USED: u32 = 4;
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Core {
+    Madgwick(Madgwick),
+}
+
+impl Core {
+    fn new(config: &Config) -> Core {
+        match config.kind {
+            Kind::Madgwick => Core::Madgwick(Madgwick::new(MadgwickSettings {
+                beta_imu: config.slot(id::MADGWICK_BETA_IMU),
+                beta_marg: config.slot(id::MADGWICK_BETA_MARG),
+            })),
+            // Config::new refuses kinds that are not built.
+            _ => unreachable!("unsupported kind in a checked config"),
+        }
+    }
+
+    /// The frame the filter's own equations are written in.
+    fn native_frame(&self) -> Frame {
+        match self {
+            Core::Madgwick(_) => Frame::Nwu,
+        }
+    }
+
+    fn quaternion(&self) -> Quat {
+        match self {
+            Core::Madgwick(f) => f.quaternion(),
+        }
+    }
+
+    fn set_quaternion(&mut self, q: Quat) {
+        match self {
+            Core::Madgwick(f) => f.set_quaternion(q),
+        }
+    }
+
+    fn apply_param(&mut self, id: u32, value: f64) {
+        match self {
+            Core::Madgwick(f) => match id {
+                id::MADGWICK_BETA_IMU => f.settings.beta_imu = value,
+                id::MADGWICK_BETA_MARG => f.settings.beta_marg = value,
+                _ => {}
+            },
+        }
+    }
+
+    /// One update in the native frame; `None` (and no change) on numerical failure.
+    fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<u32> {
+        match self {
+            Core::Madgwick(f) => f.update(dt, gyro, accel, mag).map(|s| {
+                (if s.used_accel { flags::ACCEL_USED } else { 0 })
+                    | (if s.used_mag { flags::MAG_USED } else { 0 })
+            }),
+        }
+    }
+}
+
+/// An orientation filter of any kind, with the common lifecycle:
+/// [`Filter::new`], [`Filter::update`], the getters, [`Filter::reset`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Filter {
+    config: Config,
+    core: Core,
+    /// Rotation from the native frame to the configured one; `None` when they are equal.
+    to_frame: Option<Quat>,
+    flags: u32,
+    last_accel: Option<Vec3>,
+}
+
+impl Filter {
+    pub fn new(config: &Config) -> Result<Filter, Error> {
+        // Re-check every slot: a Config can only hold valid values, but be strict.
+        let config = Config::from_slots(config.kind, config.frame, config.init, &config.params)?;
+        if let Init::Given(q) = config.init {
+            check_quaternion(q)?;
+        }
+        let core = Core::new(&config);
+        let to_frame = core.native_frame().rotation_to(config.frame);
+        let mut filter = Filter { config, core, to_frame, flags: 0, last_accel: None };
+        filter.reset();
+        Ok(filter)
+    }
+
+    pub fn kind(&self) -> Kind {
+        self.config.kind
+    }
+
+    pub fn config(&self) -> &Config {
+        &self.config
+    }
+
+    /// Back to the state right after [`Filter::new`]; the settings are kept.
+    pub fn reset(&mut self) {
+        self.core = Core::new(&self.config);
+        self.last_accel = None;
+        self.flags = 0;
+        match self.config.init {
+            Init::AccMag => {
+                // Report the identity of the configured frame until initialised.
+                self.set_frame_quaternion(Quat::IDENTITY);
+                self.flags = 0;
+            }
+            Init::Identity => self.set_frame_quaternion(Quat::IDENTITY),
+            Init::Given(q) => self.set_frame_quaternion(q.normalized()),
+        }
+    }
+
+    /// Changes a parameter while running; the orientation is kept.
+    pub fn set_param(&mut self, id: u32, value: f64) -> Result<(), Error> {
+        self.config.set_param(id, value)?;
+        self.core.apply_param(id, value);
+        Ok(())
+    }
+
+    pub fn param(&self, id: u32) -> Result<f64, Error> {
+        self.config.param(id)
+    }
+
+    /// Sets the orientation (in the configured frame; normalised). The filter counts as
+    /// initialised afterwards.
+    pub fn set_quaternion(&mut self, q: Quat) -> Result<(), Error> {
+        check_quaternion(q)?;
+        self.set_frame_quaternion(q.normalized());
+        Ok(())
+    }
+
+    fn set_frame_quaternion(&mut self, q: Quat) {
+        let native = match self.to_frame {
+            Some(c) => c.conj() * q,
+            None => q,
+        };
+        self.core.set_quaternion(native);
+        self.flags |= flags::INITIALIZED;
+    }
+
+    /// Checks a sample against every rule without touching the state.
+    pub fn check(&self, s: &Sample) -> Result<(), Error> {
+        if !(s.dt.is_finite() && s.dt > 0.0) {
+            return Err(Error::InvalidDt(s.dt));
+        }
+        let gyro = s.gyro.ok_or(Error::MissingSensor(Field::Gyro))?;
+        if !gyro.is_finite() {
+            return Err(Error::NonFinite(Field::Gyro));
+        }
+        let gyro_range = self.config.slot(id::GYRO_RANGE);
+        if gyro_range > 0.0 && gyro.max_abs() >= gyro_range {
+            return Err(Error::Saturated(Field::Gyro));
+        }
+        if let Some(a) = s.accel {
+            check_vector(a, Field::Accel)?;
+            let accel_range = self.config.slot(id::ACCEL_RANGE);
+            if accel_range > 0.0 && a.max_abs() >= accel_range {
+                return Err(Error::Saturated(Field::Accel));
+            }
+        }
+        if let Some(m) = s.mag {
+            check_vector(m, Field::Mag)?;
+        }
+        if self.flags & flags::INITIALIZED == 0 && s.accel.is_none() {
+            return Err(Error::NotInitialized);
+        }
+        Ok(())
+    }
+
+    /// One step. On error nothing changes: the state is bit-identical to before.
+    pub fn update(&mut self, s: &Sample) -> Result<(), Error> {
+        self.check(s)?;
+        // check() guarantees a gyro reading.
+        let gyro = s.gyro.unwrap_or_default();
+        let initial = if self.flags & flags::INITIALIZED == 0 {
+            // check() guarantees an accelerometer reading here.
+            let accel = s.accel.unwrap_or_default();
+            let frame = self.config.frame;
+            let q = frame
+                .attitude_from(accel, s.mag)
+                .or_else(|| frame.attitude_from(accel, None))
+                .ok_or(Error::Numeric)?;
+            Some(q)
+        } else {
+            None
+        };
+        // The core's update is transactional; only an initialisation needs undoing.
+        let saved = initial.map(|q| {
+            let saved = (self.core.clone(), self.flags);
+            self.set_frame_quaternion(q);
+            saved
+        });
+        match self.core.update(s.dt, gyro, s.accel, s.mag) {
+            Some(used) => {
+                self.flags = flags::INITIALIZED | used;
+                if s.accel.is_some() {
+                    self.last_accel = s.accel;
+                }
+                Ok(())
+            }
+            None => {
+                if let Some((core, flags)) = saved {
+                    self.core = core;
+                    self.flags = flags;
+                }
+                Err(Error::Numeric)
+            }
+        }
+    }
+
+    /// True once the filter has an orientation.
+    pub fn is_initialized(&self) -> bool {
+        self.flags & flags::INITIALIZED != 0
+    }
+
+    /// [`flags`] bits.
+    pub fn flags(&self) -> u32 {
+        self.flags
+    }
+
+    /// The orientation in the configured frame (identity before initialisation).
+    pub fn quaternion(&self) -> Quat {
+        if !self.is_initialized() {
+            return Quat::IDENTITY;
+        }
+        let q = self.core.quaternion();
+        match self.to_frame {
+            Some(c) => c * q,
+            None => q,
+        }
+    }
+
+    /// Euler angles (Z-Y'-X'': yaw, pitch, roll) of [`Filter::quaternion`], radians.
+    pub fn euler(&self) -> Euler {
+        self.quaternion().to_euler()
+    }
+
+    /// Rotation matrix (row-major, body to earth) of [`Filter::quaternion`].
+    pub fn rotation_matrix(&self) -> [[f64; 3]; 3] {
+        self.quaternion().to_matrix()
+    }
+
+    /// What the accelerometer reads at rest in the current orientation: gravity's
+    /// reaction (pointing up) in the sensor frame, m/s², magnitude `gravity`.
+    pub fn gravity(&self) -> Vec3 {
+        let up = self.quaternion().rotate_inverse(self.config.frame.up());
+        up * self.config.slot(id::GRAVITY)
+    }
+
+    /// The last accelerometer reading minus [`Filter::gravity`], in the sensor frame;
+    /// `None` before the first accelerometer reading.
+    pub fn linear_accel(&self) -> Option<Vec3> {
+        self.last_accel.map(|a| a - self.gravity())
+    }
+
+    /// [`Filter::linear_accel`] rotated into the earth frame.
+    pub fn linear_accel_earth(&self) -> Option<Vec3> {
+        self.linear_accel().map(|a| self.quaternion().rotate(a))
+    }
+}
+
+fn check_vector(v: Vec3, field: Field) -> Result<(), Error> {
+    if !v.is_finite() {
+        return Err(Error::NonFinite(field));
+    }
+    let n2 = v.norm_squared();
+    if !n2.is_finite() {
+        return Err(Error::TooLarge(field));
+    }
+    if n2 < f64::MIN_POSITIVE {
+        return Err(Error::ZeroVector(field));
+    }
+    Ok(())
+}
+
+fn check_quaternion(q: Quat) -> Result<(), Error> {
+    if !q.is_finite() {
+        return Err(Error::NonFinite(Field::Quaternion));
+    }
+    let n2 = q.norm_squared();
+    if !n2.is_finite() {
+        return Err(Error::TooLarge(Field::Quaternion));
+    }
+    if n2 < f64::MIN_POSITIVE {
+        return Err(Error::ZeroVector(Field::Quaternion));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn madgwick() -> Filter {
+        Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap()
+    }
+
+    fn good() -> Sample {
+        Sample {
+            dt: 0.01,
+            gyro: Some(Vec3::new(0.1, -0.2, 0.3)),
+            accel: Some(Vec3::new(0.5, 0.2, 9.7)),
+            mag: Some(Vec3::new(10.0, 20.0, -40.0)),
+        }
+    }
+
+    #[test]
+    fn unbuilt_kinds_are_refused() {
+        for k in Kind::ALL {
+            assert_eq!(Config::new(k).is_ok(), k.is_supported());
+        }
+        assert_eq!(Config::new(Kind::Ekf), Err(Error::UnsupportedKind(Kind::Ekf)));
+    }
+
+    #[test]
+    fn defaults_come_from_the_tables() {
+        let c = Config::new(Kind::Madgwick).unwrap();
+        assert_eq!(c.param(id::MADGWICK_BETA_IMU), Ok(0.041));
+        assert_eq!(c.param(id::MADGWICK_BETA_MARG), Ok(0.033));
+        assert_eq!(c.param(id::GRAVITY), Ok(9.80665));
+        assert_eq!(c.param(40), Err(Error::UnknownParam(40)));
+    }
+
+    #[test]
+    fn bad_samples_leave_the_state_bit_identical() {
+        let mut f = madgwick();
+        f.update(&good()).unwrap();
+        f.set_param(id::GYRO_RANGE, 30.0).unwrap();
+        f.set_param(id::ACCEL_RANGE, 150.0).unwrap();
+        let before = f.clone();
+        let nan = f64::NAN;
+        let cases: Vec<(Sample, Error)> = vec![
+            (Sample { dt: 0.0, ..good() }, Error::InvalidDt(0.0)),
+            (Sample { dt: -0.01, ..good() }, Error::InvalidDt(-0.01)),
+            (Sample { gyro: None, ..good() }, Error::MissingSensor(Field::Gyro)),
+            (Sample { gyro: Some(Vec3::new(nan, 0.0, 0.0)), ..good() }, Error::NonFinite(Field::Gyro)),
+            (Sample { gyro: Some(Vec3::new(0.0, 31.0, 0.0)), ..good() }, Error::Saturated(Field::Gyro)),
+            (Sample { accel: Some(Vec3::ZERO), ..good() }, Error::ZeroVector(Field::Accel)),
+            (Sample { accel: Some(Vec3::new(0.0, 0.0, -150.0)), ..good() }, Error::Saturated(Field::Accel)),
+            (
+                Sample { accel: Some(Vec3::new(f64::INFINITY, 0.0, 1.0)), ..good() },
+                Error::NonFinite(Field::Accel),
+            ),
+            (Sample { mag: Some(Vec3::ZERO), ..good() }, Error::ZeroVector(Field::Mag)),
+            (Sample { mag: Some(Vec3::new(1e200, 1e200, 0.0)), ..good() }, Error::TooLarge(Field::Mag)),
+        ];
+        for (s, e) in cases {
+            let got = f.update(&s).unwrap_err();
+            match (got, e) {
+                (Error::InvalidDt(a), Error::InvalidDt(b)) => assert_eq!(a.to_bits(), b.to_bits()),
+                _ => assert_eq!(got, e),
+            }
+            assert_eq!(f, before, "{s:?}");
+        }
+        let nan_dt = f.update(&Sample { dt: nan, ..good() });
+        assert!(matches!(nan_dt, Err(Error::InvalidDt(_))));
+        assert_eq!(f, before);
+    }
+
+    #[test]
+    fn acc_mag_init_waits_for_an_accelerometer() {
+        let mut f = madgwick();
+        assert!(!f.is_initialized());
+        let gyro_only = Sample { accel: None, mag: None, ..good() };
+        assert_eq!(f.update(&gyro_only), Err(Error::NotInitialized));
+        f.update(&good()).unwrap();
+        assert!(f.is_initialized());
+        // Right after init the reported gravity points along the measured accelerometer.
+        let g = f.gravity().normalized();
+        assert!((g - good().accel.unwrap().normalized()).norm() < 0.01);
+        f.update(&gyro_only).unwrap();
+        assert_eq!(f.flags() & flags::ACCEL_USED, 0);
+    }
+
+    #[test]
+    fn frames_differ_by_their_constant_rotation() {
+        // Start away from the measurements: at a perfectly consistent estimate the
+        // gradient is rounding noise and (30) steps in its arbitrary direction, which
+        // would make the runs differ by β·dt for reasons unrelated to frames.
+        let q0 = Quat::from_axis_angle(Vec3::new(0.3, -0.2, 1.0), 0.8);
+        let run = |frame: Frame| {
+            let mut c = Config::new(Kind::Madgwick).unwrap();
+            c.frame = frame;
+            c.init = Init::Given(Frame::Enu.rotation_to(frame).map_or(q0, |r| r * q0));
+            let mut f = Filter::new(&c).unwrap();
+            for i in 0..200 {
+                let t = i as f64 * 0.01;
+                f.update(&Sample { dt: 0.01, gyro: Some(Vec3::new(0.3 * t.sin(), 0.2, -0.1)), ..good() })
+                    .unwrap();
+            }
+            f.quaternion()
+        };
+        let enu = run(Frame::Enu);
+        for frame in [Frame::Ned, Frame::Nwu] {
+            let q = run(frame);
+            let c = Frame::Enu.rotation_to(frame).unwrap();
+            assert!(q.angle_to(c * enu) < 1e-12, "{frame:?} {}", q.angle_to(c * enu));
+        }
+    }
+
+    #[test]
+    fn reset_returns_to_the_fresh_state_and_keeps_settings() {
+        let mut f = madgwick();
+        f.set_param(id::MADGWICK_BETA_IMU, 0.2).unwrap();
+        f.update(&good()).unwrap();
+        f.reset();
+        let mut fresh = Filter::new(f.config()).unwrap();
+        fresh.set_param(id::MADGWICK_BETA_IMU, 0.2).unwrap();
+        assert_eq!(f, fresh);
+        assert!(!f.is_initialized());
+    }
+
+    #[test]
+    fn linear_accel_is_zero_for_a_pure_gravity_reading() {
+        let mut c = Config::new(Kind::Madgwick).unwrap();
+        c.init = Init::Given(Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.4));
+        let f = Filter::new(&c).unwrap();
+        let mut g = f.clone();
+        let reading = f.gravity();
+        assert!((reading.norm() - 9.80665).abs() < 1e-12);
+        g.update(&Sample { dt: 1e-9, gyro: Some(Vec3::ZERO), accel: Some(reading), mag: None }).unwrap();
+        assert!(g.linear_accel().unwrap().norm() < 1e-6);
+        assert!(f.linear_accel().is_none());
+    }
+}

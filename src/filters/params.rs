@@ -1,0 +1,83 @@
+//! Tunable parameters: one numbered slot per setting, described by a static table so
+//! that hosts (a Unity inspector, the replay tool's `--set`) can list and set them by
+//! name without knowing each filter.
+//!
+//! Slots 0-7 are common to every kind; each kind numbers its own settings from 8. A
+//! slot number is never reused for a different meaning.
+
+/// Number of parameter slots in a configuration.
+pub const MAX_PARAMS: usize = 64;
+
+/// Slot numbers. Common slots first, then one block per kind.
+pub mod id {
+    /// Magnitude of gravity used for the gravity and linear-acceleration outputs.
+    pub const GRAVITY: u32 = 0;
+    /// Gyroscope full-scale range; readings at or beyond it are rejected as saturated.
+    pub const GYRO_RANGE: u32 = 1;
+    /// Accelerometer full-scale range; readings at or beyond it are rejected as saturated.
+    pub const ACCEL_RANGE: u32 = 2;
+
+    /// Madgwick β for steps without a magnetometer.
+    pub const MADGWICK_BETA_IMU: u32 = 8;
+    /// Madgwick β for steps with a magnetometer.
+    pub const MADGWICK_BETA_MARG: u32 = 9;
+}
+
+/// What one parameter slot means.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParamSpec {
+    /// Slot number in [`crate::Config`] (see [`id`]).
+    pub id: u32,
+    /// Lower-case identifier, e.g. `beta_imu`.
+    pub name: &'static str,
+    /// Unit, e.g. `rad/s`; `1` for a dimensionless value.
+    pub unit: &'static str,
+    /// One sentence: meaning, and where the default comes from.
+    pub doc: &'static str,
+    pub default: f64,
+    /// Smallest accepted value (inclusive).
+    pub min: f64,
+    /// Largest accepted value (inclusive).
+    pub max: f64,
+}
+
+impl ParamSpec {
+    /// True when `value` is finite and within `[min, max]`.
+    pub fn accepts(&self, value: f64) -> bool {
+        value.is_finite() && value >= self.min && value <= self.max
+    }
+}
+
+/// The settings every kind has.
+pub const COMMON: [ParamSpec; 3] = [
+    ParamSpec {
+        id: id::GRAVITY,
+        name: "gravity",
+        unit: "m/s^2",
+        doc: "Gravity magnitude for the gravity and linear-acceleration outputs; default: \
+              standard gravity 9.80665 (CGPM 1901).",
+        default: 9.80665,
+        min: 1e-3,
+        max: 1e3,
+    },
+    ParamSpec {
+        id: id::GYRO_RANGE,
+        name: "gyro_range",
+        unit: "rad/s",
+        doc: "Gyroscope full scale: a sample with any axis at or beyond it is rejected as \
+              saturated; 0 turns the check off (default, since the range is the sensor's).",
+        default: 0.0,
+        min: 0.0,
+        max: 1e6,
+    },
+    ParamSpec {
+        id: id::ACCEL_RANGE,
+        name: "accel_range",
+        unit: "m/s^2",
+        doc: "Accelerometer full scale: a sample with any axis at or beyond it is rejected as \
+              saturated; 0 turns the check off (default).",
+        default: 0.0,
+        min: 0.0,
+        max: 1e6,
+    },
+];

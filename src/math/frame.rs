@@ -1,0 +1,152 @@
+use super::{Quat, Vec3};
+use core::f64::consts::FRAC_1_SQRT_2;
+
+/// The earth frame an orientation is expressed in.
+///
+/// "North" is magnetic north as the magnetometer sees it; declination is not applied.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Frame {
+    /// x East, y North, z Up (the default).
+    #[default]
+    Enu,
+    /// x North, y East, z Down.
+    Ned,
+    /// x North, y West, z Up.
+    Nwu,
+}
+
+impl Frame {
+    pub const ALL: [Frame; 3] = [Frame::Enu, Frame::Ned, Frame::Nwu];
+
+    /// The lower-case name: `enu`, `ned` or `nwu`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Frame::Enu => "enu",
+            Frame::Ned => "ned",
+            Frame::Nwu => "nwu",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Frame> {
+        Frame::ALL.into_iter().find(|f| f.name().eq_ignore_ascii_case(name))
+    }
+
+    /// The constant rotation `c` with `q_self = c ⊗ q_enu` for any orientation `q`.
+    pub fn from_enu(self) -> Quat {
+        match self {
+            Frame::Enu => Quat::IDENTITY,
+            // Half a turn about the horizontal (x + y) diagonal: swaps x and y, flips z.
+            Frame::Ned => Quat::new(0.0, FRAC_1_SQRT_2, FRAC_1_SQRT_2, 0.0),
+            // A quarter turn about z, clockwise seen from above: East -> -West, North -> North.
+            Frame::Nwu => Quat::new(FRAC_1_SQRT_2, 0.0, 0.0, -FRAC_1_SQRT_2),
+        }
+    }
+
+    /// The constant rotation `c` with `q_to = c ⊗ q_self`; `None` when the frames are
+    /// the same (no product is taken, so the quaternion passes through bit for bit).
+    pub fn rotation_to(self, to: Frame) -> Option<Quat> {
+        if self == to {
+            None
+        } else {
+            Some((to.from_enu() * self.from_enu().conj()).normalized())
+        }
+    }
+
+    /// The direction "up" (opposite to gravity) in this frame.
+    pub fn up(self) -> Vec3 {
+        match self {
+            Frame::Enu | Frame::Nwu => Vec3::new(0.0, 0.0, 1.0),
+            Frame::Ned => Vec3::new(0.0, 0.0, -1.0),
+        }
+    }
+
+    /// The orientation whose earth frame is `self`, built from one accelerometer
+    /// reading (specific force: points up at rest) and, when given, one magnetometer
+    /// reading. With a magnetometer, up = a/|a|, east = (m × up)/|m × up|,
+    /// north = up × east, and the rows of `R_ES` are those axes written in sensor
+    /// coordinates. Without one, heading is set so that the sensor's x axis points to
+    /// the frame's x axis as nearly as possible: the smallest rotation that takes the
+    /// measured up onto the frame's up.
+    ///
+    /// Returns `None` when the magnetometer is parallel to the accelerometer (no
+    /// horizontal field to define north); the caller then falls back to `mag = None`.
+    pub fn attitude_from(self, accel: Vec3, mag: Option<Vec3>) -> Option<Quat> {
+        let up = accel.normalized();
+        let Some(mag) = mag else {
+            return Some(Quat::from_two_vectors(up, self.up()));
+        };
+        let east = mag.cross(up);
+        let east_norm = east.norm();
+        if !(east_norm > 1e-9 * mag.norm()) {
+            return None;
+        }
+        let east = east * (1.0 / east_norm);
+        let north = up.cross(east);
+        let rows = |a: Vec3, b: Vec3, c: Vec3| [[a.x, a.y, a.z], [b.x, b.y, b.z], [c.x, c.y, c.z]];
+        let m = match self {
+            Frame::Enu => rows(east, north, up),
+            Frame::Ned => rows(north, east, -up),
+            Frame::Nwu => rows(north, -east, up),
+        };
+        Some(Quat::from_matrix(m))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_rotations_map_the_axes_as_named() {
+        // East, North, Up written in ENU, then in each frame.
+        let east = Vec3::new(1.0, 0.0, 0.0);
+        let north = Vec3::new(0.0, 1.0, 0.0);
+        let up = Vec3::new(0.0, 0.0, 1.0);
+        let ned = Frame::Ned.from_enu();
+        assert!((ned.rotate(north) - Vec3::new(1.0, 0.0, 0.0)).norm() < 1e-15);
+        assert!((ned.rotate(east) - Vec3::new(0.0, 1.0, 0.0)).norm() < 1e-15);
+        assert!((ned.rotate(up) - Vec3::new(0.0, 0.0, -1.0)).norm() < 1e-15);
+        let nwu = Frame::Nwu.from_enu();
+        assert!((nwu.rotate(north) - Vec3::new(1.0, 0.0, 0.0)).norm() < 1e-15);
+        assert!((nwu.rotate(east) - Vec3::new(0.0, -1.0, 0.0)).norm() < 1e-15);
+        assert!((nwu.rotate(up) - up).norm() < 1e-15);
+    }
+
+    #[test]
+    fn attitude_from_level_sensor_facing_north() {
+        // Sensor x = North, y = West, z = Up; field points north and down (dip 60°).
+        let accel = Vec3::new(0.0, 0.0, 9.81);
+        let mag = Vec3::new(20.0, 0.0, -34.6);
+        let q = Frame::Nwu.attitude_from(accel, Some(mag)).unwrap();
+        assert!(q.angle_to(Quat::IDENTITY) < 1e-12, "{q:?}");
+        let q_enu = Frame::Enu.attitude_from(accel, Some(mag)).unwrap();
+        // In ENU the sensor's x axis (north) is the earth's y axis.
+        let x = q_enu.rotate(Vec3::new(1.0, 0.0, 0.0));
+        assert!((x - Vec3::new(0.0, 1.0, 0.0)).norm() < 1e-12, "{x:?}");
+        let q_ned = Frame::Ned.attitude_from(accel, Some(mag)).unwrap();
+        let d = q_ned.rotate(Vec3::new(0.0, 0.0, -1.0));
+        assert!((d - Vec3::new(0.0, 0.0, 1.0)).norm() < 1e-12, "{d:?}");
+    }
+
+    #[test]
+    fn attitude_from_agrees_across_frames() {
+        let accel = Vec3::new(1.2, -3.0, 8.9);
+        let mag = Vec3::new(-14.0, 22.0, -31.0);
+        let enu = Frame::Enu.attitude_from(accel, Some(mag)).unwrap();
+        for f in Frame::ALL {
+            let q = f.attitude_from(accel, Some(mag)).unwrap();
+            let via = Frame::Enu.rotation_to(f).map_or(enu, |c| c * enu);
+            assert!(q.angle_to(via) < 1e-12, "{f:?}");
+            // Gravity direction: the accelerometer reading maps onto the frame's up.
+            assert!((q.rotate(accel.normalized()) - f.up()).norm() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn attitude_without_field_direction_is_refused() {
+        let accel = Vec3::new(0.0, 0.0, 9.81);
+        assert!(Frame::Enu.attitude_from(accel, Some(Vec3::new(0.0, 0.0, -40.0))).is_none());
+        let q = Frame::Enu.attitude_from(accel, None).unwrap();
+        assert!(q.angle_to(Quat::IDENTITY) < 1e-15);
+    }
+}

@@ -1,0 +1,297 @@
+use super::Vec3;
+use core::ops::{Add, Mul};
+
+/// A Hamilton quaternion, scalar first.
+///
+/// As an orientation it maps body coordinates to earth coordinates:
+/// `v_earth = q ⊗ [0, v_body] ⊗ q*`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quat {
+    pub w: f64,
+    pub x: f64,
+    pub y: f64,
+    pub z: f64,
+}
+
+/// Euler angles of the intrinsic Z-Y'-X'' sequence (yaw, then pitch, then roll), in radians:
+/// `R(q) = Rz(yaw) · Ry(pitch) · Rx(roll)`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Euler {
+    /// Rotation about the earth z axis, in (-π, π].
+    pub yaw: f64,
+    /// Rotation about the once-rotated y axis, in [-π/2, π/2].
+    pub pitch: f64,
+    /// Rotation about the body x axis, in (-π, π].
+    pub roll: f64,
+}
+
+impl Default for Quat {
+    fn default() -> Quat {
+        Quat::IDENTITY
+    }
+}
+
+impl Quat {
+    pub const IDENTITY: Quat = Quat::new(1.0, 0.0, 0.0, 0.0);
+
+    #[inline]
+    pub const fn new(w: f64, x: f64, y: f64, z: f64) -> Quat {
+        Quat { w, x, y, z }
+    }
+
+    /// The pure quaternion `[0, v]`.
+    #[inline]
+    pub const fn pure(v: Vec3) -> Quat {
+        Quat::new(0.0, v.x, v.y, v.z)
+    }
+
+    /// The vector part `(x, y, z)`.
+    #[inline]
+    pub fn vector(self) -> Vec3 {
+        Vec3::new(self.x, self.y, self.z)
+    }
+
+    #[inline]
+    pub fn conj(self) -> Quat {
+        Quat::new(self.w, -self.x, -self.y, -self.z)
+    }
+
+    #[inline]
+    pub fn dot(self, o: Quat) -> f64 {
+        self.w * o.w + self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    #[inline]
+    pub fn norm_squared(self) -> f64 {
+        self.dot(self)
+    }
+
+    #[inline]
+    pub fn norm(self) -> f64 {
+        self.norm_squared().sqrt()
+    }
+
+    #[inline]
+    pub fn scale(self, s: f64) -> Quat {
+        Quat::new(self.w * s, self.x * s, self.y * s, self.z * s)
+    }
+
+    /// The quaternion divided by its norm. The caller makes sure the norm is not zero.
+    #[inline]
+    pub fn normalized(self) -> Quat {
+        self.scale(1.0 / self.norm())
+    }
+
+    pub fn is_finite(self) -> bool {
+        self.w.is_finite() && self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+
+    /// `q ⊗ [0, v] ⊗ q*` for a unit quaternion: body to earth when `q` is an orientation.
+    #[inline]
+    pub fn rotate(self, v: Vec3) -> Vec3 {
+        (self * Quat::pure(v) * self.conj()).vector()
+    }
+
+    /// `q* ⊗ [0, v] ⊗ q` for a unit quaternion: earth to body when `q` is an orientation.
+    #[inline]
+    pub fn rotate_inverse(self, v: Vec3) -> Vec3 {
+        (self.conj() * Quat::pure(v) * self).vector()
+    }
+
+    /// The rotation matrix `R(q)` (row-major) with `v_earth = R · v_body`, for a unit `q`.
+    pub fn to_matrix(self) -> [[f64; 3]; 3] {
+        let Quat { w, x, y, z } = self;
+        [
+            [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)],
+            [2.0 * (x * y + w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - w * x)],
+            [2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)],
+        ]
+    }
+
+    /// The unit quaternion of a proper rotation matrix (row-major), by Shepperd's method:
+    /// the largest of the four diagonal combinations is taken under the square root, so
+    /// the result is accurate for every rotation. Uses only `sqrt`. The sign is chosen
+    /// so that `w >= 0`.
+    pub fn from_matrix(m: [[f64; 3]; 3]) -> Quat {
+        let trace = m[0][0] + m[1][1] + m[2][2];
+        let q = if trace >= m[0][0] && trace >= m[1][1] && trace >= m[2][2] {
+            let s = 2.0 * (1.0 + trace).sqrt();
+            Quat::new(0.25 * s, (m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s)
+        } else if m[0][0] >= m[1][1] && m[0][0] >= m[2][2] {
+            let s = 2.0 * (1.0 + m[0][0] - m[1][1] - m[2][2]).sqrt();
+            Quat::new((m[2][1] - m[1][2]) / s, 0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s)
+        } else if m[1][1] >= m[2][2] {
+            let s = 2.0 * (1.0 + m[1][1] - m[0][0] - m[2][2]).sqrt();
+            Quat::new((m[0][2] - m[2][0]) / s, (m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s)
+        } else {
+            let s = 2.0 * (1.0 + m[2][2] - m[0][0] - m[1][1]).sqrt();
+            Quat::new((m[1][0] - m[0][1]) / s, (m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s)
+        };
+        let q = q.normalized();
+        if q.w < 0.0 {
+            q.scale(-1.0)
+        } else {
+            q
+        }
+    }
+
+    /// The rotation about `axis` (need not be unit, must not be zero) by `angle` radians.
+    pub fn from_axis_angle(axis: Vec3, angle: f64) -> Quat {
+        let a = axis.normalized();
+        let (s, c) = (libm::sin(0.5 * angle), libm::cos(0.5 * angle));
+        Quat::new(c, a.x * s, a.y * s, a.z * s)
+    }
+
+    /// The shortest rotation that takes the direction `from` onto the direction `to`
+    /// (neither needs to be unit; neither may be zero). For opposite directions the
+    /// rotation is half a turn about an axis perpendicular to `from`.
+    pub fn from_two_vectors(from: Vec3, to: Vec3) -> Quat {
+        let (f, t) = (from.normalized(), to.normalized());
+        let c = f.dot(t);
+        if c < -1.0 + 1e-12 {
+            // Any axis perpendicular to `f` will do: take the one nearest to a
+            // coordinate axis that `f` is least aligned with.
+            let helper = if f.x.abs() <= f.y.abs() && f.x.abs() <= f.z.abs() {
+                Vec3::new(1.0, 0.0, 0.0)
+            } else if f.y.abs() <= f.z.abs() {
+                Vec3::new(0.0, 1.0, 0.0)
+            } else {
+                Vec3::new(0.0, 0.0, 1.0)
+            };
+            let axis = f.cross(helper).normalized();
+            return Quat::new(0.0, axis.x, axis.y, axis.z);
+        }
+        let axis = f.cross(t);
+        Quat::new(1.0 + c, axis.x, axis.y, axis.z).normalized()
+    }
+
+    /// The angle in radians of the rotation `self ⊗ other*`, in [0, π]. Computed from the
+    /// vector part with `atan2`, so it stays accurate for tiny angles (where `acos` of the
+    /// scalar part loses half the digits).
+    pub fn angle_to(self, other: Quat) -> f64 {
+        let e = self * other.conj();
+        2.0 * libm::atan2(e.vector().norm(), e.w.abs())
+    }
+
+    /// Euler angles (Z-Y'-X'') of a unit quaternion.
+    pub fn to_euler(self) -> Euler {
+        let Quat { w, x, y, z } = self;
+        let sin_pitch = (2.0 * (w * y - z * x)).clamp(-1.0, 1.0);
+        Euler {
+            yaw: libm::atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z)),
+            pitch: libm::asin(sin_pitch),
+            roll: libm::atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y)),
+        }
+    }
+}
+
+impl Mul for Quat {
+    type Output = Quat;
+    /// The Hamilton product `self ⊗ o`.
+    #[inline]
+    fn mul(self, o: Quat) -> Quat {
+        Quat::new(
+            self.w * o.w - self.x * o.x - self.y * o.y - self.z * o.z,
+            self.w * o.x + self.x * o.w + self.y * o.z - self.z * o.y,
+            self.w * o.y - self.x * o.z + self.y * o.w + self.z * o.x,
+            self.w * o.z + self.x * o.y - self.y * o.x + self.z * o.w,
+        )
+    }
+}
+
+impl Add for Quat {
+    type Output = Quat;
+    #[inline]
+    fn add(self, o: Quat) -> Quat {
+        Quat::new(self.w + o.w, self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() < 1e-12
+    }
+
+    #[test]
+    fn hamilton_units_multiply_as_i_j_equals_k() {
+        let i = Quat::new(0.0, 1.0, 0.0, 0.0);
+        let j = Quat::new(0.0, 0.0, 1.0, 0.0);
+        assert_eq!(i * j, Quat::new(0.0, 0.0, 0.0, 1.0));
+        assert_eq!(j * i, Quat::new(0.0, 0.0, 0.0, -1.0));
+    }
+
+    #[test]
+    fn rotation_of_x_by_quarter_turn_about_z_is_y() {
+        let q = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), core::f64::consts::FRAC_PI_2);
+        let v = q.rotate(Vec3::new(1.0, 0.0, 0.0));
+        assert!(close(v.x, 0.0) && close(v.y, 1.0) && close(v.z, 0.0), "{v:?}");
+        let back = q.rotate_inverse(v);
+        assert!(close(back.x, 1.0) && close(back.y, 0.0), "{back:?}");
+    }
+
+    #[test]
+    fn matrix_round_trip_covers_every_shepperd_branch() {
+        let axes = [
+            Vec3::new(0.3, -0.2, 0.9),
+            Vec3::new(1.0, 0.1, 0.0),
+            Vec3::new(0.0, 1.0, 0.1),
+            Vec3::new(0.1, 0.0, 1.0),
+        ];
+        for axis in axes {
+            for angle in [0.1, 1.0, 2.5, 3.1] {
+                let q = Quat::from_axis_angle(axis, angle);
+                let m = q.to_matrix();
+                let back = Quat::from_matrix(m);
+                assert!(q.angle_to(back) < 1e-12, "{q:?} {back:?}");
+                // The matrix rotates vectors exactly as the quaternion does.
+                let v = Vec3::new(0.4, -1.2, 2.0);
+                let r = q.rotate(v);
+                let mv = Vec3::new(
+                    m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+                    m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+                    m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z,
+                );
+                assert!((r - mv).norm() < 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn euler_zyx_recomposes_the_quaternion() {
+        let q = Quat::from_axis_angle(Vec3::new(0.3, -0.7, 0.5), 1.2);
+        let e = q.to_euler();
+        let z = Vec3::new(0.0, 0.0, 1.0);
+        let y = Vec3::new(0.0, 1.0, 0.0);
+        let x = Vec3::new(1.0, 0.0, 0.0);
+        let r = Quat::from_axis_angle(z, e.yaw)
+            * Quat::from_axis_angle(y, e.pitch)
+            * Quat::from_axis_angle(x, e.roll);
+        assert!(q.angle_to(r) < 1e-12, "{e:?}");
+    }
+
+    #[test]
+    fn two_vector_rotation_maps_from_onto_to() {
+        let cases = [
+            (Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.3, 0.4, 0.5)),
+            (Vec3::new(1.0, 2.0, 3.0), Vec3::new(-1.0, -2.0, -3.0)),
+            (Vec3::new(0.0, 0.0, 2.0), Vec3::new(0.0, 0.0, 5.0)),
+        ];
+        for (f, t) in cases {
+            let q = Quat::from_two_vectors(f, t);
+            let r = q.rotate(f.normalized());
+            assert!((r - t.normalized()).norm() < 1e-12, "{f:?} -> {t:?}: {r:?}");
+            assert!(close(q.norm(), 1.0));
+        }
+    }
+
+    #[test]
+    fn angle_to_is_accurate_for_tiny_angles() {
+        let q = Quat::from_axis_angle(Vec3::new(1.0, 2.0, 3.0), 0.7);
+        let d = Quat::from_axis_angle(Vec3::new(-1.0, 0.5, 0.2), 1e-10);
+        let a = (d * q).angle_to(q);
+        assert!((a - 1e-10).abs() < 1e-16, "{a}");
+    }
+}
