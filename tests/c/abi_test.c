@@ -1,0 +1,506 @@
+/*
+ * ABI behaviour and exact numeric parity of liborient, from C.
+ *
+ * Usage: abi_test GOLDEN_FILE
+ * Built by tests/c_abi.rs with -std=c99 -Wall -Wextra -Werror -pedantic, once against
+ * liborient.so and once against liborient.a, and run by `cargo test`. Prints one line
+ * per failed check and ends with "N passed, N failed".
+ */
+#include "orient.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int passed = 0;
+static int failed = 0;
+
+#define CHECK(cond)                                                                    \
+    do {                                                                               \
+        if (cond) {                                                                    \
+            passed++;                                                                  \
+        } else {                                                                       \
+            failed++;                                                                  \
+            printf("FAIL %s:%d: %s (last error: %s)\n", __FILE__, __LINE__, #cond,     \
+                   orient_last_error());                                               \
+        }                                                                              \
+    } while (0)
+
+#define CHECK_STATUS(call, expected) CHECK((call) == (expected))
+
+static uint64_t bits(double v) {
+    uint64_t u;
+    memcpy(&u, &v, sizeof u);
+    return u;
+}
+
+static double unhex(const char *s) {
+    uint64_t u = (uint64_t)strtoull(s, NULL, 16);
+    double v;
+    memcpy(&v, &u, sizeof v);
+    return v;
+}
+
+static int same_quaternion(OrientQuaternion a, OrientQuaternion b) {
+    return bits(a.w) == bits(b.w) && bits(a.x) == bits(b.x) && bits(a.y) == bits(b.y) &&
+           bits(a.z) == bits(b.z);
+}
+
+static OrientFilter *new_madgwick(void) {
+    OrientConfig c;
+    OrientFilter *f = NULL;
+    if (orient_config_default(ORIENT_KIND_MADGWICK, &c) != ORIENT_STATUS_OK) return NULL;
+    if (orient_filter_new(&c, &f) != ORIENT_STATUS_OK) return NULL;
+    return f;
+}
+
+static OrientSample good_sample(void) {
+    OrientSample s;
+    memset(&s, 0, sizeof s);
+    s.dt = 0.01;
+    s.gyro.x = 0.1;
+    s.gyro.y = -0.2;
+    s.gyro.z = 0.3;
+    s.accel.x = 0.5;
+    s.accel.y = 0.2;
+    s.accel.z = 9.7;
+    s.mag.x = 10.0;
+    s.mag.y = 20.0;
+    s.mag.z = -40.0;
+    s.flags = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL | ORIENT_SAMPLE_MAG;
+    return s;
+}
+
+/* ---- golden vectors ------------------------------------------------------------ */
+
+#define MAX_ROWS 4096
+#define MAX_TOKENS 64
+
+typedef struct {
+    OrientSample sample;
+    OrientQuaternion expected;
+} Row;
+
+static Row rows[MAX_ROWS];
+static OrientQuaternion batch_out[MAX_ROWS];
+
+static int split(char *line, char **tok) {
+    int n = 0;
+    char *p = strtok(line, " \t\r\n");
+    while (p && n < MAX_TOKENS) {
+        tok[n++] = p;
+        p = strtok(NULL, " \t\r\n");
+    }
+    return n;
+}
+
+/* Runs one case through single updates and through one batch call. */
+static void run_case(const char *name, const OrientConfig *config, int n) {
+    OrientFilter *single = NULL;
+    OrientFilter *batch = NULL;
+    int i, mismatches = 0;
+    size_t processed = 12345;
+    CHECK_STATUS(orient_filter_new(config, &single), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_new(config, &batch), ORIENT_STATUS_OK);
+    if (!single || !batch) return;
+    for (i = 0; i < n; i++) {
+        OrientQuaternion q;
+        if (orient_filter_update(single, &rows[i].sample) != ORIENT_STATUS_OK ||
+            orient_filter_quaternion(single, &q) != ORIENT_STATUS_OK ||
+            !same_quaternion(q, rows[i].expected)) {
+            if (mismatches++ == 0) printf("FAIL golden %s: first mismatch at sample %d\n", name, i);
+        }
+    }
+    CHECK(mismatches == 0);
+    {
+        /* The batch call takes the samples as one array. */
+        static OrientSample samples[MAX_ROWS];
+        for (i = 0; i < n; i++) samples[i] = rows[i].sample;
+        CHECK_STATUS(orient_filter_update_batch(batch, samples, (size_t)n, batch_out, &processed),
+                     ORIENT_STATUS_OK);
+        CHECK(processed == (size_t)n);
+        mismatches = 0;
+        for (i = 0; i < n; i++) {
+            if (!same_quaternion(batch_out[i], rows[i].expected)) mismatches++;
+        }
+        CHECK(mismatches == 0);
+    }
+    CHECK_STATUS(orient_filter_free(single), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_free(batch), ORIENT_STATUS_OK);
+}
+
+static void golden(const char *path) {
+    FILE *fp = fopen(path, "r");
+    char line[2048];
+    char *tok[MAX_TOKENS];
+    char name[128] = "";
+    OrientConfig config;
+    int n = 0, cases = 0, ntok;
+    CHECK(fp != NULL);
+    if (!fp) return;
+    while (fgets(line, sizeof line, fp)) {
+        ntok = split(line, tok);
+        if (ntok == 0 || tok[0][0] == '#') continue;
+        if (strcmp(tok[0], "case") == 0) {
+            int p, nparams;
+            CHECK(ntok >= 10);
+            strncpy(name, tok[1], sizeof name - 1);
+            CHECK_STATUS(orient_config_default(atoi(tok[2]), &config), ORIENT_STATUS_OK);
+            config.frame = atoi(tok[3]);
+            config.init = atoi(tok[4]);
+            config.initial.w = unhex(tok[5]);
+            config.initial.x = unhex(tok[6]);
+            config.initial.y = unhex(tok[7]);
+            config.initial.z = unhex(tok[8]);
+            nparams = atoi(tok[9]);
+            for (p = 0; p < nparams && 11 + 2 * p < ntok; p++) {
+                CHECK_STATUS(orient_config_set_param(&config, (uint32_t)atoi(tok[10 + 2 * p]),
+                                                     unhex(tok[11 + 2 * p])),
+                             ORIENT_STATUS_OK);
+            }
+            n = 0;
+        } else if (strcmp(tok[0], "s") == 0) {
+            Row *r = &rows[n];
+            CHECK(ntok == 16 && n < MAX_ROWS);
+            if (ntok != 16 || n >= MAX_ROWS) break;
+            memset(&r->sample, 0, sizeof r->sample);
+            r->sample.dt = unhex(tok[1]);
+            r->sample.gyro.x = unhex(tok[2]);
+            r->sample.gyro.y = unhex(tok[3]);
+            r->sample.gyro.z = unhex(tok[4]);
+            r->sample.accel.x = unhex(tok[5]);
+            r->sample.accel.y = unhex(tok[6]);
+            r->sample.accel.z = unhex(tok[7]);
+            r->sample.mag.x = unhex(tok[8]);
+            r->sample.mag.y = unhex(tok[9]);
+            r->sample.mag.z = unhex(tok[10]);
+            r->sample.flags = (uint32_t)atoi(tok[11]);
+            r->expected.w = unhex(tok[12]);
+            r->expected.x = unhex(tok[13]);
+            r->expected.y = unhex(tok[14]);
+            r->expected.z = unhex(tok[15]);
+            n++;
+        } else if (strcmp(tok[0], "end") == 0) {
+            run_case(name, &config, n);
+            cases++;
+        }
+    }
+    fclose(fp);
+    CHECK(cases >= 4);
+    printf("golden: %d cases\n", cases);
+}
+
+/* ---- ABI behaviour -------------------------------------------------------------- */
+
+static void layout(void) {
+    CHECK(sizeof(OrientStatus) == 4);
+    CHECK(sizeof(OrientVec3) == 24);
+    CHECK(sizeof(OrientQuaternion) == 32);
+    CHECK(sizeof(OrientSample) == 88);
+    CHECK(sizeof(OrientConfig) == 560);
+    CHECK(offsetof(OrientSample, flags) == 80);
+    CHECK(offsetof(OrientConfig, params) == 48);
+    CHECK(orient_abi_version() == ORIENT_ABI_VERSION);
+    CHECK(orient_version() != NULL && strlen(orient_version()) > 0);
+}
+
+static void status_messages(void) {
+    int s;
+    for (s = ORIENT_STATUS_OK; s <= ORIENT_STATUS_PANIC; s++) {
+        const char *m = orient_status_message(s);
+        CHECK(m != NULL && strlen(m) > 0 && strcmp(m, "unknown status code") != 0);
+    }
+    CHECK(strcmp(orient_status_message(-7), "unknown status code") == 0);
+    CHECK(orient_last_error() != NULL);
+}
+
+static void config_paths(void) {
+    OrientConfig c;
+    OrientFilter *f = (OrientFilter *)&c; /* must be overwritten with NULL on failure */
+    OrientParamInfo info;
+    uint32_t count = 0, id = 0, i;
+    double v = 0;
+    int k;
+
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_MADGWICK, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_config_default(0, &c), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_config_default(99, &c), ORIENT_STATUS_INVALID_ARGUMENT);
+    for (k = ORIENT_KIND_MAHONY; k <= ORIENT_KIND_GMVDK; k++) {
+        CHECK_STATUS(orient_config_default(k, &c), ORIENT_STATUS_UNSUPPORTED_KIND);
+        CHECK(strstr(orient_last_error(), "not built") != NULL);
+    }
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_MADGWICK, &c), ORIENT_STATUS_OK);
+    CHECK(c.struct_size == sizeof(OrientConfig));
+    CHECK(c.kind == ORIENT_KIND_MADGWICK && c.frame == ORIENT_FRAME_ENU && c.init == ORIENT_INIT_ACC_MAG);
+    CHECK(c.params[ORIENT_PARAM_MADGWICK_BETA_IMU] == 0.041);
+    CHECK(c.params[ORIENT_PARAM_MADGWICK_BETA_MARG] == 0.033);
+    CHECK(c.params[ORIENT_PARAM_GRAVITY] == 9.80665);
+
+    /* Parameters: discoverable by index and by name, range-checked. */
+    CHECK_STATUS(orient_param_count(ORIENT_KIND_MADGWICK, &count), ORIENT_STATUS_OK);
+    CHECK(count == 5);
+    for (i = 0; i < count; i++) {
+        CHECK_STATUS(orient_param_info(ORIENT_KIND_MADGWICK, i, &info), ORIENT_STATUS_OK);
+        CHECK(info.name && info.unit && info.description && strlen(info.description) > 10);
+        CHECK(info.min <= info.default_value && info.default_value <= info.max);
+        CHECK_STATUS(orient_param_find(ORIENT_KIND_MADGWICK, info.name, &id), ORIENT_STATUS_OK);
+        CHECK(id == info.id);
+        CHECK(c.params[info.id] == info.default_value);
+    }
+    CHECK_STATUS(orient_param_info(ORIENT_KIND_MADGWICK, count, &info), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_param_info(ORIENT_KIND_MADGWICK, 0, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_param_count(ORIENT_KIND_EKF, &count), ORIENT_STATUS_UNSUPPORTED_KIND);
+    CHECK_STATUS(orient_param_find(ORIENT_KIND_MADGWICK, "no_such", &id), ORIENT_STATUS_UNKNOWN_PARAM);
+    CHECK_STATUS(orient_param_find(ORIENT_KIND_MADGWICK, NULL, &id), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_param_find(ORIENT_KIND_MADGWICK, "beta_imu", &id), ORIENT_STATUS_OK);
+    CHECK(id == ORIENT_PARAM_MADGWICK_BETA_IMU);
+
+    CHECK_STATUS(orient_config_set_param(&c, ORIENT_PARAM_MADGWICK_BETA_IMU, -1.0), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+    CHECK_STATUS(orient_config_set_param(&c, ORIENT_PARAM_MADGWICK_BETA_IMU, NAN), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+    CHECK(c.params[ORIENT_PARAM_MADGWICK_BETA_IMU] == 0.041);
+    CHECK_STATUS(orient_config_set_param(&c, 40, 1.0), ORIENT_STATUS_UNKNOWN_PARAM);
+    CHECK_STATUS(orient_config_set_param(&c, ORIENT_PARAM_MADGWICK_BETA_IMU, 0.2), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_config_get_param(&c, ORIENT_PARAM_MADGWICK_BETA_IMU, &v), ORIENT_STATUS_OK);
+    CHECK(v == 0.2);
+    CHECK_STATUS(orient_config_set_param(NULL, 8, 0.2), ORIENT_STATUS_NULL_POINTER);
+    CHECK(fabs(orient_madgwick_beta(0.1) - sqrt(0.75) * 0.1) < 1e-15);
+    CHECK(isnan(orient_madgwick_beta(-1.0)));
+
+    /* Creation refuses bad configurations and sets *out to NULL. */
+    c.params[ORIENT_PARAM_MADGWICK_BETA_MARG] = INFINITY;
+    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+    CHECK(f == NULL);
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_MADGWICK, &c), ORIENT_STATUS_OK);
+    c.struct_size = 100;
+    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_VERSION_MISMATCH);
+    c.struct_size = sizeof c;
+    c.frame = 3;
+    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_INVALID_ARGUMENT);
+    c.frame = ORIENT_FRAME_NED;
+    c.init = 7;
+    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_INVALID_ARGUMENT);
+    c.init = ORIENT_INIT_GIVEN;
+    c.initial.w = c.initial.x = c.initial.y = c.initial.z = 0.0;
+    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_ZERO_VECTOR);
+    c.initial.w = NAN;
+    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_NON_FINITE);
+    c.kind = ORIENT_KIND_GMVDK;
+    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_UNSUPPORTED_KIND);
+    CHECK_STATUS(orient_filter_new(NULL, &f), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_new(&c, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK(f == NULL);
+}
+
+static void handle_paths(void) {
+    OrientFilter *f = new_madgwick();
+    OrientQuaternion q;
+    OrientEuler e;
+    OrientVec3 v;
+    double m[9];
+    uint32_t flags = 99;
+    int32_t kind = 0;
+    uint64_t fake[32];
+    OrientFilter *not_a_handle = (OrientFilter *)(void *)fake;
+    OrientFilter *misaligned = (OrientFilter *)(void *)((char *)fake + 1);
+    OrientSample s = good_sample();
+
+    CHECK(f != NULL);
+    memset(fake, 0x5a, sizeof fake);
+    /* NULL handles and NULL out-pointers */
+    CHECK_STATUS(orient_filter_update(NULL, &s), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_update(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_quaternion(NULL, &q), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_quaternion(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_euler(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_rotation_matrix(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_gravity(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_linear_accel(NULL, &v), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_flags(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_kind(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_reset(NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_set_quaternion(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_get_param(f, 8, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_set_param(NULL, 8, 0.1), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_free(NULL), ORIENT_STATUS_OK);
+    /* Pointers that are not handles */
+    CHECK_STATUS(orient_filter_update(not_a_handle, &s), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_quaternion(misaligned, &q), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_free(not_a_handle), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK(strstr(orient_last_error(), "not a live") != NULL);
+
+    /* Before initialisation: identity, flag clear, no linear acceleration yet. */
+    CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
+    CHECK(flags == 0);
+    CHECK_STATUS(orient_filter_quaternion(f, &q), ORIENT_STATUS_OK);
+    CHECK(q.w == 1.0 && q.x == 0.0 && q.y == 0.0 && q.z == 0.0);
+    CHECK_STATUS(orient_filter_linear_accel(f, &v), ORIENT_STATUS_NO_DATA);
+    CHECK_STATUS(orient_filter_linear_accel_earth(f, &v), ORIENT_STATUS_NO_DATA);
+    s.flags = ORIENT_SAMPLE_GYRO;
+    CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_NOT_INITIALIZED);
+    s = good_sample();
+    CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
+    CHECK(flags == (ORIENT_FLAG_INITIALIZED | ORIENT_FLAG_ACCEL_USED | ORIENT_FLAG_MAG_USED));
+    CHECK_STATUS(orient_filter_kind(f, &kind), ORIENT_STATUS_OK);
+    CHECK(kind == ORIENT_KIND_MADGWICK);
+
+    /* Outputs agree with each other. */
+    CHECK_STATUS(orient_filter_quaternion(f, &q), ORIENT_STATUS_OK);
+    CHECK(fabs(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z - 1.0) < 1e-12);
+    CHECK_STATUS(orient_filter_euler(f, &e), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_rotation_matrix(f, m), ORIENT_STATUS_OK);
+    CHECK(fabs(m[8] - (1.0 - 2.0 * (q.x * q.x + q.y * q.y))) < 1e-12);
+    CHECK(fabs(atan2(m[3], m[0]) - e.yaw) < 1e-12);
+    CHECK_STATUS(orient_filter_gravity(f, &v), ORIENT_STATUS_OK);
+    CHECK(fabs(sqrt(v.x * v.x + v.y * v.y + v.z * v.z) - 9.80665) < 1e-9);
+    /* gravity in the sensor frame is the third row of R (earth up in sensor coords). */
+    CHECK(fabs(v.z / 9.80665 - m[8]) < 1e-12);
+    CHECK_STATUS(orient_filter_linear_accel(f, &v), ORIENT_STATUS_OK);
+    CHECK(sqrt(v.x * v.x + v.y * v.y + v.z * v.z) < 1.0);
+    CHECK_STATUS(orient_filter_linear_accel_earth(f, &v), ORIENT_STATUS_OK);
+
+    /* Runtime parameters */
+    {
+        double b = 0;
+        CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_MADGWICK_BETA_MARG, 0.5), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_get_param(f, ORIENT_PARAM_MADGWICK_BETA_MARG, &b), ORIENT_STATUS_OK);
+        CHECK(b == 0.5);
+        CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_MADGWICK_BETA_MARG, 1e9), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+        CHECK_STATUS(orient_filter_get_param(f, 63, &b), ORIENT_STATUS_UNKNOWN_PARAM);
+    }
+
+    /* set_quaternion normalises; reset returns to the uninitialised state. */
+    q.w = 2.0;
+    q.x = q.y = q.z = 0.0;
+    CHECK_STATUS(orient_filter_set_quaternion(f, &q), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(f, &q), ORIENT_STATUS_OK);
+    CHECK(fabs(q.w - 1.0) < 1e-15);
+    q.w = NAN;
+    CHECK_STATUS(orient_filter_set_quaternion(f, &q), ORIENT_STATUS_NON_FINITE);
+    CHECK_STATUS(orient_filter_reset(f), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
+    CHECK(flags == 0);
+
+    /* Double free is reported, not a crash (the handle's memory is still mapped here). */
+    CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
+#ifndef ORIENT_TEST_NO_USE_AFTER_FREE
+    CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_INVALID_HANDLE);
+#endif
+}
+
+/* Every rejected sample leaves the state bit-identical: a twin that never saw the bad
+ * samples must produce the same bits afterwards. */
+static void bad_input(void) {
+    OrientFilter *f = new_madgwick();
+    OrientFilter *twin = new_madgwick();
+    OrientSample s = good_sample(), bad;
+    OrientQuaternion a, b;
+    size_t processed = 0;
+    OrientSample batch[4];
+    struct {
+        OrientSample s;
+        OrientStatus expected;
+    } cases[24];
+    int n = 0, i;
+
+    CHECK(f && twin);
+    if (!f || !twin) return;
+    CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_GYRO_RANGE, 34.9), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_ACCEL_RANGE, 156.9), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_param(twin, ORIENT_PARAM_GYRO_RANGE, 34.9), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_param(twin, ORIENT_PARAM_ACCEL_RANGE, 156.9), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_update(twin, &s), ORIENT_STATUS_OK);
+
+#define BAD(field_assign, status)                                                      \
+    do {                                                                               \
+        bad = good_sample();                                                           \
+        field_assign;                                                                  \
+        cases[n].s = bad;                                                              \
+        cases[n].expected = status;                                                    \
+        n++;                                                                           \
+    } while (0)
+    BAD(bad.dt = 0.0, ORIENT_STATUS_INVALID_DT);
+    BAD(bad.dt = -0.01, ORIENT_STATUS_INVALID_DT);
+    BAD(bad.dt = NAN, ORIENT_STATUS_INVALID_DT);
+    BAD(bad.dt = INFINITY, ORIENT_STATUS_INVALID_DT);
+    BAD(bad.gyro.y = NAN, ORIENT_STATUS_NON_FINITE);
+    BAD(bad.gyro.z = -INFINITY, ORIENT_STATUS_NON_FINITE);
+    BAD(bad.accel.x = NAN, ORIENT_STATUS_NON_FINITE);
+    BAD(bad.mag.z = INFINITY, ORIENT_STATUS_NON_FINITE);
+    BAD(bad.accel.x = bad.accel.y = bad.accel.z = 0.0, ORIENT_STATUS_ZERO_VECTOR);
+    BAD(bad.mag.x = bad.mag.y = bad.mag.z = 0.0, ORIENT_STATUS_ZERO_VECTOR);
+    BAD((bad.mag.x = 1e-170, bad.mag.y = 0.0, bad.mag.z = 0.0), ORIENT_STATUS_ZERO_VECTOR);
+    BAD((bad.accel.x = 1e300, bad.accel.y = 1e300), ORIENT_STATUS_TOO_LARGE);
+    BAD((bad.mag.x = 1e300, bad.mag.y = 1e300), ORIENT_STATUS_TOO_LARGE);
+    BAD(bad.gyro.x = 35.0, ORIENT_STATUS_SATURATED);
+    BAD(bad.accel.z = -157.0, ORIENT_STATUS_SATURATED);
+    BAD(bad.flags = ORIENT_SAMPLE_ACCEL, ORIENT_STATUS_MISSING_SENSOR);
+    BAD(bad.flags |= 8u, ORIENT_STATUS_INVALID_ARGUMENT);
+    BAD(bad.reserved = 1, ORIENT_STATUS_INVALID_ARGUMENT);
+    BAD(bad.dt = 1e300, ORIENT_STATUS_NUMERIC);
+#undef BAD
+
+    for (i = 0; i < n; i++) {
+        OrientStatus st = orient_filter_update(f, &cases[i].s);
+        if (st != cases[i].expected) {
+            printf("FAIL bad-input case %d: status %d, expected %d (%s)\n", i, (int)st,
+                   (int)cases[i].expected, orient_last_error());
+            failed++;
+        } else {
+            passed++;
+        }
+        CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_quaternion(twin, &b), ORIENT_STATUS_OK);
+        CHECK(same_quaternion(a, b));
+    }
+    /* The same good sample afterwards gives the same bits in both. */
+    CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_update(twin, &s), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(twin, &b), ORIENT_STATUS_OK);
+    CHECK(same_quaternion(a, b));
+
+    /* A batch stops at the first bad sample and reports its index. */
+    batch[0] = s;
+    batch[1] = s;
+    batch[2] = s;
+    batch[2].accel.x = NAN;
+    batch[3] = s;
+    CHECK_STATUS(orient_filter_update_batch(f, batch, 4, NULL, &processed), ORIENT_STATUS_NON_FINITE);
+    CHECK(processed == 2);
+    CHECK(strstr(orient_last_error(), "sample 2") != NULL);
+    CHECK_STATUS(orient_filter_update_batch(twin, batch, 2, NULL, NULL), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(twin, &b), ORIENT_STATUS_OK);
+    CHECK(same_quaternion(a, b));
+    /* n = 0 is a no-op even with NULL samples; NULL samples with n > 0 and huge n fail. */
+    CHECK_STATUS(orient_filter_update_batch(f, NULL, 0, NULL, &processed), ORIENT_STATUS_OK);
+    CHECK(processed == 0);
+    CHECK_STATUS(orient_filter_update_batch(f, NULL, 3, NULL, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_update_batch(f, batch, SIZE_MAX, NULL, NULL), ORIENT_STATUS_COUNT_TOO_LARGE);
+    CHECK_STATUS(orient_filter_update_batch(NULL, batch, 1, NULL, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
+    CHECK(same_quaternion(a, b));
+
+    orient_filter_free(f);
+    orient_filter_free(twin);
+}
+
+int main(int argc, char **argv) {
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s GOLDEN_FILE\n", argv[0]);
+        return 2;
+    }
+    layout();
+    status_messages();
+    config_paths();
+    handle_paths();
+    bad_input();
+    golden(argv[1]);
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed == 0 ? 0 : 1;
+}
