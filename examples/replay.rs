@@ -1,0 +1,181 @@
+//! Replays a recording through a filter and scores it against ground truth.
+//!
+//! ```text
+//! cargo run --release --example replay -- --filter NAME [--no-mag] [--frame enu|ned|nwu]
+//!     [--set KEY=VALUE]... [--out OUT.csv] INPUT.csv
+//! ```
+//!
+//! - NAME: madgwick, mahony, complementary, ekf or gmvdk.
+//! - `--no-mag` ignores the magnetometer columns (6D).
+//! - `--set` changes a parameter by name (see the filter's parameter table); repeatable.
+//! - INPUT: CSV as in shared/data/FORMAT.md (header row, columns by name, extra columns
+//!   ignored); dt from consecutive `t`.
+//! - OUT: `t,qw,qx,qy,qz`, one row per input row, quaternion in the chosen frame.
+//! - With ground truth (`quat_*`, `movement`), prints BROAD's total / heading /
+//!   inclination RMSE in degrees over `movement == 1` rows; with `--no-mag` also after
+//!   removing one constant heading offset.
+//!
+//! Exit status: 0 on success, 2 on bad arguments or malformed input (the message names
+//! the line and column), 1 when writing the output fails.
+
+use orient::eval::{remove_heading_offset, score, Recording, Scores};
+use orient::{Config, Filter, Frame, Kind, Quat};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::exit;
+use std::time::Instant;
+
+const USAGE: &str = "usage: replay --filter NAME [--no-mag] [--frame enu|ned|nwu] [--set KEY=VALUE]... \
+                     [--out OUT.csv] INPUT.csv";
+
+struct Args {
+    kind: Kind,
+    no_mag: bool,
+    frame: Frame,
+    sets: Vec<(String, f64)>,
+    out: Option<PathBuf>,
+    input: PathBuf,
+}
+
+fn fail(message: impl std::fmt::Display) -> ! {
+    eprintln!("replay: {message}");
+    exit(2)
+}
+
+fn parse_args() -> Args {
+    let mut kind = None;
+    let mut no_mag = false;
+    let mut frame = Frame::Enu;
+    let mut sets = Vec::new();
+    let mut out = None;
+    let mut input = None;
+    let mut it = std::env::args().skip(1);
+    while let Some(arg) = it.next() {
+        let mut value =
+            |name: &str| it.next().unwrap_or_else(|| fail(format!("{name} needs a value\n{USAGE}")));
+        match arg.as_str() {
+            "--filter" => {
+                let v = value("--filter");
+                let names: Vec<&str> = Kind::ALL.iter().map(|k| k.name()).collect();
+                kind =
+                    Some(Kind::from_name(&v).unwrap_or_else(|| {
+                        fail(format!("unknown filter '{v}' (one of: {})", names.join(", ")))
+                    }));
+            }
+            "--no-mag" => no_mag = true,
+            "--frame" => {
+                let v = value("--frame");
+                frame = Frame::from_name(&v)
+                    .unwrap_or_else(|| fail(format!("unknown frame '{v}' (enu, ned, nwu)")));
+            }
+            "--set" => {
+                let v = value("--set");
+                let (key, val) =
+                    v.split_once('=').unwrap_or_else(|| fail(format!("--set wants KEY=VALUE, got '{v}'")));
+                let val: f64 = val
+                    .trim()
+                    .parse()
+                    .unwrap_or_else(|_| fail(format!("--set {key}: '{val}' is not a number")));
+                sets.push((key.trim().to_string(), val));
+            }
+            "--out" => out = Some(PathBuf::from(value("--out"))),
+            "-h" | "--help" => {
+                println!("{USAGE}");
+                exit(0)
+            }
+            s if s.starts_with("--") => fail(format!("unknown option '{s}'\n{USAGE}")),
+            _ if input.is_some() => fail(format!("more than one input file\n{USAGE}")),
+            _ => input = Some(PathBuf::from(arg)),
+        }
+    }
+    Args {
+        kind: kind.unwrap_or_else(|| fail(format!("--filter is required\n{USAGE}"))),
+        no_mag,
+        frame,
+        sets,
+        out,
+        input: input.unwrap_or_else(|| fail(format!("no input file\n{USAGE}"))),
+    }
+}
+
+fn print_scores(label: &str, s: &Scores) {
+    println!(
+        "{label:<28} total {:6.2}  heading {:6.2}  inclination {:6.2}   ({} samples)",
+        s.total, s.heading, s.inclination, s.count
+    );
+}
+
+fn main() {
+    let args = parse_args();
+    let mut config = Config::new(args.kind).unwrap_or_else(|e| fail(e));
+    config.frame = args.frame;
+    for (key, value) in &args.sets {
+        match config.set(key, *value) {
+            None => {
+                let names: Vec<&str> = args.kind.params().map(|p| p.name).collect();
+                fail(format!("{} has no parameter '{key}' (it has: {})", args.kind.name(), names.join(", ")))
+            }
+            Some(Err(e)) => fail(format!("--set {key}={value}: {e}")),
+            Some(Ok(())) => {}
+        }
+    }
+    let rec = Recording::read(&args.input, !args.no_mag)
+        .unwrap_or_else(|e| fail(format!("{}: {e}", args.input.display())));
+    let samples = rec.samples();
+    let mut filter = Filter::new(&config).unwrap_or_else(|e| fail(e));
+
+    let mut estimates: Vec<Quat> = Vec::with_capacity(samples.len());
+    let mut rejected = 0usize;
+    let mut first_rejection = None;
+    let start = Instant::now();
+    for (i, s) in samples.iter().enumerate() {
+        if let Err(e) = filter.update(s) {
+            rejected += 1;
+            first_rejection.get_or_insert((i, e));
+        }
+        estimates.push(filter.quaternion());
+    }
+    let elapsed = start.elapsed();
+
+    if let Some(path) = &args.out {
+        let write = || -> std::io::Result<()> {
+            let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
+            writeln!(w, "t,qw,qx,qy,qz")?;
+            for (t, q) in rec.t.iter().zip(&estimates) {
+                writeln!(w, "{t},{},{},{},{}", q.w, q.x, q.y, q.z)?;
+            }
+            w.flush()
+        };
+        if let Err(e) = write() {
+            eprintln!("replay: cannot write {}: {e}", path.display());
+            exit(1);
+        }
+    }
+
+    let dims = if args.no_mag { "6D" } else { "9D" };
+    println!(
+        "{} {dims}, frame {}, {} samples from {} in {:.1} ms ({:.0} ns/sample), {rejected} rejected",
+        args.kind.name(),
+        args.frame.name(),
+        samples.len(),
+        args.input.display(),
+        elapsed.as_secs_f64() * 1e3,
+        elapsed.as_secs_f64() * 1e9 / samples.len().max(1) as f64,
+    );
+    if let Some((i, e)) = first_rejection {
+        println!("first rejected sample: row {} (line {}): {e}", i, i + 2);
+    }
+    if !rec.has_truth() {
+        println!("no ground truth columns (quat_*, movement): nothing to score");
+        return;
+    }
+    // BROAD scores ENU q_ES.
+    let to_enu = args.frame.rotation_to(Frame::Enu);
+    let mut enu: Vec<Quat> = estimates.iter().map(|q| to_enu.map_or(*q, |c| c * *q)).collect();
+    print_scores("BROAD RMSE [deg]:", &score(&enu, &rec.truth, &rec.movement));
+    if args.no_mag {
+        let offset = remove_heading_offset(&mut enu, &rec.truth, &rec.movement);
+        let label = format!("heading offset {:+.1} deg removed:", offset.to_degrees());
+        print_scores(&label, &score(&enu, &rec.truth, &rec.movement));
+    }
+}
