@@ -1,0 +1,98 @@
+//! The replay tool's interface: other scripts depend on it.
+#![cfg(not(miri))]
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// target/<profile>/examples/replay. A full `cargo test` builds it beside the tests;
+/// when only this test was asked for, build it here (once).
+fn replay() -> PathBuf {
+    static BUILT: std::sync::Once = std::sync::Once::new();
+    let exe = std::env::current_exe().unwrap();
+    let bin = exe.parent().unwrap().parent().unwrap().join("examples/replay");
+    BUILT.call_once(|| {
+        if !bin.exists() {
+            let status = Command::new(env!("CARGO"))
+                .args(["build", "--quiet", "--example", "replay", "--manifest-path"])
+                .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/Cargo.toml"))
+                .status()
+                .unwrap();
+            assert!(status.success(), "cargo build --example replay failed");
+        }
+    });
+    assert!(bin.exists(), "{} not built", bin.display());
+    bin
+}
+
+fn run(args: &[&str]) -> Output {
+    Command::new(replay()).args(args).output().unwrap()
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("replay_cli");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+const EXCERPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/data/broad_01_excerpt.csv");
+
+#[test]
+fn replays_the_excerpt_writes_one_row_per_input_row_and_scores_it() {
+    let out = tmp("excerpt.csv");
+    let o = run(&["--filter", "madgwick", "--out", out.to_str().unwrap(), EXCERPT]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{stdout}{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.contains("BROAD RMSE [deg]:") && stdout.contains("inclination"), "{stdout}");
+    let text = std::fs::read_to_string(&out).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("t,qw,qx,qy,qz"));
+    assert_eq!(lines.count(), 13500);
+}
+
+#[test]
+fn no_mag_prints_the_offset_removed_score_and_frames_are_accepted() {
+    let o = run(&["--filter", "madgwick", "--no-mag", "--frame", "ned", "--set", "beta_imu=0.1", EXCERPT]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{stdout}");
+    assert!(stdout.contains("6D, frame ned") && stdout.contains("heading offset"), "{stdout}");
+}
+
+fn expect_exit_2(csv: &str, needle: &str) {
+    let path = tmp(&format!("bad_{}.csv", needle.len()));
+    std::fs::write(&path, csv).unwrap();
+    let o = run(&["--filter", "madgwick", path.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains(needle), "expected '{needle}' in: {stderr}");
+}
+
+#[test]
+fn malformed_input_names_line_and_column_and_exits_2() {
+    let header = "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z,mag_x,mag_y,mag_z\n";
+    expect_exit_2(
+        "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.8\n",
+        "line 1, column 'mag_x': missing column",
+    );
+    expect_exit_2(
+        &format!("{header}0,0,0,0,0,0,9.8,1,2,3\n0.01,0,x1,0,0,0,9.8,1,2,3\n"),
+        "line 3, column 'gyr_y'",
+    );
+    expect_exit_2(
+        &format!("{header}0,0,0,0,0,0,9.8,1,2,3\n0,0,0,0,0,0,9.8,1,2,3\n"),
+        "line 3, column 't': time must increase",
+    );
+}
+
+#[test]
+fn bad_arguments_exit_2() {
+    for args in [
+        &["--filter", "kalman", EXCERPT][..],
+        &["--filter", "madgwick", "--set", "nope=1", EXCERPT],
+        &[EXCERPT],
+    ] {
+        assert_eq!(run(args).status.code(), Some(2), "{args:?}");
+    }
+    let o = run(&["--filter", "ekf", EXCERPT]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("not built"));
+}
