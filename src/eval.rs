@@ -114,7 +114,7 @@ impl Recording {
                 });
             }
             if let Some(&prev) = rec.t.last() {
-                if !(t > prev) {
+                if t <= prev {
                     return Err(CsvError {
                         line: line_no,
                         column: "t".into(),

@@ -77,7 +77,7 @@ impl Frame {
         };
         let east = mag.cross(up);
         let east_norm = east.norm();
-        if !(east_norm > 1e-9 * mag.norm()) {
+        if east_norm <= 1e-9 * mag.norm() {
             return None;
         }
         let east = east * (1.0 / east_norm);

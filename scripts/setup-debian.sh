@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs what building and testing orient needs on a Debian machine: a C toolchain
+# and binutils (nm, readelf) from apt, Rust through rustup when cargo is missing, and
+# the pinned cbindgen 0.29.4 from crates.io. Safe to run again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+sudo=""
+if [ "$(id -u)" != 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends \
+  build-essential binutils ca-certificates curl pkg-config >/dev/null
+
+if ! command -v cargo >/dev/null 2>&1; then
+  if [ -x "$HOME/.cargo/bin/cargo" ]; then
+    export PATH="$HOME/.cargo/bin:$PATH"
+  else
+    curl -sSf https://sh.rustup.rs | sh -s -- -y --profile minimal --component rustfmt,clippy
+    export PATH="$HOME/.cargo/bin:$PATH"
+  fi
+fi
+export PATH="$HOME/.cargo/bin:$PATH"
+
+if [ "$(cbindgen --version 2>/dev/null || true)" != "cbindgen 0.29.4" ]; then
+  cargo install cbindgen --locked --version 0.29.4 --quiet
+fi
+echo "setup: $(cargo --version), $(cbindgen --version), $(cc --version | head -n 1)"
