@@ -71,6 +71,12 @@ unsafe fn put<T>(out: *mut T, value: T) -> Res {
     Ok(())
 }
 
+/// Writes an output that needs an accelerometer reading, or reports NO_DATA.
+unsafe fn put_measured(out: *mut OrientVec3, value: Option<Vec3>) -> Res {
+    let v = value.ok_or_else(|| fail(OrientStatus::NoData, format_args!("no accelerometer reading yet")))?;
+    put(out, vec_to(v))
+}
+
 fn kind_from(kind: i32) -> Result<Kind, OrientStatus> {
     let k = match kind {
         1 => Kind::Madgwick,
@@ -552,11 +558,7 @@ pub unsafe extern "C" fn orient_filter_linear_accel(
     filter: *const OrientFilter,
     accel: *mut OrientVec3,
 ) -> OrientStatus {
-    guard(|| {
-        let a = handle(filter)?.filter.linear_accel();
-        let a = a.ok_or_else(|| fail(OrientStatus::NoData, format_args!("no accelerometer reading yet")))?;
-        put(accel, vec_to(a))
-    })
+    guard(|| put_measured(accel, handle(filter)?.filter.linear_accel()))
 }
 
 /// orient_filter_linear_accel() rotated into the earth frame, m/s^2.
@@ -565,11 +567,7 @@ pub unsafe extern "C" fn orient_filter_linear_accel_earth(
     filter: *const OrientFilter,
     accel: *mut OrientVec3,
 ) -> OrientStatus {
-    guard(|| {
-        let a = handle(filter)?.filter.linear_accel_earth();
-        let a = a.ok_or_else(|| fail(OrientStatus::NoData, format_args!("no accelerometer reading yet")))?;
-        put(accel, vec_to(a))
-    })
+    guard(|| put_measured(accel, handle(filter)?.filter.linear_accel_earth()))
 }
 
 /// ORIENT_FLAG_* bits of the filter's state.
