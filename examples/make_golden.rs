@@ -31,6 +31,11 @@ impl Noise {
 /// A sensor moving with a smooth angular velocity; readings with bias and noise,
 /// written in the sensor frame (ENU earth frame, field 20 µT north, 40 µT down).
 fn motion(seed: u64, n: usize, flags: impl Fn(usize) -> u32) -> Vec<Row> {
+    motion_after_rest(seed, 0, n, flags)
+}
+
+/// [`motion`] that starts with `still` samples at rest (for start-up periods).
+fn motion_after_rest(seed: u64, still: usize, n: usize, flags: impl Fn(usize) -> u32) -> Vec<Row> {
     let mut noise = Noise(seed);
     let mut truth = Quat::from_axis_angle(Vec3::new(0.2, -0.5, 1.0), 0.9);
     let bias = Vec3::new(0.01, -0.02, 0.015);
@@ -38,9 +43,17 @@ fn motion(seed: u64, n: usize, flags: impl Fn(usize) -> u32) -> Vec<Row> {
     for i in 0..n {
         let t = i as f64 * 0.01;
         let dt = 0.01 + 0.0005 * noise.next();
-        let w = Vec3::new(0.8 * (0.7 * t).sin(), 0.5 * (1.1 * t).cos(), 0.9 * (0.3 * t + 1.0).sin());
-        truth = (truth * Quat::from_axis_angle(w, w.norm() * dt)).normalized();
-        let lin = Vec3::new(0.3 * (2.0 * t).sin(), 0.2 * (1.5 * t).cos(), 0.1 * (3.0 * t).sin());
+        let w = if i < still {
+            Vec3::ZERO
+        } else {
+            Vec3::new(0.8 * (0.7 * t).sin(), 0.5 * (1.1 * t).cos(), 0.9 * (0.3 * t + 1.0).sin())
+        };
+        truth = (truth * orient::filters::complementary::rotation_of(w, dt)).normalized();
+        let lin = if i < still {
+            Vec3::ZERO
+        } else {
+            Vec3::new(0.3 * (2.0 * t).sin(), 0.2 * (1.5 * t).cos(), 0.1 * (3.0 * t).sin())
+        };
         let accel = truth.rotate_inverse(Vec3::new(0.0, 0.0, 9.81) + lin) + noise.vec(0.05);
         let mag = truth.rotate_inverse(Vec3::new(0.0, 20.0, -40.0)) + noise.vec(0.3);
         rows.push(Row {
@@ -127,6 +140,35 @@ fn main() {
                     | if i % 5 == 4 { 0 } else { SAMPLE_ACCEL }
                     | if i % 2 == 0 { SAMPLE_MAG } else { 0 }
             }),
+        ),
+        case(
+            "mahony_marg_enu_ki",
+            Kind::Mahony,
+            Frame::Enu,
+            0,
+            Quat::IDENTITY,
+            vec![(id::MAHONY_KI, 0.1)],
+            motion(5, 300, |_| marg),
+        ),
+        case(
+            "complementary_imu_enu",
+            Kind::Complementary,
+            Frame::Enu,
+            0,
+            Quat::IDENTITY,
+            vec![(id::COMPLEMENTARY_INIT_DURATION, 0.5)],
+            motion_after_rest(6, 80, 300, |_| imu),
+        ),
+        case("ekf_marg_ned", Kind::Ekf, Frame::Ned, 0, Quat::IDENTITY, vec![], motion(7, 300, |_| marg)),
+        case("ekf_imu_enu_given", Kind::Ekf, Frame::Enu, 2, q0, vec![], motion(8, 300, |_| imu)),
+        case(
+            "gmvdk_marg_enu",
+            Kind::Gmvdk,
+            Frame::Enu,
+            0,
+            Quat::IDENTITY,
+            vec![(id::GMVDK_INIT_DURATION, 0.5)],
+            motion_after_rest(9, 80, 300, |_| marg),
         ),
     ];
     std::fs::write(golden::PATH, golden::write(&cases)).expect("write golden file");

@@ -10,7 +10,9 @@
 //! - `--set` changes a parameter by name (see the filter's parameter table); repeatable.
 //! - INPUT: CSV as in shared/data/FORMAT.md (header row, columns by name, extra columns
 //!   ignored); dt from consecutive `t`.
-//! - OUT: `t,qw,qx,qy,qz`, one row per input row, quaternion in the chosen frame.
+//! - OUT: `t,qw,qx,qy,qz` followed by the filter's diagnostics (`bias_x,bias_y,bias_z`,
+//!   `rest`, `alpha,mu_ka,mu_km,mu_k`, `rate_*`, `p0..p9`, as the kind offers them; NaN
+//!   where a value is absent), one row per input row, quaternion in the chosen frame.
 //! - With ground truth (`quat_*`, `movement`), prints BROAD's total / heading /
 //!   inclination RMSE in degrees over `movement == 1` rows; with `--no-mag` also after
 //!   removing one constant heading offset.
@@ -19,6 +21,7 @@
 //! the line and column), 1 when writing the output fails.
 
 use orient::eval::{remove_heading_offset, score, Recording, Scores};
+use orient::filters::{diag, Diagnostics};
 use orient::{Config, Filter, Frame, Kind, Quat};
 use std::io::Write;
 use std::path::PathBuf;
@@ -98,6 +101,56 @@ fn parse_args() -> Args {
     }
 }
 
+/// The extra output columns a kind offers: its diagnostics.
+fn extra_columns(present: u32) -> Vec<String> {
+    let mut c: Vec<String> = Vec::new();
+    if present & diag::GYRO_BIAS != 0 {
+        c.extend(["bias_x", "bias_y", "bias_z"].map(String::from));
+    }
+    if present & diag::REST != 0 {
+        c.push("rest".into());
+    }
+    for (bit, name) in
+        [(diag::ALPHA, "alpha"), (diag::MU_KA, "mu_ka"), (diag::MU_KM, "mu_km"), (diag::MU_K, "mu_k")]
+    {
+        if present & bit != 0 {
+            c.push(name.into());
+        }
+    }
+    if present & diag::RATE != 0 {
+        c.extend(["rate_x", "rate_y", "rate_z"].map(String::from));
+    }
+    if present & diag::COVARIANCE != 0 {
+        c.extend((0..10).map(|i| format!("p{i}")));
+    }
+    c
+}
+
+/// The values of [`extra_columns`] for one sample (NaN where a value is absent now).
+fn extra_values(d: &Diagnostics, present: u32) -> Vec<f64> {
+    let mut v = Vec::new();
+    if present & diag::GYRO_BIAS != 0 {
+        v.extend([d.gyro_bias.x, d.gyro_bias.y, d.gyro_bias.z]);
+    }
+    if present & diag::REST != 0 {
+        v.push(d.rest);
+    }
+    for (bit, x) in
+        [(diag::ALPHA, d.alpha), (diag::MU_KA, d.mu_ka), (diag::MU_KM, d.mu_km), (diag::MU_K, d.mu_k)]
+    {
+        if present & bit != 0 {
+            v.push(x);
+        }
+    }
+    if present & diag::RATE != 0 {
+        v.extend([d.rate.x, d.rate.y, d.rate.z]);
+    }
+    if present & diag::COVARIANCE != 0 {
+        v.extend(d.covariance);
+    }
+    v
+}
+
 fn print_scores(label: &str, s: &Scores) {
     println!(
         "{label:<28} total {:6.2}  heading {:6.2}  inclination {:6.2}   ({} samples)",
@@ -125,6 +178,8 @@ fn main() {
     let mut filter = Filter::new(&config).unwrap_or_else(|e| fail(e));
 
     let mut estimates: Vec<Quat> = Vec::with_capacity(samples.len());
+    let columns = extra_columns(args.kind.diagnostics());
+    let mut extras: Vec<Vec<f64>> = Vec::with_capacity(if args.out.is_some() { samples.len() } else { 0 });
     let mut rejected = 0usize;
     let mut first_rejection = None;
     let start = Instant::now();
@@ -134,15 +189,20 @@ fn main() {
             first_rejection.get_or_insert((i, e));
         }
         estimates.push(filter.quaternion());
+        if args.out.is_some() {
+            extras.push(extra_values(&filter.diagnostics(), args.kind.diagnostics()));
+        }
     }
     let elapsed = start.elapsed();
 
     if let Some(path) = &args.out {
         let write = || -> std::io::Result<()> {
             let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
-            writeln!(w, "t,qw,qx,qy,qz")?;
-            for (t, q) in rec.t.iter().zip(&estimates) {
-                writeln!(w, "{t},{},{},{},{}", q.w, q.x, q.y, q.z)?;
+            let header: String = columns.iter().map(|c| format!(",{c}")).collect();
+            writeln!(w, "t,qw,qx,qy,qz{header}")?;
+            for ((t, q), x) in rec.t.iter().zip(&estimates).zip(&extras) {
+                let values: String = x.iter().map(|v| format!(",{v}")).collect();
+                writeln!(w, "{t},{},{},{},{}{values}", q.w, q.x, q.y, q.z)?;
             }
             w.flush()
         };

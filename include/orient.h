@@ -36,15 +36,24 @@
 #include <stdint.h>
 
 /**
+ * An orientation filter (opaque). Create with orient_filter_new(), release with
+ * orient_filter_free(). One handle must not be used from two threads at once; different
+ * handles are independent.
+ */
+typedef struct OrientFilter OrientFilter;
+
+/**
  * Version of the C ABI described by this header. It changes only when an existing
  * function, struct layout or constant changes meaning; additions keep it.
  */
 #define ORIENT_ABI_VERSION 1
 
 /**
- * Number of parameter slots in `OrientConfig.params`.
+ * Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
+ * kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
+ * EKF 40-55, GMVDK 56-79); 80-127 are free for later versions.
  */
-#define ORIENT_MAX_PARAMS 64
+#define ORIENT_MAX_PARAMS 128
 
 /**
  * `OrientSample.flags`: the gyroscope field holds a reading (every filter needs one).
@@ -107,6 +116,176 @@
  * (Madgwick 2010, section V).
  */
 #define ORIENT_PARAM_MADGWICK_BETA_MARG 9
+
+/**
+ * Parameter slot (Mahony): proportional gain kP, 1/s, default 0.5 (GMVDK paper's comparison).
+ */
+#define ORIENT_PARAM_MAHONY_KP 16
+
+/**
+ * Parameter slot (Mahony): integral gain kI for the gyro bias, 1/s^2, default 0.
+ */
+#define ORIENT_PARAM_MAHONY_KI 17
+
+/**
+ * Parameter slot (complementary): K_P at rest, 1/s, default 1.0.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_KP 24
+
+/**
+ * Parameter slot (complementary): K_I at rest, 1/s^2, default 0.05.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_KI 25
+
+/**
+ * Parameter slot (complementary): rest threshold on |gyro - bias|, rad/s, default 0.02.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_GYRO_REST 26
+
+/**
+ * Parameter slot (complementary): rest threshold on | |accel| - g0 |, m/s^2, default 0.2.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_ACCEL_REST 27
+
+/**
+ * Parameter slot (complementary): stationary start-up period, s, default 2.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_INIT_DURATION 28
+
+/**
+ * Parameter slot (complementary): 1 = north from the start-up magnetometer, default 0.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING 29
+
+/**
+ * Parameter slot (EKF): angular-rate correlation time tau_omega, s, default 0.2.
+ */
+#define ORIENT_PARAM_EKF_TAU_OMEGA 40
+
+/**
+ * Parameter slot (EKF): stationary std of the angular rate, rad/s, default 3.
+ */
+#define ORIENT_PARAM_EKF_OMEGA_STD 41
+
+/**
+ * Parameter slot (EKF): gyro drift correlation time tau_delta, s, default 100.
+ */
+#define ORIENT_PARAM_EKF_TAU_DRIFT 42
+
+/**
+ * Parameter slot (EKF): stationary std of the gyro drift, rad/s, default 0.02.
+ */
+#define ORIENT_PARAM_EKF_DRIFT_STD 43
+
+/**
+ * Parameter slot (EKF): gyro noise density, rad/s/sqrt(Hz), default 0.05 deg/s/sqrt(Hz).
+ */
+#define ORIENT_PARAM_EKF_GYRO_NOISE 44
+
+/**
+ * Parameter slot (EKF): accelerometer noise density, m/s^2/sqrt(Hz), default 32 ug/sqrt(Hz).
+ */
+#define ORIENT_PARAM_EKF_ACCEL_NOISE 45
+
+/**
+ * Parameter slot (EKF): linear-acceleration allowance, m/s^2, default 0.5.
+ */
+#define ORIENT_PARAM_EKF_ACCEL_MOTION 46
+
+/**
+ * Parameter slot (EKF): magnetometer heading std, rad, default 0.1.
+ */
+#define ORIENT_PARAM_EKF_HEADING_STD 47
+
+/**
+ * Parameter slot (GMVDK): SlopeAlpha, default 1.0 (paper, Appendix B.1).
+ */
+#define ORIENT_PARAM_GMVDK_SLOPE_ALPHA 56
+
+/**
+ * Parameter slot (GMVDK): SlopeMuk, 1/rad, default 1.5 (paper, eq. (20)).
+ */
+#define ORIENT_PARAM_GMVDK_SLOPE_MUK 57
+
+/**
+ * Parameter slot (GMVDK): running-minimum window of mu, s, default 0.4 (paper).
+ */
+#define ORIENT_PARAM_GMVDK_MU_WINDOW 58
+
+/**
+ * Parameter slot (GMVDK): static start-up period, s, default 1.
+ */
+#define ORIENT_PARAM_GMVDK_INIT_DURATION 59
+
+/**
+ * Parameter slot (GMVDK): time constant of the activity averages, s, default 0.1.
+ */
+#define ORIENT_PARAM_GMVDK_ACTIVITY_TAU 60
+
+/**
+ * Parameter slot (GMVDK): gyro activity scale, rad/s, default 0.5.
+ */
+#define ORIENT_PARAM_GMVDK_GYRO_ACTIVITY 61
+
+/**
+ * Parameter slot (GMVDK): accelerometer activity scale, m/s^2, default 1.0.
+ */
+#define ORIENT_PARAM_GMVDK_ACCEL_ACTIVITY 62
+
+/**
+ * Parameter slot (GMVDK): static run length for gyro de-biasing, s, default 1.
+ */
+#define ORIENT_PARAM_GMVDK_BIAS_WINDOW 63
+
+/**
+ * Parameter slot (GMVDK): alpha threshold for "static", default 0.95.
+ */
+#define ORIENT_PARAM_GMVDK_STATIC_ALPHA 64
+
+/**
+ * Parameter slot (GMVDK): 1 = output relative to the start-up pose, default 0.
+ */
+#define ORIENT_PARAM_GMVDK_RELATIVE_OUTPUT 65
+
+/**
+ * OrientDiagnostics.present: gyro_bias holds a value.
+ */
+#define ORIENT_DIAG_GYRO_BIAS 1
+
+/**
+ * OrientDiagnostics.present: rest holds a value.
+ */
+#define ORIENT_DIAG_REST 2
+
+/**
+ * OrientDiagnostics.present: alpha holds a value.
+ */
+#define ORIENT_DIAG_ALPHA 4
+
+/**
+ * OrientDiagnostics.present: mu_ka holds a value.
+ */
+#define ORIENT_DIAG_MU_KA 8
+
+/**
+ * OrientDiagnostics.present: mu_km holds a value.
+ */
+#define ORIENT_DIAG_MU_KM 16
+
+/**
+ * OrientDiagnostics.present: mu_k holds a value.
+ */
+#define ORIENT_DIAG_MU_K 32
+
+/**
+ * OrientDiagnostics.present: rate holds a value.
+ */
+#define ORIENT_DIAG_RATE 64
+
+/**
+ * OrientDiagnostics.present: covariance holds values.
+ */
+#define ORIENT_DIAG_COVARIANCE 128
 
 /**
  * Result of every fallible call. Numbers are fixed and never reused. On any status but
@@ -218,19 +397,19 @@ enum OrientKind
    */
   ORIENT_KIND_MADGWICK = 1,
   /**
-   * Mahony nonlinear complementary filter (not built yet: ORIENT_STATUS_UNSUPPORTED_KIND).
+   * Mahony nonlinear complementary filter, IMU and MARG, bias estimate optional.
    */
   ORIENT_KIND_MAHONY = 2,
   /**
-   * McGinnis 2014 PI complementary filter (not built yet).
+   * McGinnis 2014 PI complementary filter: gains at rest only, start-up period (IMU).
    */
   ORIENT_KIND_COMPLEMENTARY = 3,
   /**
-   * Kim & Golnaraghi 2004 quaternion EKF (not built yet).
+   * Kim & Golnaraghi 2004 quaternion EKF [q, omega, drift]; magnetometer heading optional.
    */
   ORIENT_KIND_EKF = 4,
   /**
-   * GMVDK 2024 double-SLERP filter (not built yet).
+   * GMVDK 2024 double-SLERP filter with trust alpha and mu_K; start-up period.
    */
   ORIENT_KIND_GMVDK = 5,
 };
@@ -302,13 +481,6 @@ typedef int32_t OrientInit;
 #endif // __cplusplus
 
 /**
- * An orientation filter. Opaque: create with orient_filter_new(), release with
- * orient_filter_free(). One handle must not be used from two threads at once;
- * different handles are independent.
- */
-typedef struct OrientFilter OrientFilter;
-
-/**
  * A Hamilton quaternion, scalar first. As an orientation it maps sensor to earth
  * coordinates: v_earth = q * v_sensor * conj(q).
  */
@@ -320,7 +492,7 @@ typedef struct OrientQuaternion {
 } OrientQuaternion;
 
 /**
- * A filter configuration (560 bytes). Fill it with orient_config_default(), then
+ * A filter configuration (1072 bytes). Fill it with orient_config_default(), then
  * change fields or parameters.
  *
  * Compatibility rule: `struct_size` is set by orient_config_default() to the size
@@ -451,6 +623,56 @@ typedef struct OrientEuler {
   double roll;
 } OrientEuler;
 
+/**
+ * Internal states for display, the same struct for every kind. A field whose
+ * ORIENT_DIAG_* bit is clear in `present` does not apply (to this kind, or yet) and
+ * holds NaN; it is never a made-up zero.
+ */
+typedef struct OrientDiagnostics {
+  /**
+   * ORIENT_DIAG_* bits of the fields that hold values.
+   */
+  uint32_t present;
+  /**
+   * Always 0.
+   */
+  uint32_t reserved;
+  /**
+   * Gyroscope bias being subtracted, rad/s, sensor frame (Mahony b, complementary
+   * omega_b, EKF drift delta, GMVDK regression bias).
+   */
+  struct OrientVec3 gyro_bias;
+  /**
+   * Complementary filter: 1 when the last sample counted as rest (gains on), else 0.
+   */
+  double rest;
+  /**
+   * GMVDK accelerometer trust alpha, [0, 1].
+   */
+  double alpha;
+  /**
+   * GMVDK magnetometer angle trust mu_KA, [0, 1].
+   */
+  double mu_ka;
+  /**
+   * GMVDK magnetometer magnitude trust mu_KM, [0, 1].
+   */
+  double mu_km;
+  /**
+   * GMVDK magnetometer trust mu_K = mu_2 * alpha, [0, 1].
+   */
+  double mu_k;
+  /**
+   * EKF angular-rate state, rad/s, sensor frame.
+   */
+  struct OrientVec3 rate;
+  /**
+   * EKF covariance diagonal, state order [q0, q1, q2, q3, omega_xyz, drift_xyz]
+   * (the quaternion in the filter's native North-East-Down frame).
+   */
+  double covariance[10];
+} OrientDiagnostics;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -519,28 +741,28 @@ OrientStatus orient_param_find(int32_t kind, const char *name, uint32_t *id);
  * Creates a filter from `config`. On success `*out` is a new handle; on failure it is
  * set to NULL (when `out` is not NULL).
  */
-OrientStatus orient_filter_new(const struct OrientConfig *config, struct OrientFilter **out);
+OrientStatus orient_filter_new(const struct OrientConfig *config, OrientFilter **out);
 
 /**
  * Releases a filter. NULL is a no-op (ORIENT_STATUS_OK); a handle that was already
  * freed is reported with ORIENT_STATUS_INVALID_HANDLE (see the handle-check limits).
  */
-OrientStatus orient_filter_free(struct OrientFilter *filter);
+OrientStatus orient_filter_free(OrientFilter *filter);
 
 /**
  * The kind (ORIENT_KIND_*) of a filter.
  */
-OrientStatus orient_filter_kind(const struct OrientFilter *filter, int32_t *kind);
+OrientStatus orient_filter_kind(const OrientFilter *filter, int32_t *kind);
 
 /**
  * Changes parameter slot `id` of a running filter; the orientation is kept.
  */
-OrientStatus orient_filter_set_param(struct OrientFilter *filter, uint32_t id, double value);
+OrientStatus orient_filter_set_param(OrientFilter *filter, uint32_t id, double value);
 
 /**
  * Reads parameter slot `id` of a filter.
  */
-OrientStatus orient_filter_get_param(const struct OrientFilter *filter, uint32_t id, double *value);
+OrientStatus orient_filter_get_param(const OrientFilter *filter, uint32_t id, double *value);
 
 /**
  * One update. On any status but OK the filter's state is exactly as before.
@@ -553,7 +775,7 @@ OrientStatus orient_filter_get_param(const struct OrientFilter *filter, uint32_t
  * the first accepted sample must carry an accelerometer (NOT_INITIALIZED). A
  * magnetometer parallel to gravity gives no heading: that step uses the IMU update.
  */
-OrientStatus orient_filter_update(struct OrientFilter *filter, const struct OrientSample *sample);
+OrientStatus orient_filter_update(OrientFilter *filter, const struct OrientSample *sample);
 
 /**
  * Updates with `n` samples in order. When `quaternions` is not NULL it receives the
@@ -562,7 +784,7 @@ OrientStatus orient_filter_update(struct OrientFilter *filter, const struct Orie
  * not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
  * when `n` is 0.
  */
-OrientStatus orient_filter_update_batch(struct OrientFilter *filter,
+OrientStatus orient_filter_update_batch(OrientFilter *filter,
                                         const struct OrientSample *samples,
                                         size_t n,
                                         struct OrientQuaternion *quaternions,
@@ -571,54 +793,57 @@ OrientStatus orient_filter_update_batch(struct OrientFilter *filter,
 /**
  * The orientation (sensor to earth, configured frame). Identity before initialisation.
  */
-OrientStatus orient_filter_quaternion(const struct OrientFilter *filter,
-                                      struct OrientQuaternion *q);
+OrientStatus orient_filter_quaternion(const OrientFilter *filter, struct OrientQuaternion *q);
 
 /**
  * Euler angles (yaw, pitch, roll; Z-Y'-X'') of the orientation, radians.
  */
-OrientStatus orient_filter_euler(const struct OrientFilter *filter, struct OrientEuler *euler);
+OrientStatus orient_filter_euler(const OrientFilter *filter, struct OrientEuler *euler);
 
 /**
  * Rotation matrix of the orientation, row-major, 9 doubles: v_earth = R * v_sensor.
  */
-OrientStatus orient_filter_rotation_matrix(const struct OrientFilter *filter, double *matrix);
+OrientStatus orient_filter_rotation_matrix(const OrientFilter *filter, double *matrix);
 
 /**
  * What the accelerometer reads at rest in the current orientation (gravity's reaction,
  * pointing up), sensor frame, m/s^2, magnitude ORIENT_PARAM_GRAVITY.
  */
-OrientStatus orient_filter_gravity(const struct OrientFilter *filter, struct OrientVec3 *gravity);
+OrientStatus orient_filter_gravity(const OrientFilter *filter, struct OrientVec3 *gravity);
 
 /**
  * Last accelerometer reading minus orient_filter_gravity(), sensor frame, m/s^2.
  * ORIENT_STATUS_NO_DATA before the first accelerometer reading.
  */
-OrientStatus orient_filter_linear_accel(const struct OrientFilter *filter,
-                                        struct OrientVec3 *accel);
+OrientStatus orient_filter_linear_accel(const OrientFilter *filter, struct OrientVec3 *accel);
 
 /**
  * orient_filter_linear_accel() rotated into the earth frame, m/s^2.
  */
-OrientStatus orient_filter_linear_accel_earth(const struct OrientFilter *filter,
-                                              struct OrientVec3 *accel);
+OrientStatus orient_filter_linear_accel_earth(const OrientFilter *filter, struct OrientVec3 *accel);
+
+/**
+ * Internal states (bias, trust values, rest flag, covariance), the same struct for
+ * every kind; fields that do not apply are marked absent in `present` and hold NaN.
+ */
+OrientStatus orient_filter_diagnostics(const OrientFilter *filter,
+                                       struct OrientDiagnostics *diagnostics);
 
 /**
  * ORIENT_FLAG_* bits of the filter's state.
  */
-OrientStatus orient_filter_flags(const struct OrientFilter *filter, uint32_t *flags);
+OrientStatus orient_filter_flags(const OrientFilter *filter, uint32_t *flags);
 
 /**
  * Back to the state right after orient_filter_new(); parameters set since are kept.
  */
-OrientStatus orient_filter_reset(struct OrientFilter *filter);
+OrientStatus orient_filter_reset(OrientFilter *filter);
 
 /**
  * Sets the orientation (configured frame; normalised). NON_FINITE, ZERO_VECTOR or
  * TOO_LARGE for an unusable quaternion. The filter counts as initialised afterwards.
  */
-OrientStatus orient_filter_set_quaternion(struct OrientFilter *filter,
-                                          const struct OrientQuaternion *q);
+OrientStatus orient_filter_set_quaternion(OrientFilter *filter, const struct OrientQuaternion *q);
 
 #ifdef __cplusplus
 }  // extern "C"

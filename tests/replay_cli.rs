@@ -92,7 +92,29 @@ fn bad_arguments_exit_2() {
     ] {
         assert_eq!(run(args).status.code(), Some(2), "{args:?}");
     }
-    let o = run(&["--filter", "ekf", EXCERPT]);
+    let o = run(&["--filter", "gmvdk", "--set", "slope_muk=-1", EXCERPT]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("not built"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("out of range"));
+}
+
+#[test]
+fn every_kind_replays_and_writes_its_diagnostics_as_extra_columns() {
+    let expected = [
+        ("madgwick", "t,qw,qx,qy,qz"),
+        ("mahony", "t,qw,qx,qy,qz,bias_x,bias_y,bias_z"),
+        ("complementary", "t,qw,qx,qy,qz,bias_x,bias_y,bias_z,rest"),
+        ("ekf", "t,qw,qx,qy,qz,bias_x,bias_y,bias_z,rate_x,rate_y,rate_z,p0,p1,p2,p3,p4,p5,p6,p7,p8,p9"),
+        ("gmvdk", "t,qw,qx,qy,qz,bias_x,bias_y,bias_z,alpha,mu_ka,mu_km,mu_k"),
+    ];
+    for (kind, header) in expected {
+        let out = tmp(&format!("{kind}.csv"));
+        let o = run(&["--filter", kind, "--out", out.to_str().unwrap(), EXCERPT]);
+        assert!(o.status.success(), "{kind}: {}", String::from_utf8_lossy(&o.stderr));
+        let text = std::fs::read_to_string(&out).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some(header), "{kind}");
+        let last: Vec<f64> = lines.last().unwrap().split(',').map(|v| v.parse().unwrap()).collect();
+        assert_eq!(last.len(), header.split(',').count());
+        assert!(last.iter().all(|v| v.is_finite()), "{kind}: {last:?}");
+    }
 }

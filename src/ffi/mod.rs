@@ -28,9 +28,11 @@ use std::ffi::CString;
 const MAGIC_LIVE: u64 = 0x4f52_4945_4e54_2e31; // "ORIENT.1"
 const MAGIC_DEAD: u64 = 0xdead_f11e_dead_f11e;
 
-/// An orientation filter. Opaque: create with orient_filter_new(), release with
-/// orient_filter_free(). One handle must not be used from two threads at once;
-/// different handles are independent.
+/// An orientation filter. Opaque to C (the header declares it with cbindgen.toml's
+/// `after_includes`): create with orient_filter_new(), release with orient_filter_free().
+/// `repr(C)` keeps the tag at offset 0, so checking a foreign pointer reads only its
+/// first 8 bytes, and glibc's free list overwrites the tag of a freed handle.
+#[repr(C)]
 pub struct OrientFilter {
     magic: u64,
     filter: Filter,
@@ -570,6 +572,33 @@ pub unsafe extern "C" fn orient_filter_linear_accel_earth(
     guard(|| put_measured(accel, handle(filter)?.filter.linear_accel_earth()))
 }
 
+/// Internal states (bias, trust values, rest flag, covariance), the same struct for
+/// every kind; fields that do not apply are marked absent in `present` and hold NaN.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_diagnostics(
+    filter: *const OrientFilter,
+    diagnostics: *mut OrientDiagnostics,
+) -> OrientStatus {
+    guard(|| {
+        let d = handle(filter)?.filter.diagnostics();
+        put(
+            diagnostics,
+            OrientDiagnostics {
+                present: d.present,
+                reserved: 0,
+                gyro_bias: vec_to(d.gyro_bias),
+                rest: d.rest,
+                alpha: d.alpha,
+                mu_ka: d.mu_ka,
+                mu_km: d.mu_km,
+                mu_k: d.mu_k,
+                rate: vec_to(d.rate),
+                covariance: d.covariance,
+            },
+        )
+    })
+}
+
 /// ORIENT_FLAG_* bits of the filter's state.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_flags(filter: *const OrientFilter, flags: *mut u32) -> OrientStatus {
@@ -619,7 +648,47 @@ mod tests {
         assert_eq!(ORIENT_FLAG_ACCEL_USED, flags::ACCEL_USED);
         assert_eq!(ORIENT_FLAG_MAG_USED, flags::MAG_USED);
         assert_eq!(core::mem::size_of::<OrientSample>(), 88);
-        assert_eq!(core::mem::size_of::<OrientConfig>(), 560);
+        assert_eq!(core::mem::size_of::<OrientConfig>(), 1072);
+        use crate::filters::diag;
+        assert_eq!(ORIENT_DIAG_GYRO_BIAS, diag::GYRO_BIAS);
+        assert_eq!(ORIENT_DIAG_REST, diag::REST);
+        assert_eq!(ORIENT_DIAG_ALPHA, diag::ALPHA);
+        assert_eq!(ORIENT_DIAG_MU_KA, diag::MU_KA);
+        assert_eq!(ORIENT_DIAG_MU_KM, diag::MU_KM);
+        assert_eq!(ORIENT_DIAG_MU_K, diag::MU_K);
+        assert_eq!(ORIENT_DIAG_RATE, diag::RATE);
+        assert_eq!(ORIENT_DIAG_COVARIANCE, diag::COVARIANCE);
+        let slots = [
+            (ORIENT_PARAM_MAHONY_KP, params::id::MAHONY_KP),
+            (ORIENT_PARAM_MAHONY_KI, params::id::MAHONY_KI),
+            (ORIENT_PARAM_COMPLEMENTARY_KP, params::id::COMPLEMENTARY_KP),
+            (ORIENT_PARAM_COMPLEMENTARY_KI, params::id::COMPLEMENTARY_KI),
+            (ORIENT_PARAM_COMPLEMENTARY_GYRO_REST, params::id::COMPLEMENTARY_GYRO_REST),
+            (ORIENT_PARAM_COMPLEMENTARY_ACCEL_REST, params::id::COMPLEMENTARY_ACCEL_REST),
+            (ORIENT_PARAM_COMPLEMENTARY_INIT_DURATION, params::id::COMPLEMENTARY_INIT_DURATION),
+            (ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING, params::id::COMPLEMENTARY_ALIGN_HEADING),
+            (ORIENT_PARAM_EKF_TAU_OMEGA, params::id::EKF_TAU_OMEGA),
+            (ORIENT_PARAM_EKF_OMEGA_STD, params::id::EKF_OMEGA_STD),
+            (ORIENT_PARAM_EKF_TAU_DRIFT, params::id::EKF_TAU_DRIFT),
+            (ORIENT_PARAM_EKF_DRIFT_STD, params::id::EKF_DRIFT_STD),
+            (ORIENT_PARAM_EKF_GYRO_NOISE, params::id::EKF_GYRO_NOISE),
+            (ORIENT_PARAM_EKF_ACCEL_NOISE, params::id::EKF_ACCEL_NOISE),
+            (ORIENT_PARAM_EKF_ACCEL_MOTION, params::id::EKF_ACCEL_MOTION),
+            (ORIENT_PARAM_EKF_HEADING_STD, params::id::EKF_HEADING_STD),
+            (ORIENT_PARAM_GMVDK_SLOPE_ALPHA, params::id::GMVDK_SLOPE_ALPHA),
+            (ORIENT_PARAM_GMVDK_SLOPE_MUK, params::id::GMVDK_SLOPE_MUK),
+            (ORIENT_PARAM_GMVDK_MU_WINDOW, params::id::GMVDK_MU_WINDOW),
+            (ORIENT_PARAM_GMVDK_INIT_DURATION, params::id::GMVDK_INIT_DURATION),
+            (ORIENT_PARAM_GMVDK_ACTIVITY_TAU, params::id::GMVDK_ACTIVITY_TAU),
+            (ORIENT_PARAM_GMVDK_GYRO_ACTIVITY, params::id::GMVDK_GYRO_ACTIVITY),
+            (ORIENT_PARAM_GMVDK_ACCEL_ACTIVITY, params::id::GMVDK_ACCEL_ACTIVITY),
+            (ORIENT_PARAM_GMVDK_BIAS_WINDOW, params::id::GMVDK_BIAS_WINDOW),
+            (ORIENT_PARAM_GMVDK_STATIC_ALPHA, params::id::GMVDK_STATIC_ALPHA),
+            (ORIENT_PARAM_GMVDK_RELATIVE_OUTPUT, params::id::GMVDK_RELATIVE_OUTPUT),
+        ];
+        for (c, r) in slots {
+            assert_eq!(c, r);
+        }
     }
 
     #[test]
@@ -658,7 +727,6 @@ mod tests {
                 assert_eq!(id, info.id);
             }
             assert_eq!(orient_param_info(k, n, info.as_mut_ptr()), OrientStatus::InvalidArgument);
-            assert_eq!(orient_param_count(OrientKind::Ekf as i32, &mut n), OrientStatus::UnsupportedKind);
             assert_eq!(orient_param_count(77, &mut n), OrientStatus::InvalidArgument);
         }
     }

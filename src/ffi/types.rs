@@ -6,8 +6,10 @@ use core::ffi::c_char;
 /// function, struct layout or constant changes meaning; additions keep it.
 pub const ORIENT_ABI_VERSION: u32 = 1;
 
-/// Number of parameter slots in `OrientConfig.params`.
-pub const ORIENT_MAX_PARAMS: usize = 64;
+/// Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
+/// kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
+/// EKF 40-55, GMVDK 56-79); 80-127 are free for later versions.
+pub const ORIENT_MAX_PARAMS: usize = 128;
 
 /// `OrientSample.flags`: the gyroscope field holds a reading (every filter needs one).
 pub const ORIENT_SAMPLE_GYRO: u32 = 1;
@@ -40,6 +42,76 @@ pub const ORIENT_PARAM_MADGWICK_BETA_IMU: u32 = 8;
 /// Parameter slot (Madgwick): beta for steps with magnetometer, rad/s, default 0.033
 /// (Madgwick 2010, section V).
 pub const ORIENT_PARAM_MADGWICK_BETA_MARG: u32 = 9;
+
+/// Parameter slot (Mahony): proportional gain kP, 1/s, default 0.5 (GMVDK paper's comparison).
+pub const ORIENT_PARAM_MAHONY_KP: u32 = 16;
+/// Parameter slot (Mahony): integral gain kI for the gyro bias, 1/s^2, default 0.
+pub const ORIENT_PARAM_MAHONY_KI: u32 = 17;
+/// Parameter slot (complementary): K_P at rest, 1/s, default 1.0.
+pub const ORIENT_PARAM_COMPLEMENTARY_KP: u32 = 24;
+/// Parameter slot (complementary): K_I at rest, 1/s^2, default 0.05.
+pub const ORIENT_PARAM_COMPLEMENTARY_KI: u32 = 25;
+/// Parameter slot (complementary): rest threshold on |gyro - bias|, rad/s, default 0.02.
+pub const ORIENT_PARAM_COMPLEMENTARY_GYRO_REST: u32 = 26;
+/// Parameter slot (complementary): rest threshold on | |accel| - g0 |, m/s^2, default 0.2.
+pub const ORIENT_PARAM_COMPLEMENTARY_ACCEL_REST: u32 = 27;
+/// Parameter slot (complementary): stationary start-up period, s, default 2.
+pub const ORIENT_PARAM_COMPLEMENTARY_INIT_DURATION: u32 = 28;
+/// Parameter slot (complementary): 1 = north from the start-up magnetometer, default 0.
+pub const ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING: u32 = 29;
+/// Parameter slot (EKF): angular-rate correlation time tau_omega, s, default 0.2.
+pub const ORIENT_PARAM_EKF_TAU_OMEGA: u32 = 40;
+/// Parameter slot (EKF): stationary std of the angular rate, rad/s, default 3.
+pub const ORIENT_PARAM_EKF_OMEGA_STD: u32 = 41;
+/// Parameter slot (EKF): gyro drift correlation time tau_delta, s, default 100.
+pub const ORIENT_PARAM_EKF_TAU_DRIFT: u32 = 42;
+/// Parameter slot (EKF): stationary std of the gyro drift, rad/s, default 0.02.
+pub const ORIENT_PARAM_EKF_DRIFT_STD: u32 = 43;
+/// Parameter slot (EKF): gyro noise density, rad/s/sqrt(Hz), default 0.05 deg/s/sqrt(Hz).
+pub const ORIENT_PARAM_EKF_GYRO_NOISE: u32 = 44;
+/// Parameter slot (EKF): accelerometer noise density, m/s^2/sqrt(Hz), default 32 ug/sqrt(Hz).
+pub const ORIENT_PARAM_EKF_ACCEL_NOISE: u32 = 45;
+/// Parameter slot (EKF): linear-acceleration allowance, m/s^2, default 0.5.
+pub const ORIENT_PARAM_EKF_ACCEL_MOTION: u32 = 46;
+/// Parameter slot (EKF): magnetometer heading std, rad, default 0.1.
+pub const ORIENT_PARAM_EKF_HEADING_STD: u32 = 47;
+/// Parameter slot (GMVDK): SlopeAlpha, default 1.0 (paper, Appendix B.1).
+pub const ORIENT_PARAM_GMVDK_SLOPE_ALPHA: u32 = 56;
+/// Parameter slot (GMVDK): SlopeMuk, 1/rad, default 1.5 (paper, eq. (20)).
+pub const ORIENT_PARAM_GMVDK_SLOPE_MUK: u32 = 57;
+/// Parameter slot (GMVDK): running-minimum window of mu, s, default 0.4 (paper).
+pub const ORIENT_PARAM_GMVDK_MU_WINDOW: u32 = 58;
+/// Parameter slot (GMVDK): static start-up period, s, default 1.
+pub const ORIENT_PARAM_GMVDK_INIT_DURATION: u32 = 59;
+/// Parameter slot (GMVDK): time constant of the activity averages, s, default 0.1.
+pub const ORIENT_PARAM_GMVDK_ACTIVITY_TAU: u32 = 60;
+/// Parameter slot (GMVDK): gyro activity scale, rad/s, default 0.5.
+pub const ORIENT_PARAM_GMVDK_GYRO_ACTIVITY: u32 = 61;
+/// Parameter slot (GMVDK): accelerometer activity scale, m/s^2, default 1.0.
+pub const ORIENT_PARAM_GMVDK_ACCEL_ACTIVITY: u32 = 62;
+/// Parameter slot (GMVDK): static run length for gyro de-biasing, s, default 1.
+pub const ORIENT_PARAM_GMVDK_BIAS_WINDOW: u32 = 63;
+/// Parameter slot (GMVDK): alpha threshold for "static", default 0.95.
+pub const ORIENT_PARAM_GMVDK_STATIC_ALPHA: u32 = 64;
+/// Parameter slot (GMVDK): 1 = output relative to the start-up pose, default 0.
+pub const ORIENT_PARAM_GMVDK_RELATIVE_OUTPUT: u32 = 65;
+
+/// OrientDiagnostics.present: gyro_bias holds a value.
+pub const ORIENT_DIAG_GYRO_BIAS: u32 = 1;
+/// OrientDiagnostics.present: rest holds a value.
+pub const ORIENT_DIAG_REST: u32 = 2;
+/// OrientDiagnostics.present: alpha holds a value.
+pub const ORIENT_DIAG_ALPHA: u32 = 4;
+/// OrientDiagnostics.present: mu_ka holds a value.
+pub const ORIENT_DIAG_MU_KA: u32 = 8;
+/// OrientDiagnostics.present: mu_km holds a value.
+pub const ORIENT_DIAG_MU_KM: u32 = 16;
+/// OrientDiagnostics.present: mu_k holds a value.
+pub const ORIENT_DIAG_MU_K: u32 = 32;
+/// OrientDiagnostics.present: rate holds a value.
+pub const ORIENT_DIAG_RATE: u32 = 64;
+/// OrientDiagnostics.present: covariance holds values.
+pub const ORIENT_DIAG_COVARIANCE: u32 = 128;
 
 /// Result of every fallible call. Numbers are fixed and never reused. On any status but
 /// ORIENT_STATUS_OK the call changed nothing (a batch keeps the samples before the bad
@@ -95,13 +167,13 @@ pub enum OrientStatus {
 pub enum OrientKind {
     /// Madgwick 2010 gradient descent, IMU and MARG.
     Madgwick = 1,
-    /// Mahony nonlinear complementary filter (not built yet: ORIENT_STATUS_UNSUPPORTED_KIND).
+    /// Mahony nonlinear complementary filter, IMU and MARG, bias estimate optional.
     Mahony = 2,
-    /// McGinnis 2014 PI complementary filter (not built yet).
+    /// McGinnis 2014 PI complementary filter: gains at rest only, start-up period (IMU).
     Complementary = 3,
-    /// Kim & Golnaraghi 2004 quaternion EKF (not built yet).
+    /// Kim & Golnaraghi 2004 quaternion EKF [q, omega, drift]; magnetometer heading optional.
     Ekf = 4,
-    /// GMVDK 2024 double-SLERP filter (not built yet).
+    /// GMVDK 2024 double-SLERP filter with trust alpha and mu_K; start-up period.
     Gmvdk = 5,
 }
 
@@ -181,7 +253,7 @@ pub struct OrientSample {
     pub reserved: u32,
 }
 
-/// A filter configuration (560 bytes). Fill it with orient_config_default(), then
+/// A filter configuration (1072 bytes). Fill it with orient_config_default(), then
 /// change fields or parameters.
 ///
 /// Compatibility rule: `struct_size` is set by orient_config_default() to the size
@@ -227,4 +299,34 @@ pub struct OrientParamInfo {
     pub min: f64,
     /// Largest accepted value (inclusive).
     pub max: f64,
+}
+
+/// Internal states for display, the same struct for every kind. A field whose
+/// ORIENT_DIAG_* bit is clear in `present` does not apply (to this kind, or yet) and
+/// holds NaN; it is never a made-up zero.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct OrientDiagnostics {
+    /// ORIENT_DIAG_* bits of the fields that hold values.
+    pub present: u32,
+    /// Always 0.
+    pub reserved: u32,
+    /// Gyroscope bias being subtracted, rad/s, sensor frame (Mahony b, complementary
+    /// omega_b, EKF drift delta, GMVDK regression bias).
+    pub gyro_bias: OrientVec3,
+    /// Complementary filter: 1 when the last sample counted as rest (gains on), else 0.
+    pub rest: f64,
+    /// GMVDK accelerometer trust alpha, [0, 1].
+    pub alpha: f64,
+    /// GMVDK magnetometer angle trust mu_KA, [0, 1].
+    pub mu_ka: f64,
+    /// GMVDK magnetometer magnitude trust mu_KM, [0, 1].
+    pub mu_km: f64,
+    /// GMVDK magnetometer trust mu_K = mu_2 * alpha, [0, 1].
+    pub mu_k: f64,
+    /// EKF angular-rate state, rad/s, sensor frame.
+    pub rate: OrientVec3,
+    /// EKF covariance diagonal, state order [q0, q1, q2, q3, omega_xyz, drift_xyz]
+    /// (the quaternion in the filter's native North-East-Down frame).
+    pub covariance: [f64; 10],
 }

@@ -26,6 +26,7 @@
 //!   for (18)-(19), the two values the paper found optimal (section V).
 
 use super::params::{id, ParamSpec};
+use super::Step;
 use crate::math::{Quat, Vec3};
 
 /// Madgwick's settings, in user units.
@@ -147,13 +148,6 @@ pub fn gradient_imu(q: Quat, a: Vec3) -> Quat {
 #[inline]
 pub fn gradient_marg(q: Quat, a: Vec3, bx: f64, bz: f64, m: Vec3) -> Quat {
     jt_f(&jacobian_g(q), &objective_g(q, a)) + jt_f(&jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m))
-}
-
-/// Which measurements one update used.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Step {
-    pub used_accel: bool,
-    pub used_mag: bool,
 }
 
 /// Madgwick's filter. Its state is the orientation alone, in its native North-West-Up frame.

@@ -2,12 +2,20 @@
 //!
 //! Everything here is safe Rust with no FFI types; `update` does not allocate.
 
+pub mod complementary;
+pub mod ekf;
+pub mod gmvdk;
 pub mod madgwick;
+pub mod mahony;
 pub mod params;
 
 use crate::math::{Euler, Frame, Quat, Vec3};
+use complementary::{Complementary, ComplementarySettings};
 use core::fmt;
+use ekf::{Ekf, EkfSettings};
+use gmvdk::{Gmvdk, GmvdkSettings};
 use madgwick::{Madgwick, MadgwickSettings};
+use mahony::{Mahony, MahonySettings};
 use params::{id, ParamSpec, COMMON, MAX_PARAMS};
 
 /// The filter kinds. Hosts swap filters by changing this value alone.
@@ -15,13 +23,13 @@ use params::{id, ParamSpec, COMMON, MAX_PARAMS};
 pub enum Kind {
     /// Madgwick 2010, gradient descent (IMU and MARG).
     Madgwick,
-    /// Mahony's nonlinear complementary filter (not built yet).
+    /// Mahony's nonlinear complementary filter (IMU and MARG).
     Mahony,
-    /// McGinnis 2014 PI complementary filter (not built yet).
+    /// McGinnis 2014 PI complementary filter, gains at rest only (IMU).
     Complementary,
-    /// Kim & Golnaraghi 2004 quaternion EKF (not built yet).
+    /// Kim & Golnaraghi 2004 quaternion EKF (IMU, magnetometer heading optional).
     Ekf,
-    /// GMVDK 2024 double-SLERP filter (not built yet).
+    /// GMVDK 2024 double-SLERP filter (MARG; IMU without its magnetometer pipeline).
     Gmvdk,
 }
 
@@ -45,14 +53,29 @@ impl Kind {
 
     /// True when this build implements the kind.
     pub fn is_supported(self) -> bool {
-        matches!(self, Kind::Madgwick)
+        true
     }
 
     /// The settings this kind has beyond the common ones.
     fn own_params(self) -> &'static [ParamSpec] {
         match self {
             Kind::Madgwick => &madgwick::PARAMS,
-            _ => &[],
+            Kind::Mahony => &mahony::PARAMS,
+            Kind::Complementary => &complementary::PARAMS,
+            Kind::Ekf => &ekf::PARAMS,
+            Kind::Gmvdk => &gmvdk::PARAMS,
+        }
+    }
+
+    /// Which [`Diagnostics`] fields this kind reports.
+    pub fn diagnostics(self) -> u32 {
+        use diag::*;
+        match self {
+            Kind::Madgwick => 0,
+            Kind::Mahony => GYRO_BIAS,
+            Kind::Complementary => GYRO_BIAS | REST,
+            Kind::Ekf => GYRO_BIAS | RATE | COVARIANCE,
+            Kind::Gmvdk => GYRO_BIAS | ALPHA | MU_KA | MU_KM | MU_K,
         }
     }
 
@@ -258,60 +281,238 @@ pub mod flags {
     pub const MAG_USED: u32 = 4;
 }
 
+/// What one core update did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Step {
+    pub used_accel: bool,
+    pub used_mag: bool,
+    /// The filter is still in its start-up period and has no orientation yet.
+    pub initializing: bool,
+}
+
+/// Bits of [`Diagnostics::present`] and [`Kind::diagnostics`].
+pub mod diag {
+    pub const GYRO_BIAS: u32 = 1;
+    pub const REST: u32 = 2;
+    pub const ALPHA: u32 = 4;
+    pub const MU_KA: u32 = 8;
+    pub const MU_KM: u32 = 16;
+    pub const MU_K: u32 = 32;
+    pub const RATE: u32 = 64;
+    pub const COVARIANCE: u32 = 128;
+}
+
+/// Internal states a host may show, the same struct for every kind. A field whose bit in
+/// `present` is clear does not apply to this kind (or not yet) and holds NaN.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Diagnostics {
+    /// [`diag`] bits of the fields that hold values.
+    pub present: u32,
+    /// Gyroscope bias being subtracted (rad/s): Mahony's b, McGinnis' ω_b, the EKF's drift
+    /// δ, GMVDK's regression bias.
+    pub gyro_bias: Vec3,
+    /// McGinnis: the last sample counted as rest (gains active): 1.0, else 0.0.
+    pub rest: f64,
+    /// GMVDK accelerometer trust α of the last update.
+    pub alpha: f64,
+    /// GMVDK μ_KA, μ_KM and μ_K of the last update with a magnetometer.
+    pub mu_ka: f64,
+    pub mu_km: f64,
+    pub mu_k: f64,
+    /// EKF angular rate state ω (rad/s).
+    pub rate: Vec3,
+    /// EKF covariance diagonal, state order [q0, q1, q2, q3, ω, δ].
+    pub covariance: [f64; 10],
+}
+
+impl Default for Diagnostics {
+    fn default() -> Self {
+        let nan = f64::NAN;
+        Diagnostics {
+            present: 0,
+            gyro_bias: Vec3::new(nan, nan, nan),
+            rest: nan,
+            alpha: nan,
+            mu_ka: nan,
+            mu_km: nan,
+            mu_k: nan,
+            rate: Vec3::new(nan, nan, nan),
+            covariance: [nan; 10],
+        }
+    }
+}
+
+// The EKF (about 1 KiB: a 10×10 covariance) sets the size of every handle. Boxing it
+// would add a pointer chase to each EKF update to save under 1 KiB per handle.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug, PartialEq)]
 enum Core {
     Madgwick(Madgwick),
+    Mahony(Mahony),
+    Complementary(Complementary),
+    Ekf(Ekf),
+    Gmvdk(Gmvdk),
+}
+
+/// Runs the same expression on whichever filter the core holds.
+macro_rules! each {
+    ($core:expr, $f:ident => $body:expr) => {
+        match $core {
+            Core::Madgwick($f) => $body,
+            Core::Mahony($f) => $body,
+            Core::Complementary($f) => $body,
+            Core::Ekf($f) => $body,
+            Core::Gmvdk($f) => $body,
+        }
+    };
 }
 
 impl Core {
     fn new(config: &Config) -> Core {
         match config.kind {
-            Kind::Madgwick => Core::Madgwick(Madgwick::new(MadgwickSettings {
-                beta_imu: config.slot(id::MADGWICK_BETA_IMU),
-                beta_marg: config.slot(id::MADGWICK_BETA_MARG),
-            })),
-            // Config::new refuses kinds that are not built.
-            _ => unreachable!("unsupported kind in a checked config"),
+            Kind::Madgwick => Core::Madgwick(Madgwick::new(madgwick_settings(config))),
+            Kind::Mahony => Core::Mahony(Mahony::new(mahony_settings(config))),
+            Kind::Complementary => Core::Complementary(Complementary::new(complementary_settings(config))),
+            Kind::Ekf => Core::Ekf(Ekf::new(ekf_settings(config))),
+            Kind::Gmvdk => Core::Gmvdk(Gmvdk::new(gmvdk_settings(config))),
         }
     }
 
     /// The frame the filter's own equations are written in.
     fn native_frame(&self) -> Frame {
         match self {
-            Core::Madgwick(_) => Frame::Nwu,
+            Core::Madgwick(_) | Core::Mahony(_) => Frame::Nwu,
+            Core::Complementary(_) | Core::Gmvdk(_) => Frame::Enu,
+            Core::Ekf(_) => Frame::Ned,
         }
+    }
+
+    /// True for filters that estimate their start from a period of samples themselves.
+    fn own_startup(&self) -> bool {
+        matches!(self, Core::Complementary(_) | Core::Gmvdk(_))
+    }
+
+    /// True when the output is not in an earth frame (GMVDK's relative output).
+    fn relative(&self) -> bool {
+        matches!(self, Core::Gmvdk(g) if g.settings.relative_output)
     }
 
     fn quaternion(&self) -> Quat {
-        match self {
-            Core::Madgwick(f) => f.quaternion(),
-        }
+        each!(self, f => f.quaternion())
     }
 
     fn set_quaternion(&mut self, q: Quat) {
-        match self {
-            Core::Madgwick(f) => f.set_quaternion(q),
-        }
+        each!(self, f => f.set_quaternion(q))
     }
 
-    fn apply_param(&mut self, id: u32, value: f64) {
+    /// Takes new settings from the configuration; the state is kept.
+    fn configure(&mut self, config: &Config) {
         match self {
-            Core::Madgwick(f) => match id {
-                id::MADGWICK_BETA_IMU => f.settings.beta_imu = value,
-                id::MADGWICK_BETA_MARG => f.settings.beta_marg = value,
-                _ => {}
-            },
+            Core::Madgwick(f) => f.settings = madgwick_settings(config),
+            Core::Mahony(f) => f.settings = mahony_settings(config),
+            Core::Complementary(f) => f.settings = complementary_settings(config),
+            Core::Ekf(f) => f.settings = ekf_settings(config),
+            Core::Gmvdk(f) => f.settings = gmvdk_settings(config),
         }
     }
 
     /// One update in the native frame; `None` (and no change) on numerical failure.
-    fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<u32> {
+    fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        each!(self, f => f.update(dt, gyro, accel, mag))
+    }
+
+    fn diagnostics(&self) -> Diagnostics {
+        let mut d = Diagnostics::default();
         match self {
-            Core::Madgwick(f) => f.update(dt, gyro, accel, mag).map(|s| {
-                (if s.used_accel { flags::ACCEL_USED } else { 0 })
-                    | (if s.used_mag { flags::MAG_USED } else { 0 })
-            }),
+            Core::Madgwick(_) => {}
+            Core::Mahony(f) => d.gyro_bias = f.bias(),
+            Core::Complementary(f) => {
+                d.gyro_bias = f.bias();
+                d.rest = if f.at_rest() { 1.0 } else { 0.0 };
+            }
+            Core::Ekf(f) => {
+                d.gyro_bias = f.drift();
+                d.rate = f.rate();
+                d.covariance = f.covariance_diagonal();
+            }
+            Core::Gmvdk(f) => {
+                d.gyro_bias = f.bias();
+                let t = f.trust();
+                d.alpha = t.alpha;
+                if f.mag_seen() {
+                    d.mu_ka = t.mu_ka;
+                    d.mu_km = t.mu_km;
+                    d.mu_k = t.mu_k;
+                }
+            }
         }
+        d.present = self.kind().diagnostics();
+        if let Core::Gmvdk(f) = self {
+            if !f.mag_seen() {
+                d.present &= !(diag::MU_KA | diag::MU_KM | diag::MU_K);
+            }
+        }
+        d
+    }
+
+    fn kind(&self) -> Kind {
+        match self {
+            Core::Madgwick(_) => Kind::Madgwick,
+            Core::Mahony(_) => Kind::Mahony,
+            Core::Complementary(_) => Kind::Complementary,
+            Core::Ekf(_) => Kind::Ekf,
+            Core::Gmvdk(_) => Kind::Gmvdk,
+        }
+    }
+}
+
+fn madgwick_settings(c: &Config) -> MadgwickSettings {
+    MadgwickSettings { beta_imu: c.slot(id::MADGWICK_BETA_IMU), beta_marg: c.slot(id::MADGWICK_BETA_MARG) }
+}
+
+fn mahony_settings(c: &Config) -> MahonySettings {
+    MahonySettings { kp: c.slot(id::MAHONY_KP), ki: c.slot(id::MAHONY_KI) }
+}
+
+fn complementary_settings(c: &Config) -> ComplementarySettings {
+    ComplementarySettings {
+        kp: c.slot(id::COMPLEMENTARY_KP),
+        ki: c.slot(id::COMPLEMENTARY_KI),
+        gyro_rest: c.slot(id::COMPLEMENTARY_GYRO_REST),
+        accel_rest: c.slot(id::COMPLEMENTARY_ACCEL_REST),
+        init_duration: c.slot(id::COMPLEMENTARY_INIT_DURATION),
+        align_heading: c.slot(id::COMPLEMENTARY_ALIGN_HEADING) >= 0.5,
+    }
+}
+
+fn ekf_settings(c: &Config) -> EkfSettings {
+    EkfSettings {
+        tau_omega: c.slot(id::EKF_TAU_OMEGA),
+        omega_std: c.slot(id::EKF_OMEGA_STD),
+        tau_drift: c.slot(id::EKF_TAU_DRIFT),
+        drift_std: c.slot(id::EKF_DRIFT_STD),
+        gyro_noise: c.slot(id::EKF_GYRO_NOISE),
+        accel_noise: c.slot(id::EKF_ACCEL_NOISE),
+        accel_motion: c.slot(id::EKF_ACCEL_MOTION),
+        heading_std: c.slot(id::EKF_HEADING_STD),
+        motion_tau: c.slot(id::EKF_MOTION_TAU),
+        heading_tau: c.slot(id::EKF_HEADING_TAU),
+        gravity: c.slot(id::GRAVITY),
+    }
+}
+
+fn gmvdk_settings(c: &Config) -> GmvdkSettings {
+    GmvdkSettings {
+        slope_alpha: c.slot(id::GMVDK_SLOPE_ALPHA),
+        slope_muk: c.slot(id::GMVDK_SLOPE_MUK),
+        mu_window: c.slot(id::GMVDK_MU_WINDOW),
+        init_duration: c.slot(id::GMVDK_INIT_DURATION),
+        activity_tau: c.slot(id::GMVDK_ACTIVITY_TAU),
+        gyro_activity: c.slot(id::GMVDK_GYRO_ACTIVITY),
+        accel_activity: c.slot(id::GMVDK_ACCEL_ACTIVITY),
+        bias_window: c.slot(id::GMVDK_BIAS_WINDOW),
+        static_alpha: c.slot(id::GMVDK_STATIC_ALPHA),
+        relative_output: c.slot(id::GMVDK_RELATIVE_OUTPUT) >= 0.5,
     }
 }
 
@@ -335,10 +536,19 @@ impl Filter {
             check_quaternion(q)?;
         }
         let core = Core::new(&config);
-        let to_frame = core.native_frame().rotation_to(config.frame);
-        let mut filter = Filter { config, core, to_frame, flags: 0, last_accel: None };
+        let mut filter = Filter { config, core, to_frame: None, flags: 0, last_accel: None };
+        filter.to_frame = filter.frame_rotation();
         filter.reset();
         Ok(filter)
+    }
+
+    /// Native frame to configured frame; none for a relative output.
+    fn frame_rotation(&self) -> Option<Quat> {
+        if self.core.relative() {
+            None
+        } else {
+            self.core.native_frame().rotation_to(self.config.frame)
+        }
     }
 
     pub fn kind(&self) -> Kind {
@@ -355,11 +565,8 @@ impl Filter {
         self.last_accel = None;
         self.flags = 0;
         match self.config.init {
-            Init::AccMag => {
-                // Report the identity of the configured frame until initialised.
-                self.set_frame_quaternion(Quat::IDENTITY);
-                self.flags = 0;
-            }
+            // From the first sample, or the core's own start-up period.
+            Init::AccMag => {}
             Init::Identity => self.set_frame_quaternion(Quat::IDENTITY),
             Init::Given(q) => self.set_frame_quaternion(q.normalized()),
         }
@@ -368,7 +575,8 @@ impl Filter {
     /// Changes a parameter while running; the orientation is kept.
     pub fn set_param(&mut self, id: u32, value: f64) -> Result<(), Error> {
         self.config.set_param(id, value)?;
-        self.core.apply_param(id, value);
+        self.core.configure(&self.config);
+        self.to_frame = self.frame_rotation();
         Ok(())
     }
 
@@ -427,7 +635,7 @@ impl Filter {
         self.check(s)?;
         // check() guarantees a gyro reading.
         let gyro = s.gyro.unwrap_or_default();
-        let initial = if self.flags & flags::INITIALIZED == 0 {
+        let initial = if self.flags & flags::INITIALIZED == 0 && !self.core.own_startup() {
             // check() guarantees an accelerometer reading here.
             let accel = s.accel.unwrap_or_default();
             let frame = self.config.frame;
@@ -446,8 +654,14 @@ impl Filter {
             saved
         });
         match self.core.update(s.dt, gyro, s.accel, s.mag) {
-            Some(used) => {
-                self.flags = flags::INITIALIZED | used;
+            Some(step) => {
+                self.flags = if step.initializing {
+                    0
+                } else {
+                    flags::INITIALIZED
+                        | if step.used_accel { flags::ACCEL_USED } else { 0 }
+                        | if step.used_mag { flags::MAG_USED } else { 0 }
+                };
                 if s.accel.is_some() {
                     self.last_accel = s.accel;
                 }
@@ -461,6 +675,12 @@ impl Filter {
                 Err(Error::Numeric)
             }
         }
+    }
+
+    /// Internal states for display: bias, trust values, rest flag, covariance (see
+    /// [`Diagnostics`]; fields that do not apply are absent and NaN).
+    pub fn diagnostics(&self) -> Diagnostics {
+        self.core.diagnostics()
     }
 
     /// True once the filter has an orientation.
@@ -560,11 +780,15 @@ mod tests {
     }
 
     #[test]
-    fn unbuilt_kinds_are_refused() {
+    fn every_kind_is_built_and_has_documented_parameters() {
         for k in Kind::ALL {
-            assert_eq!(Config::new(k).is_ok(), k.is_supported());
+            assert!(Config::new(k).is_ok());
+            for p in k.params() {
+                assert!(p.accepts(p.default), "{k:?} {}", p.name);
+                assert!(p.doc.contains("default") || p.doc.contains("Default"), "{k:?} {}", p.name);
+                assert_eq!(k.param_by_name(p.name).map(|q| q.id), Some(p.id), "duplicate name {}", p.name);
+            }
         }
-        assert_eq!(Config::new(Kind::Ekf), Err(Error::UnsupportedKind(Kind::Ekf)));
     }
 
     #[test]

@@ -2,11 +2,12 @@
 //! that hosts (a Unity inspector, the replay tool's `--set`) can list and set them by
 //! name without knowing each filter.
 //!
-//! Slots 0-7 are common to every kind; each kind numbers its own settings from 8. A
-//! slot number is never reused for a different meaning.
+//! Slots 0-7 are common to every kind; each kind has its own block (Madgwick 8-15,
+//! Mahony 16-23, complementary 24-39, EKF 40-55, GMVDK 56-79; 80-127 free). A slot
+//! number is never reused for a different meaning.
 
 /// Number of parameter slots in a configuration.
-pub const MAX_PARAMS: usize = 64;
+pub const MAX_PARAMS: usize = 128;
 
 /// Slot numbers. Common slots first, then one block per kind.
 pub mod id {
@@ -21,6 +22,38 @@ pub mod id {
     pub const MADGWICK_BETA_IMU: u32 = 8;
     /// Madgwick β for steps with a magnetometer.
     pub const MADGWICK_BETA_MARG: u32 = 9;
+
+    pub const MAHONY_KP: u32 = 16;
+    pub const MAHONY_KI: u32 = 17;
+
+    pub const COMPLEMENTARY_KP: u32 = 24;
+    pub const COMPLEMENTARY_KI: u32 = 25;
+    pub const COMPLEMENTARY_GYRO_REST: u32 = 26;
+    pub const COMPLEMENTARY_ACCEL_REST: u32 = 27;
+    pub const COMPLEMENTARY_INIT_DURATION: u32 = 28;
+    pub const COMPLEMENTARY_ALIGN_HEADING: u32 = 29;
+
+    pub const EKF_TAU_OMEGA: u32 = 40;
+    pub const EKF_OMEGA_STD: u32 = 41;
+    pub const EKF_TAU_DRIFT: u32 = 42;
+    pub const EKF_DRIFT_STD: u32 = 43;
+    pub const EKF_GYRO_NOISE: u32 = 44;
+    pub const EKF_ACCEL_NOISE: u32 = 45;
+    pub const EKF_ACCEL_MOTION: u32 = 46;
+    pub const EKF_HEADING_STD: u32 = 47;
+    pub const EKF_MOTION_TAU: u32 = 48;
+    pub const EKF_HEADING_TAU: u32 = 49;
+
+    pub const GMVDK_SLOPE_ALPHA: u32 = 56;
+    pub const GMVDK_SLOPE_MUK: u32 = 57;
+    pub const GMVDK_MU_WINDOW: u32 = 58;
+    pub const GMVDK_INIT_DURATION: u32 = 59;
+    pub const GMVDK_ACTIVITY_TAU: u32 = 60;
+    pub const GMVDK_GYRO_ACTIVITY: u32 = 61;
+    pub const GMVDK_ACCEL_ACTIVITY: u32 = 62;
+    pub const GMVDK_BIAS_WINDOW: u32 = 63;
+    pub const GMVDK_STATIC_ALPHA: u32 = 64;
+    pub const GMVDK_RELATIVE_OUTPUT: u32 = 65;
 }
 
 /// What one parameter slot means.

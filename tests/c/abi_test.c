@@ -48,13 +48,15 @@ static int same_quaternion(OrientQuaternion a, OrientQuaternion b) {
            bits(a.z) == bits(b.z);
 }
 
-static OrientFilter *new_madgwick(void) {
+static OrientFilter *new_filter(int32_t kind) {
     OrientConfig c;
     OrientFilter *f = NULL;
-    if (orient_config_default(ORIENT_KIND_MADGWICK, &c) != ORIENT_STATUS_OK) return NULL;
+    if (orient_config_default(kind, &c) != ORIENT_STATUS_OK) return NULL;
     if (orient_filter_new(&c, &f) != ORIENT_STATUS_OK) return NULL;
     return f;
 }
+
+static OrientFilter *new_madgwick(void) { return new_filter(ORIENT_KIND_MADGWICK); }
 
 static OrientSample good_sample(void) {
     OrientSample s;
@@ -199,9 +201,11 @@ static void layout(void) {
     CHECK(sizeof(OrientVec3) == 24);
     CHECK(sizeof(OrientQuaternion) == 32);
     CHECK(sizeof(OrientSample) == 88);
-    CHECK(sizeof(OrientConfig) == 560);
+    CHECK(sizeof(OrientConfig) == 1072);
+    CHECK(sizeof(OrientDiagnostics) == 176);
     CHECK(offsetof(OrientSample, flags) == 80);
     CHECK(offsetof(OrientConfig, params) == 48);
+    CHECK(offsetof(OrientDiagnostics, covariance) == 96);
     CHECK(orient_abi_version() == ORIENT_ABI_VERSION);
     CHECK(orient_version() != NULL && strlen(orient_version()) > 0);
 }
@@ -227,9 +231,17 @@ static void config_paths(void) {
     CHECK_STATUS(orient_config_default(ORIENT_KIND_MADGWICK, NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_config_default(0, &c), ORIENT_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(orient_config_default(99, &c), ORIENT_STATUS_INVALID_ARGUMENT);
-    for (k = ORIENT_KIND_MAHONY; k <= ORIENT_KIND_GMVDK; k++) {
-        CHECK_STATUS(orient_config_default(k, &c), ORIENT_STATUS_UNSUPPORTED_KIND);
-        CHECK(strstr(orient_last_error(), "not built") != NULL);
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_GMVDK + 1, &c), ORIENT_STATUS_INVALID_ARGUMENT);
+    for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_GMVDK; k++) {
+        CHECK_STATUS(orient_config_default(k, &c), ORIENT_STATUS_OK);
+        CHECK(c.kind == k);
+        CHECK_STATUS(orient_param_count(k, &count), ORIENT_STATUS_OK);
+        CHECK(count > 3);
+        for (i = 0; i < count; i++) {
+            CHECK_STATUS(orient_param_info(k, i, &info), ORIENT_STATUS_OK);
+            CHECK(info.id < ORIENT_MAX_PARAMS && c.params[info.id] == info.default_value);
+            CHECK(strstr(info.description, "default") != NULL);
+        }
     }
     CHECK_STATUS(orient_config_default(ORIENT_KIND_MADGWICK, &c), ORIENT_STATUS_OK);
     CHECK(c.struct_size == sizeof(OrientConfig));
@@ -251,7 +263,7 @@ static void config_paths(void) {
     }
     CHECK_STATUS(orient_param_info(ORIENT_KIND_MADGWICK, count, &info), ORIENT_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(orient_param_info(ORIENT_KIND_MADGWICK, 0, NULL), ORIENT_STATUS_NULL_POINTER);
-    CHECK_STATUS(orient_param_count(ORIENT_KIND_EKF, &count), ORIENT_STATUS_UNSUPPORTED_KIND);
+    CHECK_STATUS(orient_param_count(42, &count), ORIENT_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(orient_param_find(ORIENT_KIND_MADGWICK, "no_such", &id), ORIENT_STATUS_UNKNOWN_PARAM);
     CHECK_STATUS(orient_param_find(ORIENT_KIND_MADGWICK, NULL, &id), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_param_find(ORIENT_KIND_MADGWICK, "beta_imu", &id), ORIENT_STATUS_OK);
@@ -286,8 +298,8 @@ static void config_paths(void) {
     CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_ZERO_VECTOR);
     c.initial.w = NAN;
     CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_NON_FINITE);
-    c.kind = ORIENT_KIND_GMVDK;
-    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_UNSUPPORTED_KIND);
+    c.kind = 0;
+    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(orient_filter_new(NULL, &f), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_filter_new(&c, NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK(f == NULL);
@@ -393,9 +405,23 @@ static void handle_paths(void) {
 
 /* Every rejected sample leaves the state bit-identical: a twin that never saw the bad
  * samples must produce the same bits afterwards. */
-static void bad_input(void) {
-    OrientFilter *f = new_madgwick();
-    OrientFilter *twin = new_madgwick();
+/* Feeds still samples until the filter has an orientation (start-up periods). */
+static int warm_up(OrientFilter *f) {
+    OrientSample s = good_sample();
+    uint32_t flags = 0;
+    int i;
+    s.gyro.x = s.gyro.y = s.gyro.z = 0.0;
+    for (i = 0; i < 1000; i++) {
+        if (orient_filter_update(f, &s) != ORIENT_STATUS_OK) return -1;
+        if (orient_filter_flags(f, &flags) != ORIENT_STATUS_OK) return -1;
+        if (flags & ORIENT_FLAG_INITIALIZED) return i + 1;
+    }
+    return -1;
+}
+
+static void bad_input(int32_t kind) {
+    OrientFilter *f = new_filter(kind);
+    OrientFilter *twin = new_filter(kind);
     OrientSample s = good_sample(), bad;
     OrientQuaternion a, b;
     size_t processed = 0;
@@ -412,8 +438,8 @@ static void bad_input(void) {
     CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_ACCEL_RANGE, 156.9), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_filter_set_param(twin, ORIENT_PARAM_GYRO_RANGE, 34.9), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_filter_set_param(twin, ORIENT_PARAM_ACCEL_RANGE, 156.9), ORIENT_STATUS_OK);
-    CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
-    CHECK_STATUS(orient_filter_update(twin, &s), ORIENT_STATUS_OK);
+    CHECK(warm_up(f) > 0);
+    CHECK(warm_up(twin) > 0);
 
 #define BAD(field_assign, status)                                                      \
     do {                                                                               \
@@ -441,13 +467,13 @@ static void bad_input(void) {
     BAD(bad.flags = ORIENT_SAMPLE_ACCEL, ORIENT_STATUS_MISSING_SENSOR);
     BAD(bad.flags |= 8u, ORIENT_STATUS_INVALID_ARGUMENT);
     BAD(bad.reserved = 1, ORIENT_STATUS_INVALID_ARGUMENT);
-    BAD(bad.dt = 1e300, ORIENT_STATUS_NUMERIC);
+    if (kind == ORIENT_KIND_MADGWICK) BAD(bad.dt = 1e300, ORIENT_STATUS_NUMERIC);
 #undef BAD
 
     for (i = 0; i < n; i++) {
         OrientStatus st = orient_filter_update(f, &cases[i].s);
         if (st != cases[i].expected) {
-            printf("FAIL bad-input case %d: status %d, expected %d (%s)\n", i, (int)st,
+            printf("FAIL bad-input kind %d case %d: status %d, expected %d (%s)\n", (int)kind, i, (int)st,
                    (int)cases[i].expected, orient_last_error());
             failed++;
         } else {
@@ -490,7 +516,45 @@ static void bad_input(void) {
     orient_filter_free(twin);
 }
 
+/* Every kind: same lifecycle, and the diagnostics it documents (absent fields NaN). */
+static void diagnostics(int32_t kind) {
+    OrientFilter *f = new_filter(kind);
+    OrientDiagnostics d;
+    uint32_t expected;
+    int n;
+    CHECK(f != NULL);
+    if (!f) return;
+    n = warm_up(f);
+    CHECK(n > 0 && n <= 300); /* start-up periods are at most 2 s; samples are 10 ms */
+    {
+        OrientSample s = good_sample();
+        CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+    }
+    CHECK_STATUS(orient_filter_diagnostics(f, &d), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_diagnostics(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    switch (kind) {
+    case ORIENT_KIND_MAHONY: expected = ORIENT_DIAG_GYRO_BIAS; break;
+    case ORIENT_KIND_COMPLEMENTARY: expected = ORIENT_DIAG_GYRO_BIAS | ORIENT_DIAG_REST; break;
+    case ORIENT_KIND_EKF: expected = ORIENT_DIAG_GYRO_BIAS | ORIENT_DIAG_RATE | ORIENT_DIAG_COVARIANCE; break;
+    case ORIENT_KIND_GMVDK:
+        expected = ORIENT_DIAG_GYRO_BIAS | ORIENT_DIAG_ALPHA | ORIENT_DIAG_MU_KA | ORIENT_DIAG_MU_KM | ORIENT_DIAG_MU_K;
+        break;
+    default: expected = 0; break;
+    }
+    CHECK(d.present == expected);
+    CHECK((d.present & ORIENT_DIAG_GYRO_BIAS) ? isfinite(d.gyro_bias.x) : isnan(d.gyro_bias.x));
+    CHECK((d.present & ORIENT_DIAG_REST) ? (d.rest == 0.0 || d.rest == 1.0) : isnan(d.rest));
+    CHECK((d.present & ORIENT_DIAG_ALPHA) ? (d.alpha >= 0.0 && d.alpha <= 1.0) : isnan(d.alpha));
+    CHECK((d.present & ORIENT_DIAG_MU_K) ? (d.mu_k >= 0.0 && d.mu_k <= 1.0) : isnan(d.mu_k));
+    CHECK((d.present & ORIENT_DIAG_RATE) ? isfinite(d.rate.z) : isnan(d.rate.z));
+    CHECK((d.present & ORIENT_DIAG_COVARIANCE) ? d.covariance[9] > 0.0 : isnan(d.covariance[9]));
+    CHECK_STATUS(orient_filter_reset(f), ORIENT_STATUS_OK);
+    CHECK(warm_up(f) == n);
+    CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
+}
+
 int main(int argc, char **argv) {
+    int k;
     if (argc != 2) {
         fprintf(stderr, "usage: %s GOLDEN_FILE\n", argv[0]);
         return 2;
@@ -499,7 +563,10 @@ int main(int argc, char **argv) {
     status_messages();
     config_paths();
     handle_paths();
-    bad_input();
+    for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_GMVDK; k++) {
+        bad_input(k);
+        diagnostics(k);
+    }
     golden(argv[1]);
     printf("%d passed, %d failed\n", passed, failed);
     return failed == 0 ? 0 : 1;

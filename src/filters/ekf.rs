@@ -1,0 +1,560 @@
+//! Kim & Golnaraghi's quaternion extended Kalman filter: state [q, ω, δ], accelerometer
+//! as rotated gravity, gyroscope as ω + δ; with an optional magnetometer heading
+//! measurement that moves heading only.
+//!
+//! Source: A. Kim, M. F. Golnaraghi, "A Quaternion-Based Orientation Estimation Algorithm
+//! Using an Inertial Measurement Unit", IEEE PLANS 2004
+//! (`shared/papers/kim-golnaraghi-2004-quaternion-ekf.txt`). Equation numbers are the
+//! paper's.
+//!
+//! - State (6): `x = [q, ω, δ]`, `q = [q0 q1 q2 q3]`. With (7) and (8),
+//!   `C_o^b = R(q)ᵀ` and `q̇ = ½ q ⊗ [0, ω]`: `q` is orient's sensor-to-earth quaternion.
+//!   (13) has the accelerometer read `C_o^b [0 0 −g]ᵀ` at rest, so the ground frame's z
+//!   points down: the native frame is North-East-Down (north from the magnetometer
+//!   heading measurement when there is one).
+//! - Process (8)-(10). The paper writes (9)-(10) with `+1/τ`, which is unstable; a
+//!   first-order Markov process needs `−1/τ`, implemented here.
+//! - Discretisation: over one step of length dt, `ω⁺ = e^{−dt/τ_ω} ω + w_ω`,
+//!   `δ⁺ = e^{−dt/τ_δ} δ + w_δ`, and `q⁺ = q ⊗ exp(ω⁺ dt/2)` (exact for a rate constant
+//!   over the step): ω⁺ is the rate over the interval ending at the new sample, which is
+//!   what a gyroscope sample reports, so the gyroscope corrects q in the same update
+//!   instead of one sample late (a 3.5 ms lag at BROAD's rate, about 1° at 5 rad/s).
+//!   Process noise: the exact discrete variance of each Markov process,
+//!   `σ²(1 − e^{−2dt/τ})` with σ its stationary standard deviation (the paper sets the ω
+//!   process noise "in relation to the limit of the magnitude" of the motion:
+//!   `omega_std`); w_ω reaches q through the exponential map's Jacobian.
+//! - Jacobians are analytic, including the derivative of the exponential map.
+//! - Measurement (11)-(13): `z = [f, ω_IMU]`, `f = g (2q0q2 − 2q1q3, −2q0q1 − 2q2q3,
+//!   −q0² + q1² + q2² − q3²)`, `ω_IMU = ω + δ`. Noise from the paper's sensor data:
+//!   gyroscope 0.05 °/s/√Hz, accelerometer 32 µg/√Hz, as variances `N²/(2 dt)` (white
+//!   noise over the Nyquist band).
+//! - Linear acceleration: the paper tolerates "a modicum" of it. Here the accelerometer
+//!   enters as a direction (scaled to length g: a norm different from g says nothing
+//!   about attitude and would otherwise pull on the quaternion's norm), with variance
+//!   `N²/(2dt) + (σ_motion² + (|f| − g)²)·2τ_m/dt`: a standing allowance for hand-held
+//!   motion plus the squared norm deviation (a lower bound on the current linear
+//!   acceleration), both scaled by the number of samples one linear-acceleration episode
+//!   spans (`2τ_m/dt`, the white-noise equivalent of a first-order Markov process with
+//!   correlation time τ_m), since linear acceleration is low-frequency, not white.
+//!   Known limit: during long sustained translation (BROAD trial 15) the accelerometer
+//!   still leaks into the drift estimate δ, which then tilts the estimate; freezing δ
+//!   removes most of that error there. The paper's model learns δ from the
+//!   accelerometer, so this stays, measured and documented.
+//! - Update: Joseph form, covariance symmetrised, quaternion renormalised.
+//! - Magnetometer (the paper's proposed extension): a heading measurement. The field is
+//!   rotated into the earth frame with the predicted q; its horizontal direction `ψ_m`
+//!   should be north, so the innovation is `−ψ_m`. The gain is restricted to a rotation
+//!   about the earth's vertical (`q ← exp(δψ ẑ/2) ⊗ q`) and to no other state, so
+//!   magnetic errors move heading only; Joseph form keeps the covariance consistent with
+//!   this restricted gain. Magnetic disturbances are low-frequency as well, so the
+//!   heading variance is scaled by `2τ_ψ/dt` in the same way.
+
+use super::params::{id, ParamSpec};
+use super::Step;
+use crate::math::{Quat, Vec3};
+use nalgebra::{SMatrix, SVector};
+
+type M10 = SMatrix<f64, 10, 10>;
+type V10 = SVector<f64, 10>;
+
+/// The EKF's settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EkfSettings {
+    /// τ_ω (s): correlation time of the angular rate, eq. (9). Default 0.2 (human motion
+    /// of a few Hz bandwidth; the paper sets it from "the system's bandwidth").
+    pub tau_omega: f64,
+    /// Stationary standard deviation of ω (rad/s): "the limit of the magnitude of the
+    /// motion". Default 3.
+    pub omega_std: f64,
+    /// τ_δ (s): correlation time of the gyro drift, eq. (10). Default 100 ("slowly
+    /// drifting").
+    pub tau_drift: f64,
+    /// Stationary standard deviation of the drift δ (rad/s). Default 0.02.
+    pub drift_std: f64,
+    /// Gyroscope noise density (rad/s/√Hz). Default 0.05 °/s/√Hz (paper, section IV).
+    pub gyro_noise: f64,
+    /// Accelerometer noise density (m/s²/√Hz). Default 32 µg/√Hz (paper, section IV).
+    pub accel_noise: f64,
+    /// Standing allowance for linear acceleration (m/s², standard deviation). Default 0.5.
+    pub accel_motion: f64,
+    /// Standard deviation of the magnetometer heading measurement (rad). Default 0.1.
+    pub heading_std: f64,
+    /// Correlation time of linear acceleration (s). Default 0.5.
+    pub motion_tau: f64,
+    /// Correlation time of heading errors from magnetic disturbances (s). Default 1.
+    pub heading_tau: f64,
+    /// Gravity magnitude g in (13) (m/s²); taken from the common `gravity` parameter.
+    pub gravity: f64,
+}
+
+impl Default for EkfSettings {
+    fn default() -> Self {
+        EkfSettings {
+            tau_omega: 0.2,
+            omega_std: 3.0,
+            tau_drift: 100.0,
+            drift_std: 0.02,
+            gyro_noise: 0.05f64.to_radians(),
+            accel_noise: 32e-6 * 9.80665,
+            accel_motion: 0.5,
+            heading_std: 0.1,
+            motion_tau: 0.5,
+            heading_tau: 1.0,
+            gravity: 9.80665,
+        }
+    }
+}
+
+pub(crate) const PARAMS: [ParamSpec; 10] = [
+    ParamSpec {
+        id: id::EKF_TAU_OMEGA,
+        name: "tau_omega",
+        unit: "s",
+        doc: "Correlation time of the angular-rate Markov process, eq. (9) (stable -1/tau form); \
+              default 0.2 (motion bandwidth of a few Hz).",
+        default: 0.2,
+        min: 1e-4,
+        max: 1e6,
+    },
+    ParamSpec {
+        id: id::EKF_OMEGA_STD,
+        name: "omega_std",
+        unit: "rad/s",
+        doc: "Stationary standard deviation of the angular rate ('limit of the magnitude of the \
+              motion', section III.A); default 3.",
+        default: 3.0,
+        min: 1e-6,
+        max: 1e3,
+    },
+    ParamSpec {
+        id: id::EKF_TAU_DRIFT,
+        name: "tau_drift",
+        unit: "s",
+        doc: "Correlation time of the gyro drift Markov process, eq. (10) (stable -1/tau form); \
+              default 100 (slow drift).",
+        default: 100.0,
+        min: 1e-3,
+        max: 1e9,
+    },
+    ParamSpec {
+        id: id::EKF_DRIFT_STD,
+        name: "drift_std",
+        unit: "rad/s",
+        doc: "Stationary standard deviation of the gyro drift; default 0.02.",
+        default: 0.02,
+        min: 1e-9,
+        max: 10.0,
+    },
+    ParamSpec {
+        id: id::EKF_GYRO_NOISE,
+        name: "gyro_noise",
+        unit: "rad/s/sqrt(Hz)",
+        doc: "Gyroscope noise density; default 0.05 deg/s/sqrt(Hz) (paper, section IV).",
+        default: 8.726_646_259_971_648e-4,
+        min: 1e-9,
+        max: 10.0,
+    },
+    ParamSpec {
+        id: id::EKF_ACCEL_NOISE,
+        name: "accel_noise",
+        unit: "m/s^2/sqrt(Hz)",
+        doc: "Accelerometer noise density; default 32 ug/sqrt(Hz) (paper, section IV).",
+        default: 32e-6 * 9.80665,
+        min: 1e-9,
+        max: 100.0,
+    },
+    ParamSpec {
+        id: id::EKF_ACCEL_MOTION,
+        name: "accel_motion",
+        unit: "m/s^2",
+        doc: "Standing allowance for linear acceleration added to the accelerometer noise \
+              (plus (|f|-g)^2 per sample); default 0.5.",
+        default: 0.5,
+        min: 0.0,
+        max: 1e3,
+    },
+    ParamSpec {
+        id: id::EKF_HEADING_STD,
+        name: "heading_std",
+        unit: "rad",
+        doc: "Standard deviation of the magnetometer heading measurement (the paper's proposed \
+              extension); default 0.1.",
+        default: 0.1,
+        min: 1e-6,
+        max: 10.0,
+    },
+    ParamSpec {
+        id: id::EKF_MOTION_TAU,
+        name: "motion_tau",
+        unit: "s",
+        doc: "Correlation time of linear acceleration: its variance is counted once per \
+              2*motion_tau/dt samples (coloured, not white, noise); default 0.5 (hand motion); \
+              0 treats it as white.",
+        default: 0.5,
+        min: 0.0,
+        max: 100.0,
+    },
+    ParamSpec {
+        id: id::EKF_HEADING_TAU,
+        name: "heading_tau",
+        unit: "s",
+        doc: "Correlation time of magnetic heading errors: the heading variance is counted once \
+              per 2*heading_tau/dt samples; default 1 (disturbances change as the sensor moves \
+              through a room's field); 0 treats them as white.",
+        default: 1.0,
+        min: 0.0,
+        max: 1000.0,
+    },
+];
+
+/// The EKF. State in the native North-East-Down frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ekf {
+    pub settings: EkfSettings,
+    x: V10,
+    p: M10,
+}
+
+/// `L(q)`: `q ⊗ e = L(q) e`.
+fn left(q: Quat) -> SMatrix<f64, 4, 4> {
+    SMatrix::<f64, 4, 4>::new(
+        q.w, -q.x, -q.y, -q.z, q.x, q.w, -q.z, q.y, q.y, q.z, q.w, -q.x, q.z, -q.y, q.x, q.w,
+    )
+}
+
+/// `R(e)`: `q ⊗ e = R(e) q`.
+fn right(e: Quat) -> SMatrix<f64, 4, 4> {
+    SMatrix::<f64, 4, 4>::new(
+        e.w, -e.x, -e.y, -e.z, e.x, e.w, e.z, -e.y, e.y, -e.z, e.w, e.x, e.z, e.y, -e.x, e.w,
+    )
+}
+
+/// `exp(ω h)` as a quaternion, `h = dt/2`, and its derivative with respect to ω (4×3).
+pub fn exp_and_jacobian(omega: Vec3, h: f64) -> (Quat, SMatrix<f64, 4, 3>) {
+    let n = omega.norm();
+    let theta = n * h;
+    let w = nalgebra::Vector3::new(omega.x, omega.y, omega.z);
+    let mut j = SMatrix::<f64, 4, 3>::zeros();
+    if theta < 1e-8 {
+        // Series to second order: e ≈ [1 − θ²/2, h ω].
+        let e = Quat::new(1.0 - 0.5 * theta * theta, h * omega.x, h * omega.y, h * omega.z);
+        j.fixed_view_mut::<1, 3>(0, 0).copy_from(&(-(h * h) * w.transpose()));
+        j.fixed_view_mut::<3, 3>(1, 0).copy_from(&(nalgebra::Matrix3::identity() * h));
+        return (e.normalized(), j);
+    }
+    let (s, c) = (libm::sin(theta), libm::cos(theta));
+    let u = w / n;
+    let uut = u * u.transpose();
+    j.fixed_view_mut::<1, 3>(0, 0).copy_from(&(-s * h * u.transpose()));
+    j.fixed_view_mut::<3, 3>(1, 0)
+        .copy_from(&(uut * (c * h) + (nalgebra::Matrix3::identity() - uut) * (s / n)));
+    (Quat::new(c, s * u.x, s * u.y, s * u.z), j)
+}
+
+/// Eq. (13): the accelerometer reading predicted by q, and its Jacobian (3×4).
+pub fn gravity_model(q: Quat, g: f64) -> (Vec3, SMatrix<f64, 3, 4>) {
+    let Quat { w: q0, x: q1, y: q2, z: q3 } = q;
+    let f = Vec3::new(
+        g * (2.0 * q0 * q2 - 2.0 * q1 * q3),
+        g * (-2.0 * q0 * q1 - 2.0 * q2 * q3),
+        g * (-q0 * q0 + q1 * q1 + q2 * q2 - q3 * q3),
+    );
+    let h = SMatrix::<f64, 3, 4>::new(
+        2.0 * q2,
+        -2.0 * q3,
+        2.0 * q0,
+        -2.0 * q1,
+        -2.0 * q1,
+        -2.0 * q0,
+        -2.0 * q3,
+        -2.0 * q2,
+        -2.0 * q0,
+        2.0 * q1,
+        2.0 * q2,
+        -2.0 * q3,
+    ) * g;
+    (f, h)
+}
+
+impl Ekf {
+    pub fn new(settings: EkfSettings) -> Ekf {
+        let mut f = Ekf { settings, x: V10::zeros(), p: M10::zeros() };
+        f.x[0] = 1.0;
+        f.reset_covariance();
+        f
+    }
+
+    fn reset_covariance(&mut self) {
+        let s = &self.settings;
+        let mut d = V10::zeros();
+        // q: about 10° of uncertainty (δq ≈ θ/2).
+        d.fixed_rows_mut::<4>(0).fill(0.0076);
+        d.fixed_rows_mut::<3>(4).fill(s.omega_std * s.omega_std);
+        d.fixed_rows_mut::<3>(7).fill(s.drift_std * s.drift_std);
+        self.p = M10::from_diagonal(&d);
+    }
+
+    pub fn quaternion(&self) -> Quat {
+        Quat::new(self.x[0], self.x[1], self.x[2], self.x[3])
+    }
+
+    /// Sets the orientation (native NED), keeping the covariance.
+    pub fn set_quaternion(&mut self, q: Quat) {
+        self.x[0] = q.w;
+        self.x[1] = q.x;
+        self.x[2] = q.y;
+        self.x[3] = q.z;
+    }
+
+    /// The angular rate estimate ω (rad/s).
+    pub fn rate(&self) -> Vec3 {
+        Vec3::new(self.x[4], self.x[5], self.x[6])
+    }
+
+    /// The gyro drift estimate δ (rad/s).
+    pub fn drift(&self) -> Vec3 {
+        Vec3::new(self.x[7], self.x[8], self.x[9])
+    }
+
+    /// The diagonal of the state covariance P, in state order [q0..q3, ω, δ].
+    pub fn covariance_diagonal(&self) -> [f64; 10] {
+        let mut d = [0.0; 10];
+        for (i, v) in d.iter_mut().enumerate() {
+            *v = self.p[(i, i)];
+        }
+        d
+    }
+
+    fn set_q(x: &mut V10, q: Quat) {
+        x[0] = q.w;
+        x[1] = q.x;
+        x[2] = q.y;
+        x[3] = q.z;
+    }
+
+    fn q_of(x: &V10) -> Quat {
+        Quat::new(x[0], x[1], x[2], x[3])
+    }
+
+    pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        let s = self.settings;
+        let mut x = self.x;
+        let mut step = Step::default();
+
+        // ---- predict, eqs. (8)-(10), discretised ----
+        // ω_k is the rate over the interval ending at sample k (what a gyroscope sample
+        // reports): ω⁺ = a_ω ω + w, then q⁺ = q ⊗ exp(ω⁺ dt/2). The rate's process noise
+        // w thus reaches q through the same exponential map, and this sample's gyroscope
+        // reading corrects q in this update rather than one sample late.
+        let q = Ekf::q_of(&x);
+        let a_w = libm::exp(-dt / s.tau_omega);
+        let a_d = libm::exp(-dt / s.tau_drift);
+        for i in 4..7 {
+            x[i] *= a_w;
+        }
+        for i in 7..10 {
+            x[i] *= a_d;
+        }
+        let omega = Vec3::new(x[4], x[5], x[6]);
+        let (e, de) = exp_and_jacobian(omega, 0.5 * dt);
+        Ekf::set_q(&mut x, q * e);
+        let dq_dw = left(q) * de; // ∂q⁺/∂ω⁺ (4×3)
+        let mut f = M10::zeros();
+        f.fixed_view_mut::<4, 4>(0, 0).copy_from(&right(e));
+        f.fixed_view_mut::<4, 3>(0, 4).copy_from(&(dq_dw * a_w));
+        for i in 4..7 {
+            f[(i, i)] = a_w;
+        }
+        for i in 7..10 {
+            f[(i, i)] = a_d;
+        }
+        let mut p = f * self.p * f.transpose();
+        // Process noise: Q_ω through G = [∂q⁺/∂ω⁺; I; 0], and Q_δ on the drift.
+        let qw = s.omega_std * s.omega_std * (1.0 - a_w * a_w);
+        let qd = s.drift_std * s.drift_std * (1.0 - a_d * a_d);
+        let mut g = SMatrix::<f64, 10, 3>::zeros();
+        g.fixed_view_mut::<4, 3>(0, 0).copy_from(&dq_dw);
+        g.fixed_view_mut::<3, 3>(4, 0).copy_from(&nalgebra::Matrix3::identity());
+        p += g * g.transpose() * qw;
+        for i in 7..10 {
+            p[(i, i)] += qd;
+        }
+
+        // ---- update with z = [f, ω_IMU], eqs. (11)-(13) ----
+        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
+        let mut h = SMatrix::<f64, 6, 10>::zeros();
+        let mut r = SMatrix::<f64, 6, 6>::zeros();
+        let mut resid = SVector::<f64, 6>::zeros();
+        let qp = Ekf::q_of(&x);
+        let mut rows = 3;
+        if let Some(a) = accel {
+            step.used_accel = true;
+            let (fh, hf) = gravity_model(qp, s.gravity);
+            // The direction of f at the length g: a norm different from g says nothing
+            // about the attitude, and left in, it would pull on the quaternion's norm.
+            let dev = a.norm() - s.gravity;
+            let nu = a * (s.gravity / a.norm()) - fh;
+            // Linear acceleration is low-frequency, not white: over its correlation time
+            // motion_tau it biases 2·motion_tau/dt samples alike, so its per-sample
+            // variance is scaled by that count (the white-noise equivalent of a
+            // first-order Markov process's low-frequency power).
+            let colour = (2.0 * s.motion_tau / dt).max(1.0);
+            let ra = s.accel_noise * s.accel_noise / (2.0 * dt)
+                + (s.accel_motion * s.accel_motion + dev * dev) * colour;
+            h.fixed_view_mut::<3, 4>(0, 0).copy_from(&hf);
+            for i in 0..3 {
+                r[(i, i)] = ra;
+            }
+            resid[0] = nu.x;
+            resid[1] = nu.y;
+            resid[2] = nu.z;
+            rows = 6;
+        }
+        // Gyroscope rows: with the accelerometer they are rows 3..6, otherwise 0..3.
+        let g0 = rows - 3;
+        for i in 0..3 {
+            h[(g0 + i, 4 + i)] = 1.0;
+            h[(g0 + i, 7 + i)] = 1.0;
+            r[(g0 + i, g0 + i)] = rg;
+        }
+        resid[g0] = gyro.x - (x[4] + x[7]);
+        resid[g0 + 1] = gyro.y - (x[5] + x[8]);
+        resid[g0 + 2] = gyro.z - (x[6] + x[9]);
+        if rows == 6 {
+            (x, p) = Ekf::correct(x, p, &h, &r, &resid)?;
+        } else {
+            let h3 = h.fixed_view::<3, 10>(0, 0).into_owned();
+            let r3 = r.fixed_view::<3, 3>(0, 0).into_owned();
+            let z3 = resid.fixed_rows::<3>(0).into_owned();
+            (x, p) = Ekf::correct(x, p, &h3, &r3, &z3)?;
+        }
+        let q_norm = Ekf::q_of(&x).norm();
+        for i in 0..4 {
+            x[i] /= q_norm;
+        }
+
+        // ---- heading from the magnetometer (moves heading only) ----
+        if let (Some(m), true) = (mag, step.used_accel) {
+            let q = Ekf::q_of(&x);
+            let me = q.rotate(m);
+            let horizontal = (me.x * me.x + me.y * me.y).sqrt();
+            if horizontal > 1e-6 * m.norm() {
+                step.used_mag = true;
+                let innovation = -libm::atan2(me.y, me.x);
+                // Direction of a heading change in q: ∂q/∂ψ = ½ ẑ ⊗ q.
+                let dq = Quat::new(0.0, 0.0, 0.0, 0.5) * q;
+                let mut hrow = SMatrix::<f64, 1, 10>::zeros();
+                hrow[0] = 4.0 * dq.w;
+                hrow[1] = 4.0 * dq.x;
+                hrow[2] = 4.0 * dq.y;
+                hrow[3] = 4.0 * dq.z;
+                let p_psi = (hrow * p * hrow.transpose())[0];
+                // Magnetic disturbances are low-frequency too: count the heading variance
+                // once per 2·heading_tau/dt samples, like linear acceleration.
+                let r_psi = s.heading_std * s.heading_std * (2.0 * s.heading_tau / dt).max(1.0);
+                let k_psi = p_psi / (p_psi + r_psi);
+                let mut k = V10::zeros();
+                k[0] = dq.w * k_psi;
+                k[1] = dq.x * k_psi;
+                k[2] = dq.y * k_psi;
+                k[3] = dq.z * k_psi;
+                let turn = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), k_psi * innovation);
+                Ekf::set_q(&mut x, turn * q);
+                let ikh = M10::identity() - k * hrow;
+                p = ikh * p * ikh.transpose() + k * k.transpose() * r_psi;
+            }
+        }
+        let p = (p + p.transpose()) * 0.5;
+        if !(x.iter().all(|v| v.is_finite()) && p.iter().all(|v| v.is_finite())) {
+            return None;
+        }
+        self.x = x;
+        self.p = p;
+        Some(step)
+    }
+
+    /// One Kalman correction in Joseph form.
+    fn correct<const N: usize>(
+        x: V10,
+        p: M10,
+        h: &SMatrix<f64, N, 10>,
+        r: &SMatrix<f64, N, N>,
+        resid: &SVector<f64, N>,
+    ) -> Option<(V10, M10)> {
+        let pht = p * h.transpose();
+        let s = h * pht + r;
+        let chol = s.cholesky()?;
+        // K = P Hᵀ S⁻¹, computed as (S⁻¹ H P)ᵀ since S and P are symmetric.
+        let k = chol.solve(&pht.transpose()).transpose();
+        let x = x + k * resid;
+        let ikh = M10::identity() - k * h;
+        let p = ikh * p * ikh.transpose() + k * r * k.transpose();
+        Some((x, p))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn eq13_matches_rotating_gravity_into_the_body() {
+        let q = Quat::from_axis_angle(Vec3::new(0.3, -0.5, 0.8), 1.1);
+        let (f, _) = gravity_model(q, 9.81);
+        // C_o^b [0 0 -g] = R(q)ᵀ [0 0 -g]: in NED, gravity's reaction points up (−z).
+        let direct = q.rotate_inverse(Vec3::new(0.0, 0.0, -9.81));
+        assert!((f - direct).norm() < 1e-12, "{f:?} {direct:?}");
+    }
+
+    #[test]
+    fn analytic_jacobians_match_finite_differences() {
+        let q = Quat::from_axis_angle(Vec3::new(0.3, -0.5, 0.8), 1.1);
+        let (_, hf) = gravity_model(q, 9.81);
+        let eps = 1e-6;
+        for c in 0..4 {
+            let mut dq = [0.0; 4];
+            dq[c] = eps;
+            let plus = gravity_model(Quat::new(q.w + dq[0], q.x + dq[1], q.y + dq[2], q.z + dq[3]), 9.81).0;
+            let minus = gravity_model(Quat::new(q.w - dq[0], q.x - dq[1], q.y - dq[2], q.z - dq[3]), 9.81).0;
+            let d = (plus - minus) * (0.5 / eps);
+            for (r, v) in [d.x, d.y, d.z].into_iter().enumerate() {
+                assert!((hf[(r, c)] - v).abs() < 1e-7, "H[{r}][{c}]");
+            }
+        }
+        for omega in [Vec3::new(0.4, -1.3, 2.0), Vec3::new(1e-10, 0.0, 2e-10)] {
+            let h = 0.05;
+            let (_, j) = exp_and_jacobian(omega, h);
+            for c in 0..3 {
+                let mut d = [0.0; 3];
+                d[c] = eps;
+                let plus = exp_and_jacobian(omega + Vec3::new(d[0], d[1], d[2]), h).0;
+                let minus = exp_and_jacobian(omega - Vec3::new(d[0], d[1], d[2]), h).0;
+                let num = [plus.w - minus.w, plus.x - minus.x, plus.y - minus.y, plus.z - minus.z];
+                for r in 0..4 {
+                    assert!((j[(r, c)] - num[r] / (2.0 * eps)).abs() < 1e-8, "dexp[{r}][{c}] at {omega:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn predict_integrates_the_rate_exactly() {
+        let (e, _) = exp_and_jacobian(Vec3::new(0.0, 0.0, 2.0), 0.25);
+        assert!((e.w - 0.5f64.cos()).abs() < 1e-15 && (e.z - 0.5f64.sin()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn covariance_stays_symmetric_positive_definite() {
+        let mut f = Ekf::new(EkfSettings::default());
+        let truth = Quat::from_axis_angle(Vec3::new(1.0, 2.0, 0.5), 0.4);
+        for i in 0..3000 {
+            let t = i as f64 * 0.01;
+            let accel = truth.rotate_inverse(Vec3::new(0.3 * t.sin(), 0.0, -9.80665));
+            let mag = truth.rotate_inverse(Vec3::new(20.0, 0.0, 40.0));
+            f.update(0.01, Vec3::new(0.01, 0.0, -0.02), Some(accel), Some(mag)).unwrap();
+        }
+        assert!((f.p - f.p.transpose()).abs().max() == 0.0);
+        assert!(f.p.cholesky().is_some());
+        assert!((f.quaternion().norm() - 1.0).abs() < 1e-12);
+    }
+}

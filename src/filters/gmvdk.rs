@@ -1,0 +1,653 @@
+//! GMVDK: gyroscope prediction, accelerometer and magnetometer corrections each scaled
+//! by SLERP with trust α and μ_K, fused by a second SLERP.
+//!
+//! Source: "GMVDK" double-SLERP MARG orientation estimator, Micromachines 15:553, 2024
+//! (`shared/papers/gmvdk-2024-double-slerp.txt`): Figure 1, eqs. (7)-(24), Appendix B.
+//! Equation numbers are the paper's.
+//!
+//! Per sample, after start-up:
+//! 1. `ω_B = ω − b` (de-biased gyroscope), `q̇ = ½ q_out ⊗ ω_B` (7), `q_G = q_out + q̇ dt`,
+//!    normalised (8);
+//! 2. accelerometer pipeline: `a(q_G) = q_G* ⊗ A_init ⊗ q_G` (9); `Δq_A` the rotation from
+//!    `a0` to `a(q_G)`, built as `H(a0 × a(q_G), |a0||a(q_G)| + a0·a(q_G))` (10)-(12);
+//!    `q_GA = q_G ⊗ Δq_A` (13); `q_SA = SLERP(q_G, q_GA, α)` (14)-(16);
+//! 3. magnetometer pipeline, the same with `M_init`, `m0` and μ_K: `q_SM`;
+//! 4. `q_out = SLERP(q_SM, q_SA, ½)` (17).
+//!
+//! Trust parameters (Appendix B):
+//! - `α = max(0, Stillness·SlopeAlpha + 1 − SlopeAlpha)` (B.1), SlopeAlpha = 1.0. The
+//!   paper reads Stillness from its sensor module and says a normalised average of the
+//!   mean squared gyroscope and accelerometer readings works as well. Here:
+//!   `activity = ½ (E[|ω_B|²]/σ_ω² + E[(|a| − g0)²]/σ_a²)`, the expectations being
+//!   exponential moving averages with time constant `activity_tau`, and
+//!   `Stillness = max(0, 1 − activity)`: 1 when still, 0 once the mean squared activity
+//!   reaches its scale (σ_ω = `gyro_activity`, σ_a = `accel_activity`).
+//! - μ_K (B.2), SlopeMuk = 1.5: `m0i = q_out ⊗ m0 ⊗ q_out*` with the previous output;
+//!   λ the angle between `m0i` and `M_init`; `μ_KA = 1 − SlopeMuk·λ`,
+//!   `μ_KM = 1 − (|m0i|/|M_init|)·λ`, each floored at 0; `μ_1 = (μ_KA + μ_KM)/2`;
+//!   `μ_2 = min μ_1 over the last 0.4 s` (a window in time, kept as a monotonic queue:
+//!   amortised O(1), fixed memory, exact to 1/1000 of the window); `μ_K = μ_2·α` (24).
+//!
+//! Start-up and bias: `A_init`, `M_init` and the first bias are the means over a static
+//! period of `init_duration` s. Afterwards, whenever α ≥ `static_alpha`, gyroscope
+//! samples are collected; once a static run reaches `bias_window` s, a least-squares
+//! line through each axis gives the new bias (its value at the run's end), as the
+//! paper's "linear regression on a window of consecutive samples". A run broken by
+//! motion is discarded.
+//!
+//! Choices:
+//! - Frames: the paper's frames are left-handed with (x, y, z, w) quaternions and its
+//!   inertial frame is the start-up body frame. orient runs the same equations with
+//!   Hamilton quaternions in a right-handed East-North-Up frame, with `A_init` and
+//!   `M_init` rotated into it by the start-up attitude (from the mean accelerometer and
+//!   magnetometer). Every step is equivariant under that constant rotation, so the
+//!   trajectory is the paper's, expressed in the earth frame; `relative_output` reports
+//!   it relative to the start-up pose as the paper does.
+//! - (17)'s interpolation parameter is printed as "%" in the extracted text, the usual
+//!   rendering of "½": the two scaled estimates are fused with equal weight.
+//! - (8) is read as first-order integration followed by normalisation.
+//! - Without a magnetometer reading the magnetometer pipeline contributes `q_SM = q_G`,
+//!   as it does when μ_K = 0.
+
+use super::params::{id, ParamSpec};
+use super::Step;
+use crate::math::{Frame, Quat, Vec3};
+
+/// GMVDK's settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GmvdkSettings {
+    /// SlopeAlpha (Appendix B.1). Default 1.0 (paper).
+    pub slope_alpha: f64,
+    /// SlopeMuk (Appendix B.2, eq. (20)). Default 1.5 (paper).
+    pub slope_muk: f64,
+    /// Window of the running minimum μ_2 (s). Default 0.4 (paper).
+    pub mu_window: f64,
+    /// Static start-up period (s). Default 1.0.
+    pub init_duration: f64,
+    /// Time constant of the activity averages behind Stillness (s). Default 0.1.
+    pub activity_tau: f64,
+    /// Gyroscope activity scale σ_ω (rad/s): mean square |ω_B|² of σ_ω² counts as fully
+    /// moving. Default 0.5.
+    pub gyro_activity: f64,
+    /// Accelerometer activity scale σ_a (m/s²). Default 1.0.
+    pub accel_activity: f64,
+    /// Length of a static run that re-estimates the gyroscope bias (s). Default 1.0.
+    pub bias_window: f64,
+    /// α at or above which the sensor counts as static for de-biasing. Default 0.95.
+    pub static_alpha: f64,
+    /// Report orientation relative to the start-up pose (the paper's output) instead of
+    /// the earth frame. Default false.
+    pub relative_output: bool,
+}
+
+impl Default for GmvdkSettings {
+    fn default() -> Self {
+        GmvdkSettings {
+            slope_alpha: 1.0,
+            slope_muk: 1.5,
+            mu_window: 0.4,
+            init_duration: 1.0,
+            activity_tau: 0.1,
+            gyro_activity: 0.5,
+            accel_activity: 1.0,
+            bias_window: 1.0,
+            static_alpha: 0.95,
+            relative_output: false,
+        }
+    }
+}
+
+pub(crate) const PARAMS: [ParamSpec; 10] = [
+    ParamSpec {
+        id: id::GMVDK_SLOPE_ALPHA,
+        name: "slope_alpha",
+        unit: "1",
+        doc: "SlopeAlpha of Appendix B.1: alpha = max(0, stillness*slope + 1 - slope); default \
+              1.0 (paper).",
+        default: 1.0,
+        min: 0.0,
+        max: 100.0,
+    },
+    ParamSpec {
+        id: id::GMVDK_SLOPE_MUK,
+        name: "slope_muk",
+        unit: "1/rad",
+        doc: "SlopeMuk of Appendix B.2 / eq. (20): muKA = 1 - slope*lambda; default 1.5 (paper).",
+        default: 1.5,
+        min: 0.0,
+        max: 100.0,
+    },
+    ParamSpec {
+        id: id::GMVDK_MU_WINDOW,
+        name: "mu_window",
+        unit: "s",
+        doc: "Window of the running minimum mu2 of mu1 (section 2.2.2); default 0.4 (paper).",
+        default: 0.4,
+        min: 0.0,
+        max: 60.0,
+    },
+    ParamSpec {
+        id: id::GMVDK_INIT_DURATION,
+        name: "init_duration",
+        unit: "s",
+        doc: "Static start-up period averaging A_init, M_init and the first gyro bias; default 1.",
+        default: 1.0,
+        min: 0.0,
+        max: 3600.0,
+    },
+    ParamSpec {
+        id: id::GMVDK_ACTIVITY_TAU,
+        name: "activity_tau",
+        unit: "s",
+        doc: "Time constant of the mean-square activity averages behind stillness; default 0.1.",
+        default: 0.1,
+        min: 1e-4,
+        max: 100.0,
+    },
+    ParamSpec {
+        id: id::GMVDK_GYRO_ACTIVITY,
+        name: "gyro_activity",
+        unit: "rad/s",
+        doc: "Gyro activity scale: RMS de-biased rate at which stillness reaches 0 (with no \
+              accelerometer activity, at sqrt(2) times it); default 0.5.",
+        default: 0.5,
+        min: 1e-6,
+        max: 100.0,
+    },
+    ParamSpec {
+        id: id::GMVDK_ACCEL_ACTIVITY,
+        name: "accel_activity",
+        unit: "m/s^2",
+        doc: "Accelerometer activity scale: RMS deviation of |a| from its start-up value at \
+              which stillness reaches 0 (alone: sqrt(2) times it); default 1.0.",
+        default: 1.0,
+        min: 1e-6,
+        max: 1000.0,
+    },
+    ParamSpec {
+        id: id::GMVDK_BIAS_WINDOW,
+        name: "bias_window",
+        unit: "s",
+        doc: "Static run length for the linear-regression gyro de-biasing of step [1]; \
+              default 1.0.",
+        default: 1.0,
+        min: 1e-3,
+        max: 3600.0,
+    },
+    ParamSpec {
+        id: id::GMVDK_STATIC_ALPHA,
+        name: "static_alpha",
+        unit: "1",
+        doc: "alpha at or above which the sensor counts as static for de-biasing; default 0.95.",
+        default: 0.95,
+        min: 0.0,
+        max: 1.0,
+    },
+    ParamSpec {
+        id: id::GMVDK_RELATIVE_OUTPUT,
+        name: "relative_output",
+        unit: "1",
+        doc: "1: report orientation relative to the start-up pose (the paper's output); 0 \
+              (default): in the configured earth frame.",
+        default: 0.0,
+        min: 0.0,
+        max: 1.0,
+    },
+];
+
+/// `SLERP(q1, q2, h)`, eqs. (15)-(16), along the shorter arc; linear interpolation
+/// (normalised) when the two are within 1e-6 rad.
+pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
+    let mut cos = q1.dot(q2);
+    let mut q2 = q2;
+    if cos < 0.0 {
+        cos = -cos;
+        q2 = q2.scale(-1.0);
+    }
+    if cos > 1.0 - 1e-12 {
+        return (q1.scale(1.0 - h) + q2.scale(h)).normalized();
+    }
+    let omega = libm::acos(cos.min(1.0));
+    let s = libm::sin(omega);
+    (q1.scale(libm::sin((1.0 - h) * omega) / s) + q2.scale(libm::sin(h * omega) / s)).normalized()
+}
+
+const WINDOW_SLOTS: usize = 1024;
+
+/// Running minimum over a time window: a monotonic queue in a fixed ring buffer.
+/// Entries closer than window/1000 in time share a slot, so the buffer never overflows
+/// and the window is exact to that resolution.
+#[derive(Clone, Debug, PartialEq)]
+struct MinWindow {
+    t: [f64; WINDOW_SLOTS],
+    v: [f64; WINDOW_SLOTS],
+    head: usize,
+    len: usize,
+}
+
+impl MinWindow {
+    fn new() -> MinWindow {
+        MinWindow { t: [0.0; WINDOW_SLOTS], v: [0.0; WINDOW_SLOTS], head: 0, len: 0 }
+    }
+
+    fn back(&self) -> usize {
+        (self.head + self.len - 1) % WINDOW_SLOTS
+    }
+
+    /// The minimum over `(now − window, now]` if `value` were added at `now`, without
+    /// adding it.
+    fn peek(&self, now: f64, value: f64, window: f64) -> f64 {
+        (0..self.len)
+            .map(|k| (self.head + k) % WINDOW_SLOTS)
+            .find(|&i| self.t[i] > now - window)
+            .map_or(value, |i| self.v[i].min(value))
+    }
+
+    /// Adds `value` at time `now` and returns the minimum over `(now − window, now]`.
+    fn push(&mut self, now: f64, value: f64, window: f64) -> f64 {
+        while self.len > 0 && self.t[self.head] <= now - window {
+            self.head = (self.head + 1) % WINDOW_SLOTS;
+            self.len -= 1;
+        }
+        while self.len > 0 && self.v[self.back()] >= value {
+            self.len -= 1;
+        }
+        let resolution = window / 1000.0;
+        let merge = self.len > 0 && now - self.t[self.back()] < resolution;
+        if !merge {
+            if self.len == WINDOW_SLOTS {
+                // Unreachable with the resolution above; keep the newest if it happens.
+                self.head = (self.head + 1) % WINDOW_SLOTS;
+                self.len -= 1;
+            }
+            let i = (self.head + self.len) % WINDOW_SLOTS;
+            self.t[i] = now;
+            self.v[i] = value;
+            self.len += 1;
+        }
+        self.v[self.head]
+    }
+}
+
+/// Least-squares line through (t, ω) per axis, by running sums.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Regression {
+    n: f64,
+    t0: f64,
+    st: f64,
+    stt: f64,
+    sy: Vec3,
+    sty: Vec3,
+    last_t: f64,
+}
+
+impl Regression {
+    fn add(&mut self, t: f64, y: Vec3) {
+        if self.n == 0.0 {
+            self.t0 = t;
+        }
+        let t = t - self.t0;
+        self.n += 1.0;
+        self.st += t;
+        self.stt += t * t;
+        self.sy = self.sy + y;
+        self.sty = self.sty + y * t;
+        self.last_t = t;
+    }
+
+    fn duration(&self) -> f64 {
+        if self.n == 0.0 {
+            0.0
+        } else {
+            self.last_t
+        }
+    }
+
+    /// The fitted value at the last sample time.
+    fn value_at_end(&self) -> Vec3 {
+        let d = self.n * self.stt - self.st * self.st;
+        if self.n < 2.0 || d.abs() < 1e-300 {
+            return self.sy * (1.0 / self.n);
+        }
+        let slope = (self.sty * self.n - self.sy * self.st) * (1.0 / d);
+        let intercept = (self.sy - slope * self.st) * (1.0 / self.n);
+        intercept + slope * self.last_t
+    }
+}
+
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Startup {
+    time: f64,
+    n: u32,
+    gyro: Vec3,
+    accel: Vec3,
+    mag: Vec3,
+    n_mag: u32,
+}
+
+/// The trust values of the last update.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Trust {
+    pub alpha: f64,
+    pub mu_ka: f64,
+    pub mu_km: f64,
+    pub mu_k: f64,
+}
+
+/// GMVDK. Native frame: East-North-Up.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Gmvdk {
+    pub settings: GmvdkSettings,
+    q: Quat,
+    q_start: Quat,
+    bias: Vec3,
+    a_init: Option<Vec3>,
+    m_init: Option<Vec3>,
+    g0: f64,
+    ms_gyro: f64,
+    ms_accel: f64,
+    time: f64,
+    startup: Option<Startup>,
+    regression: Regression,
+    /// Boxed at creation (16 KiB): keeps the other kinds' handles small; never
+    /// reallocated by an update.
+    window: Box<MinWindow>,
+    trust: Trust,
+    mag_seen: bool,
+}
+
+impl Gmvdk {
+    pub fn new(settings: GmvdkSettings) -> Gmvdk {
+        Gmvdk {
+            settings,
+            q: Quat::IDENTITY,
+            q_start: Quat::IDENTITY,
+            bias: Vec3::ZERO,
+            a_init: None,
+            m_init: None,
+            g0: 0.0,
+            ms_gyro: 0.0,
+            ms_accel: 0.0,
+            time: 0.0,
+            startup: Some(Startup::default()),
+            regression: Regression::default(),
+            window: Box::new(MinWindow::new()),
+            trust: Trust::default(),
+            mag_seen: false,
+        }
+    }
+
+    /// The output: ENU, or relative to the start-up pose with `relative_output`.
+    pub fn quaternion(&self) -> Quat {
+        if self.settings.relative_output {
+            self.q_start.conj() * self.q
+        } else {
+            self.q
+        }
+    }
+
+    /// A known initial attitude (ENU): start-up is skipped; the references are taken from
+    /// the first readings (A_init as gravity's reaction along up, M_init as the first
+    /// field rotated into the earth frame).
+    pub fn set_quaternion(&mut self, q: Quat) {
+        self.q = q;
+        self.q_start = q;
+        self.startup = None;
+    }
+
+    pub fn bias(&self) -> Vec3 {
+        self.bias
+    }
+
+    pub fn trust(&self) -> Trust {
+        self.trust
+    }
+
+    /// True when the last update had a magnetometer reading (μ values apply).
+    pub fn mag_seen(&self) -> bool {
+        self.mag_seen
+    }
+
+    pub fn initializing(&self) -> bool {
+        self.startup.is_some()
+    }
+
+    fn finish_startup(&mut self, s: &Startup) {
+        let inv = 1.0 / s.n as f64;
+        let accel = s.accel * inv;
+        let mag = (s.n_mag > 0).then(|| s.mag * (1.0 / s.n_mag as f64));
+        let q = Frame::Enu
+            .attitude_from(accel, mag)
+            .or_else(|| Frame::Enu.attitude_from(accel, None))
+            .unwrap_or(Quat::IDENTITY);
+        self.q = q;
+        self.q_start = q;
+        self.bias = s.gyro * inv;
+        self.a_init = Some(q.rotate(accel));
+        self.m_init = mag.map(|m| q.rotate(m));
+        self.g0 = accel.norm();
+    }
+
+    pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        let mut step = Step::default();
+        if let Some(mut s) = self.startup.clone() {
+            let a = accel?;
+            s.time += dt;
+            s.n += 1;
+            s.gyro = s.gyro + gyro;
+            s.accel = s.accel + a;
+            if let Some(m) = mag {
+                s.mag = s.mag + m;
+                s.n_mag += 1;
+            }
+            self.time += dt;
+            if s.time + 1e-12 < self.settings.init_duration {
+                self.startup = Some(s);
+                step.initializing = true;
+                return Some(step);
+            }
+            self.finish_startup(&s);
+            self.startup = None;
+            step.used_accel = true;
+            step.used_mag = s.n_mag > 0;
+            return Some(step);
+        }
+        let st = self.settings;
+        let time = self.time + dt;
+        // [1]-[2]: de-biased gyroscope, prediction (7)-(8).
+        let omega_b = gyro - self.bias;
+        let q_g = (self.q + (self.q * Quat::pure(omega_b)).scale(0.5 * dt)).normalized();
+
+        // α from stillness (Appendix B.1).
+        let c = 1.0 - libm::exp(-dt / st.activity_tau);
+        let ms_gyro = self.ms_gyro + c * (omega_b.norm_squared() - self.ms_gyro);
+        let mut g0 = self.g0;
+        let mut ms_accel = self.ms_accel;
+        if let Some(a) = accel {
+            if g0 == 0.0 {
+                g0 = a.norm();
+            }
+            let dev = a.norm() - g0;
+            ms_accel += c * (dev * dev - ms_accel);
+        }
+        let activity = 0.5
+            * (ms_gyro / (st.gyro_activity * st.gyro_activity)
+                + ms_accel / (st.accel_activity * st.accel_activity));
+        let stillness = (1.0 - activity).max(0.0);
+        let alpha1 = stillness * st.slope_alpha + 1.0 - st.slope_alpha;
+        let alpha = ((alpha1 + alpha1.abs()) / 2.0).min(1.0);
+        let mut trust = Trust { alpha, ..self.trust };
+
+        // [3]-[6]: accelerometer pipeline.
+        let mut a_init = self.a_init;
+        let q_sa = match accel {
+            Some(a0) => {
+                step.used_accel = true;
+                let a_ref = *a_init.get_or_insert(Vec3::new(0.0, 0.0, a0.norm()));
+                let a_pred = q_g.rotate_inverse(a_ref); // (9)
+                let q_ga = q_g * Quat::from_two_vectors(a0, a_pred); // (10)-(13)
+                slerp(q_g, q_ga, alpha) // (14)
+            }
+            None => q_g,
+        };
+
+        // [3']-[6']: magnetometer pipeline with μ_K (Appendix B.2).
+        let mut m_init = self.m_init;
+        let mut mu1 = None;
+        let q_sm = match mag {
+            Some(m0) if step.used_accel => {
+                step.used_mag = true;
+                let m_ref = *m_init.get_or_insert(self.q.rotate(m0));
+                let m0i = self.q.rotate(m0); // (18), previous q_out
+                let cos_l = (m0i.dot(m_ref) / (m0i.norm() * m_ref.norm())).clamp(-1.0, 1.0);
+                let lambda = libm::acos(cos_l); // (19)
+                let mu_ka = (1.0 - st.slope_muk * lambda).max(0.0); // (20)
+                let mu_km = (1.0 - (m0i.norm() / m_ref.norm()) * lambda).max(0.0); // (21)-(22)
+                let m1 = 0.5 * (mu_ka + mu_km); // (23)
+                let mu2 = self.window.peek(time, m1, st.mu_window);
+                let mu_k = mu2 * alpha; // (24)
+                trust = Trust { alpha, mu_ka, mu_km, mu_k };
+                mu1 = Some(m1);
+                let m_pred = q_g.rotate_inverse(m_ref);
+                let q_gm = q_g * Quat::from_two_vectors(m0, m_pred);
+                slerp(q_g, q_gm, mu_k)
+            }
+            _ => q_g,
+        };
+
+        // [7]: second-tier SLERP (17).
+        let q_out = slerp(q_sm, q_sa, 0.5);
+        if !q_out.is_finite() {
+            return None;
+        }
+
+        // Commit. Step [1]'s de-biasing: regression over static runs.
+        if alpha >= st.static_alpha && step.used_accel {
+            self.regression.add(time, gyro);
+            if self.regression.duration() >= st.bias_window {
+                let bias = self.regression.value_at_end();
+                if bias.is_finite() {
+                    self.bias = bias;
+                }
+                self.regression = Regression::default();
+            }
+        } else {
+            self.regression = Regression::default();
+        }
+        if let Some(m1) = mu1 {
+            self.window.push(time, m1, st.mu_window);
+        }
+        self.mag_seen = mu1.is_some();
+        self.q = q_out;
+        self.time = time;
+        self.g0 = g0;
+        self.ms_gyro = ms_gyro;
+        self.ms_accel = ms_accel;
+        self.a_init = a_init;
+        self.m_init = m_init;
+        self.trust = trust;
+        Some(step)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::filters::complementary::rotation_of;
+
+    fn exact(q: Quat, w: Vec3, dt: f64) -> Quat {
+        q * rotation_of(w, dt)
+    }
+
+    #[test]
+    fn slerp_matches_eq16_and_its_endpoints() {
+        let a = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.2);
+        let b = Quat::from_axis_angle(Vec3::new(0.0, 1.0, 1.0), 1.0);
+        assert!(slerp(a, b, 0.0).angle_to(a) < 1e-12);
+        assert!(slerp(a, b, 1.0).angle_to(b) < 1e-12);
+        // Eq. (16) by hand at h = 0.3.
+        let omega = a.dot(b).acos();
+        let hand = a.scale((0.7 * omega).sin() / omega.sin()) + b.scale((0.3 * omega).sin() / omega.sin());
+        assert!(slerp(a, b, 0.3).angle_to(hand) < 1e-12);
+        // The midpoint is equally far from both.
+        let m = slerp(a, b, 0.5);
+        assert!((m.angle_to(a) - m.angle_to(b)).abs() < 1e-12);
+        // Shorter arc for sign-flipped inputs.
+        assert!(slerp(a, b.scale(-1.0), 0.3).angle_to(hand) < 1e-12);
+    }
+
+    #[test]
+    fn eq10_to_13_align_the_predicted_gravity_with_the_measurement() {
+        let q_g = Quat::from_axis_angle(Vec3::new(0.3, 1.0, 0.2), 0.5);
+        let a_init = Vec3::new(0.0, 0.0, 9.81);
+        let a0 = Vec3::new(1.0, -2.0, 9.5);
+        let q_ga = q_g * Quat::from_two_vectors(a0, q_g.rotate_inverse(a_init));
+        let mapped = q_ga.rotate_inverse(a_init).normalized();
+        assert!((mapped - a0.normalized()).norm() < 1e-12);
+        // Paper form (11)-(12): H(a0 × a, |a0||a| + a0·a), normalised, is the same rotation.
+        let a = q_g.rotate_inverse(a_init);
+        let v = a0.cross(a);
+        let paper = Quat::new(a0.norm() * a.norm() + a0.dot(a), v.x, v.y, v.z).normalized();
+        assert!(paper.angle_to(Quat::from_two_vectors(a0, a)) < 1e-12);
+    }
+
+    #[test]
+    fn running_minimum_covers_exactly_the_time_window() {
+        let mut w = MinWindow::new();
+        let dt = 0.01;
+        let mut mins = Vec::new();
+        for i in 0..200 {
+            let v = if i == 50 { 0.1 } else { 1.0 };
+            mins.push(w.push(i as f64 * dt, v, 0.4));
+        }
+        // The dip at t = 0.50 s holds for samples with t - 0.4 < 0.5: t < 0.9.
+        assert_eq!(mins[49], 1.0);
+        assert_eq!(mins[50], 0.1);
+        assert_eq!(mins[89], 0.1);
+        assert_eq!(mins[90], 1.0);
+        // At 10 kHz the slots still suffice (entries share slots at 0.4 ms).
+        let mut fast = MinWindow::new();
+        for i in 0..100_000 {
+            let m = fast.push(i as f64 * 1e-4, 1.0 - (i as f64) * 1e-6, 0.4);
+            assert!(m <= 1.0);
+        }
+        assert!(fast.len <= 1001);
+    }
+
+    #[test]
+    fn regression_recovers_a_linear_drift() {
+        let mut r = Regression::default();
+        for i in 0..100 {
+            let t = 5.0 + i as f64 * 0.01;
+            r.add(t, Vec3::new(0.01 + 0.002 * t, -0.02, 0.0));
+        }
+        let end = r.value_at_end();
+        assert!((end.x - (0.01 + 0.002 * 5.99)).abs() < 1e-12, "{end:?}");
+        assert!((end.y + 0.02).abs() < 1e-15);
+    }
+
+    #[test]
+    fn still_sensor_trusts_the_accelerometer_and_converges() {
+        let mut f = Gmvdk::new(GmvdkSettings::default());
+        let truth = Quat::from_axis_angle(Vec3::new(0.2, 0.4, 1.0), 0.8);
+        f.set_quaternion(truth);
+        let accel = truth.rotate_inverse(Vec3::new(0.0, 0.0, 9.81));
+        let mag = truth.rotate_inverse(Vec3::new(0.0, 20.0, -40.0));
+        f.update(0.01, Vec3::ZERO, Some(accel), Some(mag)).unwrap();
+        // Knock the estimate 0.2 rad off. Still and undisturbed, the first step removes most
+        // of the tilt; heading follows at a few percent per step, because the
+        // magnetometer's shortest-arc correction has a vertical component of only
+        // cos²(dip) (0.2 here); the error falls steadily and both trusts return to 1.
+        f.q = exact(truth, Vec3::new(1.0, 0.0, 0.0), 0.2);
+        let mut errors = Vec::new();
+        for _ in 0..400 {
+            f.update(0.01, Vec3::ZERO, Some(accel), Some(mag)).unwrap();
+            errors.push(f.quaternion().angle_to(truth));
+        }
+        assert!(errors[0] < 0.1, "{}", errors[0]);
+        assert!(errors.windows(2).all(|w| w[1] <= w[0] + 1e-15));
+        assert!(errors[399] < 1e-6, "{}", errors[399]);
+        let t = f.trust();
+        assert!(t.alpha > 0.99 && t.mu_k > 0.99, "{t:?}");
+    }
+}

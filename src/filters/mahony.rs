@@ -1,0 +1,169 @@
+//! Mahony's nonlinear complementary filter ("explicit complementary filter"), IMU and MARG.
+//!
+//! Source: R. Mahony, T. Hamel, J.-M. Pflimlin, "Nonlinear Complementary Filters on the
+//! Special Orthogonal Group", IEEE TAC 53(5), 2008 (reference [14] of the McGinnis paper;
+//! the baseline of the GMVDK paper's comparison). With measured directions `v_i` and
+//! their estimates `v̂_i` in the sensor frame,
+//!
+//! ```text
+//! ω_mes = Σ v_i × v̂_i                 (correction, rad)
+//! ḃ     = −k_I ω_mes                  (bias; orient reports b)
+//! q̇     = ½ q ⊗ (ω_y − b + k_P ω_mes)
+//! ```
+//!
+//! The directions are gravity's reaction `â` against `v̂ = R(q)ᵀ e_z` and, with a
+//! magnetometer, `m̂` against the estimated field `R(q)ᵀ [b_x 0 b_z]`, whose reference is
+//! taken from the measurement itself as in Madgwick's (31)-(32), so that magnetic
+//! inclination errors cannot tilt the estimate. The native frame is magnetic
+//! North-West-Up. Integration is first order followed by normalisation, as in the
+//! widely used implementation that produced the BROAD baseline numbers.
+
+use super::params::{id, ParamSpec};
+use super::Step;
+use crate::math::{Quat, Vec3};
+
+/// Mahony's settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MahonySettings {
+    /// Proportional gain k_P (1/s). Default 0.5, the value of the GMVDK paper's comparison
+    /// (and of BROAD's baseline run).
+    pub kp: f64,
+    /// Integral gain k_I (1/s²). Default 0: no bias estimation, as in that comparison.
+    pub ki: f64,
+}
+
+impl Default for MahonySettings {
+    fn default() -> Self {
+        MahonySettings { kp: 0.5, ki: 0.0 }
+    }
+}
+
+pub(crate) const PARAMS: [ParamSpec; 2] = [
+    ParamSpec {
+        id: id::MAHONY_KP,
+        name: "kp",
+        unit: "1/s",
+        doc: "Proportional gain on the direction error (Mahony 2008); default 0.5 as in the \
+              GMVDK paper's comparison and BROAD's baseline.",
+        default: 0.5,
+        min: 0.0,
+        max: 1000.0,
+    },
+    ParamSpec {
+        id: id::MAHONY_KI,
+        name: "ki",
+        unit: "1/s^2",
+        doc: "Integral gain for the gyroscope bias (Mahony 2008); default 0 (no bias \
+              estimation) as in the GMVDK paper's comparison.",
+        default: 0.0,
+        min: 0.0,
+        max: 1000.0,
+    },
+];
+
+/// Mahony's filter: orientation (North-West-Up) and gyroscope bias.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mahony {
+    pub settings: MahonySettings,
+    q: Quat,
+    bias: Vec3,
+}
+
+impl Mahony {
+    pub fn new(settings: MahonySettings) -> Mahony {
+        Mahony { settings, q: Quat::IDENTITY, bias: Vec3::ZERO }
+    }
+
+    pub fn quaternion(&self) -> Quat {
+        self.q
+    }
+
+    pub fn set_quaternion(&mut self, q: Quat) {
+        self.q = q;
+    }
+
+    /// The bias estimate b (rad/s), subtracted from the gyroscope.
+    pub fn bias(&self) -> Vec3 {
+        self.bias
+    }
+
+    /// The correction term `ω_mes = â × v̂ (+ m̂ × ŵ)` in the sensor frame, and whether
+    /// the magnetometer contributed.
+    pub fn correction(q: Quat, accel: Vec3, mag: Option<Vec3>) -> (Vec3, bool) {
+        let a = accel.normalized();
+        let up = q.rotate_inverse(Vec3::new(0.0, 0.0, 1.0));
+        let mut e = a.cross(up);
+        let mut used_mag = false;
+        if let Some(mag) = mag {
+            let m = mag.normalized();
+            let h = q.rotate(m);
+            let bx = (h.x * h.x + h.y * h.y).sqrt();
+            if bx > 0.0 {
+                let w = q.rotate_inverse(Vec3::new(bx, 0.0, h.z));
+                e = e + m.cross(w);
+                used_mag = true;
+            }
+        }
+        (e, used_mag)
+    }
+
+    pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        let mut step = Step::default();
+        let mut omega = gyro - self.bias;
+        let mut bias = self.bias;
+        if let Some(accel) = accel {
+            let (e, used_mag) = Mahony::correction(self.q, accel, mag);
+            step.used_accel = true;
+            step.used_mag = used_mag;
+            if self.settings.ki > 0.0 {
+                bias = bias - e * (self.settings.ki * dt);
+                omega = gyro - bias;
+            }
+            omega = omega + e * self.settings.kp;
+        }
+        let q = self.q + (self.q * Quat::pure(omega)).scale(0.5 * dt);
+        let n2 = q.norm_squared();
+        if !(n2.is_finite() && n2 > 0.0 && bias.is_finite()) {
+            return None;
+        }
+        self.q = q.scale(1.0 / n2.sqrt());
+        self.bias = bias;
+        Some(step)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn correction_rotates_the_estimate_towards_the_measurement() {
+        // Estimate level; the sensor is actually tilted 0.2 rad about x.
+        let truth = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.2);
+        let accel = truth.rotate_inverse(Vec3::new(0.0, 0.0, 9.81));
+        let (e, _) = Mahony::correction(Quat::IDENTITY, accel, None);
+        // â × v̂ with â = (0, sin .2, cos .2) and v̂ = (0, 0, 1): (sin .2, 0, 0).
+        assert!((e - Vec3::new(0.2f64.sin(), 0.0, 0.0)).norm() < 1e-12, "{e:?}");
+        // A step with that correction reduces the error.
+        let mut f = Mahony::new(MahonySettings { kp: 1.0, ki: 0.0 });
+        let before = f.quaternion().angle_to(truth);
+        f.update(0.1, Vec3::ZERO, Some(accel), None).unwrap();
+        assert!(f.quaternion().angle_to(truth) < before);
+    }
+
+    #[test]
+    fn integral_term_learns_a_constant_gyro_bias() {
+        let bias = Vec3::new(0.02, -0.03, 0.01);
+        let truth = Quat::from_axis_angle(Vec3::new(0.3, 0.5, 0.1), 0.7);
+        let accel = truth.rotate_inverse(Vec3::new(0.0, 0.0, 9.81));
+        let mag = truth.rotate_inverse(Vec3::new(20.0, 0.0, -40.0));
+        let mut f = Mahony::new(MahonySettings { kp: 1.0, ki: 0.3 });
+        f.set_quaternion(truth);
+        // 240 s: the PI loop is underdamped with these gains and settles in about 200 s.
+        for _ in 0..24000 {
+            f.update(0.01, bias, Some(accel), Some(mag)).unwrap();
+        }
+        assert!((f.bias() - bias).norm() < 1e-6, "{:?}", f.bias());
+        assert!(f.quaternion().angle_to(truth) < 1e-6);
+    }
+}
