@@ -18,9 +18,12 @@
 //!   `R(q)`; the ground frame G has Ê₃ up. Each step's attitude change is the exact
 //!   rotation `exp(ω dt)` ("the numerical integration technique described in [1]" is
 //!   not given; the exact rotation of a constant rate over dt is used).
-//! - Rest: `| |ω_m − ω_b| | < gyro_rest` and `| |a_m| − g₀ | < accel_rest`, where `g₀`
-//!   is the mean accelerometer norm of the start-up period ("within the sensor noise
-//!   floors of their stationary values"). The paper gives no numbers; the defaults are
+//! - Rest: `|ω_m − ω̄| < gyro_rest` and `| |a_m| − g₀ | < accel_rest`, where `ω̄` and `g₀`
+//!   are the mean gyroscope reading and accelerometer norm of the start-up period
+//!   ("within the sensor noise floors of their stationary values"; zero and the first
+//!   norm when the start is given). The stationary value is kept fixed rather than
+//!   following ω_b: a bias estimate wound up by a large initial error would otherwise
+//!   stop the filter from ever seeing rest again. The paper gives no numbers; the defaults are
 //!   about three times the per-sample noise of its sensor (0.03 °/s/√Hz, 650 µg/√Hz)
 //!   at 100 Hz, rounded up for hand-held use. The paper gives no K_P, K_I either: the
 //!   defaults settle the attitude with a 1 s time constant and the bias within about
@@ -43,7 +46,7 @@ pub struct ComplementarySettings {
     pub kp: f64,
     /// K_I (1/s²), active at rest only, eq. (5)/(10). Default 0.05.
     pub ki: f64,
-    /// Rest threshold on |ω_m − ω_b| (rad/s). Default 0.02.
+    /// Rest threshold on |ω_m − ω̄| (rad/s), ω̄ the start-up mean. Default 0.02.
     pub gyro_rest: f64,
     /// Rest threshold on | |a_m| − g₀ | (m/s²). Default 0.2.
     pub accel_rest: f64,
@@ -92,7 +95,7 @@ pub(crate) const PARAMS: [ParamSpec; 6] = [
         id: id::COMPLEMENTARY_GYRO_REST,
         name: "gyro_rest",
         unit: "rad/s",
-        doc: "Rest when |gyro - bias| is below this; default 0.02 (about 3x the per-sample \
+        doc: "Rest when |gyro - start-up mean gyro| is below this; default 0.02 (about 3x the per-sample \
               noise floor of the paper's 0.03 deg/s/sqrt(Hz) gyro at 100 Hz).",
         default: 0.02,
         min: 0.0,
@@ -151,6 +154,8 @@ pub struct Complementary {
     bias: Vec3,
     /// g₀: mean accelerometer norm at start-up (m/s²); 0 until known.
     g0: f64,
+    /// ω_m's stationary value: the start-up mean (zero without a start-up period).
+    b0: Vec3,
     rest: bool,
     startup: Option<Startup>,
 }
@@ -173,6 +178,7 @@ impl Complementary {
             q: Quat::IDENTITY,
             bias: Vec3::ZERO,
             g0: 0.0,
+            b0: Vec3::ZERO,
             rest: false,
             startup: Some(Startup::default()),
         }
@@ -245,6 +251,7 @@ impl Complementary {
             }
             self.q = self.initial_attitude(&s);
             self.bias = s.gyro * (1.0 / s.n as f64);
+            self.b0 = self.bias;
             self.g0 = s.accel_norm / s.n as f64;
             self.startup = None;
             step.used_accel = true;
@@ -265,7 +272,8 @@ impl Complementary {
         let q_tilde = self.q * rotation_of(omega_tilde, dt);
         let g_omega = q_tilde.rotate_inverse(Vec3::new(0.0, 0.0, 1.0)); // (8)
         let theta_e = g_a.cross(g_omega); // (9)
-        let rest = omega_tilde.norm() < self.settings.gyro_rest
+                                          // Rest: |ω_m| and |a_m| near their stationary values (the start-up means).
+        let rest = (gyro - self.b0).norm() < self.settings.gyro_rest
             && (a.norm() - self.g0).abs() < self.settings.accel_rest;
         let (kp, ki) = if rest { (self.settings.kp, self.settings.ki) } else { (0.0, 0.0) };
         let bias = self.bias - theta_e * (ki * dt); // (10)
