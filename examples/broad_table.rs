@@ -75,7 +75,8 @@ fn main() {
         }
         println!();
     }
-    let groups: [(&str, fn(u32) -> bool); 4] = [
+    type Group = (&'static str, fn(u32) -> bool);
+    let groups: [Group; 4] = [
         ("undisturbed", |n| n <= 23),
         ("disturbed", |n| n >= 24),
         ("magnetic", |n| (28..=36).contains(&n)),
