@@ -1,4 +1,4 @@
-//! Update cost of each built filter, IMU and MARG: through the Rust API, through the C
+//! Update cost of every filter kind, IMU and MARG: through the Rust API, through the C
 //! ABI (called through an opaque function pointer, as a host's call through the shared
 //! library is), and per sample of the batch call. Prints medians over repeated rounds
 //! and ratios to the Rust API in the same run.
@@ -69,7 +69,7 @@ struct Row {
 }
 
 fn main() {
-    let mut rounds = 41;
+    let mut rounds = 21;
     let args: Vec<String> = std::env::args().collect();
     if let Some(i) = args.iter().position(|a| a == "--rounds") {
         rounds = args.get(i + 1).and_then(|v| v.parse().ok()).expect("--rounds N");
@@ -78,77 +78,94 @@ fn main() {
     let marg_rec = Recording::read(path.as_ref(), true).expect("demo recording");
     let mut rows: Vec<Row> = Vec::new();
 
-    for (mode, with_mag) in [("IMU", false), ("MARG", true)] {
-        let mut samples = marg_rec.samples();
-        if !with_mag {
-            samples.iter_mut().for_each(|s| s.mag = None);
-        }
-        let samples: Vec<Sample> = samples.iter().cycle().take(PER_ROUND).copied().collect();
-        let c_samples: Vec<OrientSample> = samples.iter().map(c_sample).collect();
+    for kind in Kind::ALL {
+        for (mode, with_mag) in [("IMU", false), ("MARG", true)] {
+            let mut samples = marg_rec.samples();
+            if !with_mag {
+                samples.iter_mut().for_each(|s| s.mag = None);
+            }
+            let samples: Vec<Sample> = samples.iter().cycle().take(PER_ROUND).copied().collect();
+            let c_samples: Vec<OrientSample> = samples.iter().map(c_sample).collect();
 
-        // Every variant starts from the same state: initialised on the first sample.
-        let mut core = Madgwick::new(MadgwickSettings::default());
-        let mut filter = Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap();
-        filter.update(&samples[0]).unwrap();
-        let h_single = new_c_filter(Kind::Madgwick);
-        let h_batch = new_c_filter(Kind::Madgwick);
-        let h_out = new_c_filter(Kind::Madgwick);
-        for h in [h_single, h_batch, h_out] {
-            assert_eq!(unsafe { orient_filter_update(h, &c_samples[0]) }, OrientStatus::Ok);
-        }
-        let update: unsafe extern "C" fn(*mut OrientFilter, *const OrientSample) -> OrientStatus =
-            black_box(orient_filter_update);
-        let batch_fn = black_box(orient_filter_update_batch);
-        let mut out = vec![OrientQuaternion::default(); PER_ROUND];
-        let mut processed = 0usize;
-        let medians = {
-            let mut variants: Vec<Box<dyn FnMut() + '_>> = vec![
-                // The bare Madgwick core: no checks, no frame handling.
-                Box::new(|| {
-                    for s in &samples {
-                        black_box(core.update(s.dt, s.gyro.unwrap(), s.accel, s.mag));
-                    }
-                }),
-                Box::new(|| {
-                    for s in black_box(&samples) {
-                        let _ = black_box(filter.update(s));
-                    }
-                }),
-                Box::new(|| {
-                    for s in &c_samples {
-                        black_box(unsafe { update(h_single, s) });
-                    }
-                }),
-                Box::new(|| unsafe {
-                    black_box(batch_fn(
-                        h_batch,
-                        c_samples.as_ptr(),
-                        c_samples.len(),
-                        std::ptr::null_mut(),
-                        &mut processed,
-                    ));
-                }),
-                Box::new(|| unsafe {
-                    let n = c_samples.len();
-                    black_box(batch_fn(h_out, c_samples.as_ptr(), n, out.as_mut_ptr(), std::ptr::null_mut()));
-                }),
+            // Every variant starts from the same state: past start-up, on the recording.
+            let mut core = Madgwick::new(MadgwickSettings::default());
+            let mut filter = Filter::new(&Config::new(kind).unwrap()).unwrap();
+            let handles = [new_c_filter(kind), new_c_filter(kind), new_c_filter(kind)];
+            for s in &samples[..1000] {
+                filter.update(s).unwrap();
+            }
+            for h in handles {
+                let mut n = 0;
+                let status = unsafe {
+                    orient_filter_update_batch(h, c_samples.as_ptr(), 1000, std::ptr::null_mut(), &mut n)
+                };
+                assert_eq!(status, OrientStatus::Ok);
+            }
+            let update: unsafe extern "C" fn(*mut OrientFilter, *const OrientSample) -> OrientStatus =
+                black_box(orient_filter_update);
+            let batch_fn = black_box(orient_filter_update_batch);
+            let mut out = vec![OrientQuaternion::default(); PER_ROUND];
+            let mut processed = 0usize;
+            let medians = {
+                let mut variants: Vec<Box<dyn FnMut() + '_>> = vec![
+                    Box::new(|| {
+                        for s in black_box(&samples) {
+                            let _ = black_box(filter.update(s));
+                        }
+                    }),
+                    Box::new(|| {
+                        for s in &c_samples {
+                            black_box(unsafe { update(handles[0], s) });
+                        }
+                    }),
+                    Box::new(|| unsafe {
+                        let n = c_samples.len();
+                        black_box(batch_fn(
+                            handles[1],
+                            c_samples.as_ptr(),
+                            n,
+                            std::ptr::null_mut(),
+                            &mut processed,
+                        ));
+                    }),
+                    Box::new(|| unsafe {
+                        let n = c_samples.len();
+                        black_box(batch_fn(
+                            handles[2],
+                            c_samples.as_ptr(),
+                            n,
+                            out.as_mut_ptr(),
+                            std::ptr::null_mut(),
+                        ));
+                    }),
+                ];
+                if kind == Kind::Madgwick {
+                    // The bare Madgwick core: no checks, no frame handling.
+                    variants.push(Box::new(|| {
+                        for s in &samples {
+                            black_box(core.update(s.dt, s.gyro.unwrap(), s.accel, s.mag));
+                        }
+                    }));
+                }
+                time_interleaved(rounds, &mut variants)
+            };
+            for h in handles {
+                unsafe { orient_filter_free(h) };
+            }
+            let labels = [
+                "Rust Filter::update",
+                "C orient_filter_update",
+                "C update_batch",
+                "C update_batch, quaternions out",
+                "bare Madgwick core (no checks)",
             ];
-            time_interleaved(rounds, &mut variants)
-        };
-        for h in [h_single, h_batch, h_out] {
-            unsafe { orient_filter_free(h) };
-        }
-        let (bare, rust, c_single, c_batch, c_batch_out) =
-            (medians[0], medians[1], medians[2], medians[3], medians[4]);
-
-        for (label, ns) in [
-            ("core Madgwick::update (no checks)", bare),
-            ("Rust Filter::update", rust),
-            ("C orient_filter_update", c_single),
-            ("C orient_filter_update_batch", c_batch),
-            ("C batch, quaternions out", c_batch_out),
-        ] {
-            rows.push(Row { label: format!("madgwick {mode:<4} {label}"), ns, baseline: rust });
+            for (label, ns) in labels.iter().zip(&medians) {
+                rows.push(Row {
+                    label: format!("{:<13} {mode:<4} {label}", kind.name()),
+                    ns: *ns,
+                    baseline: medians[0],
+                });
+            }
         }
     }
 
