@@ -1,2 +1,3 @@
 pub mod golden;
+pub mod native;
 pub mod sim;

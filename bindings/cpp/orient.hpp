@@ -1,0 +1,265 @@
+// orient.hpp: header-only C++17 wrapper over the orient C ABI (include/orient.h).
+//
+// - orient::Filter is a move-only RAII handle: the destructor frees it, on every path.
+// - Works with and without exceptions. Filter::create() and Config::defaults() never
+//   throw and return an orient::Result (value or orient::Error). When exceptions are
+//   enabled, the Filter(const Config&) and Filter(Kind) constructors throw
+//   orient::Exception instead.
+// - Batch updates take any contiguous container (std::array, std::vector, std::span,
+//   C arrays) of OrientSample, and optionally one of OrientQuaternion for the output.
+// - Numbers are the C library's: the same bits as the Rust API.
+//
+//   orient::Filter f(orient::Kind::Madgwick);                 // throws on error
+//   f.update(orient::sample(0.01, {0, 0, 0.1}, {0, 0, 9.81}, {0, 20, -40}));
+//   OrientQuaternion q = f.quaternion();
+//
+//   auto r = orient::Filter::create(orient::Config::defaults(orient::Kind::Ekf).value());
+//   if (!r) std::puts(r.error().message.c_str());             // no exceptions needed
+#ifndef ORIENT_HPP
+#define ORIENT_HPP
+
+#include "orient.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+#if defined(__cpp_exceptions) || defined(__EXCEPTIONS) || defined(_CPPUNWIND)
+#define ORIENT_HPP_EXCEPTIONS 1
+#include <stdexcept>
+#else
+#define ORIENT_HPP_EXCEPTIONS 0
+#endif
+
+namespace orient {
+
+enum class Kind : int32_t {
+    Madgwick = ORIENT_KIND_MADGWICK,
+    Mahony = ORIENT_KIND_MAHONY,
+    Complementary = ORIENT_KIND_COMPLEMENTARY,
+    Ekf = ORIENT_KIND_EKF,
+    Gmvdk = ORIENT_KIND_GMVDK,
+};
+
+enum class Frame : int32_t { Enu = ORIENT_FRAME_ENU, Ned = ORIENT_FRAME_NED, Nwu = ORIENT_FRAME_NWU };
+
+/// A failed call: its status and the library's message for it.
+struct Error {
+    OrientStatus status = ORIENT_STATUS_OK;
+    std::string message;
+};
+
+/// The error of the call that just failed on this thread.
+inline Error last_error(OrientStatus status) {
+    std::string detail = orient_last_error();
+    if (detail.empty()) detail = orient_status_message(status);
+    return Error{status, std::move(detail)};
+}
+
+#if ORIENT_HPP_EXCEPTIONS
+/// Thrown by the throwing constructors when exceptions are enabled.
+class Exception : public std::runtime_error {
+public:
+    explicit Exception(Error e) : std::runtime_error(e.message), status_(e.status) {}
+    OrientStatus status() const noexcept { return status_; }
+
+private:
+    OrientStatus status_;
+};
+#endif
+
+/// A value or an Error, for code built without exceptions.
+template <class T>
+class Result {
+public:
+    Result(T value) : v_(std::move(value)) {}                  // NOLINT: implicit by design
+    Result(Error error) : v_(std::move(error)) {}              // NOLINT
+    explicit operator bool() const noexcept { return v_.index() == 0; }
+    bool ok() const noexcept { return v_.index() == 0; }
+    T& value() & { return std::get<0>(v_); }
+    T&& value() && { return std::get<0>(std::move(v_)); }
+    const Error& error() const { return std::get<1>(v_); }
+
+private:
+    std::variant<T, Error> v_;
+};
+
+inline OrientVec3 vec3(double x, double y, double z) noexcept { return OrientVec3{x, y, z}; }
+
+/// A sample with gyroscope and accelerometer (IMU).
+inline OrientSample sample(double dt, OrientVec3 gyro, OrientVec3 accel) noexcept {
+    OrientSample s{};
+    s.dt = dt;
+    s.gyro = gyro;
+    s.accel = accel;
+    s.flags = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL;
+    return s;
+}
+
+/// A sample with gyroscope, accelerometer and magnetometer (MARG).
+inline OrientSample sample(double dt, OrientVec3 gyro, OrientVec3 accel, OrientVec3 mag) noexcept {
+    OrientSample s = sample(dt, gyro, accel);
+    s.mag = mag;
+    s.flags |= ORIENT_SAMPLE_MAG;
+    return s;
+}
+
+/// A filter configuration: OrientConfig with checked setters.
+class Config {
+public:
+    /// The documented defaults of `kind`.
+    static Result<Config> defaults(Kind kind) noexcept {
+        Config c;
+        OrientStatus s = orient_config_default(static_cast<int32_t>(kind), &c.raw_);
+        if (s != ORIENT_STATUS_OK) return last_error(s);
+        return c;
+    }
+
+    /// Sets parameter slot `id` (ORIENT_PARAM_*), range-checked.
+    OrientStatus set(uint32_t id, double value) noexcept { return orient_config_set_param(&raw_, id, value); }
+
+    /// Sets the parameter called `name` (see orient_param_info), range-checked.
+    OrientStatus set(const char* name, double value) noexcept {
+        uint32_t id = 0;
+        OrientStatus s = orient_param_find(raw_.kind, name, &id);
+        return s == ORIENT_STATUS_OK ? set(id, value) : s;
+    }
+
+    double get(uint32_t id) const noexcept { return id < ORIENT_MAX_PARAMS ? raw_.params[id] : 0.0; }
+    Config& frame(Frame f) noexcept {
+        raw_.frame = static_cast<int32_t>(f);
+        return *this;
+    }
+    Config& init_identity() noexcept {
+        raw_.init = ORIENT_INIT_IDENTITY;
+        return *this;
+    }
+    Config& init_given(OrientQuaternion q) noexcept {
+        raw_.init = ORIENT_INIT_GIVEN;
+        raw_.initial = q;
+        return *this;
+    }
+    Kind kind() const noexcept { return static_cast<Kind>(raw_.kind); }
+    const OrientConfig& raw() const noexcept { return raw_; }
+    OrientConfig& raw() noexcept { return raw_; }
+
+private:
+    OrientConfig raw_{};
+};
+
+/// An orientation filter of any kind. Move-only; freed by its destructor.
+class Filter {
+public:
+    Filter() noexcept = default;
+
+    /// Creates a filter without throwing.
+    static Result<Filter> create(const Config& config) noexcept {
+        Filter f;
+        OrientStatus s = orient_filter_new(&config.raw(), &f.h_);
+        if (s != ORIENT_STATUS_OK) return last_error(s);
+        return f;
+    }
+
+#if ORIENT_HPP_EXCEPTIONS
+    /// Creates a filter; throws orient::Exception on failure.
+    explicit Filter(const Config& config) {
+        OrientStatus s = orient_filter_new(&config.raw(), &h_);
+        if (s != ORIENT_STATUS_OK) throw Exception(last_error(s));
+    }
+
+    /// A filter of `kind` with its defaults; throws orient::Exception on failure.
+    explicit Filter(Kind kind) {
+        Result<Config> c = Config::defaults(kind);
+        if (!c) throw Exception(c.error());
+        OrientStatus s = orient_filter_new(&c.value().raw(), &h_);
+        if (s != ORIENT_STATUS_OK) throw Exception(last_error(s));
+    }
+#endif
+
+    ~Filter() { reset_handle(); }
+    Filter(const Filter&) = delete;
+    Filter& operator=(const Filter&) = delete;
+    Filter(Filter&& o) noexcept : h_(std::exchange(o.h_, nullptr)) {}
+    Filter& operator=(Filter&& o) noexcept {
+        if (this != &o) {
+            reset_handle();
+            h_ = std::exchange(o.h_, nullptr);
+        }
+        return *this;
+    }
+
+    /// True while the object owns a handle (false after a move or default construction).
+    explicit operator bool() const noexcept { return h_ != nullptr; }
+    OrientFilter* native() const noexcept { return h_; }
+
+    /// One sample. On any status but OK the filter's state is unchanged.
+    OrientStatus update(const OrientSample& s) noexcept { return orient_filter_update(h_, &s); }
+
+    /// Samples in order; stops at the first bad one (its index in *processed).
+    OrientStatus update_batch(const OrientSample* samples, std::size_t n, OrientQuaternion* out = nullptr,
+                              std::size_t* processed = nullptr) noexcept {
+        return orient_filter_update_batch(h_, samples, n, out, processed);
+    }
+
+    /// Any contiguous container of OrientSample (std::array, std::vector, std::span, C array).
+    template <class Samples>
+    OrientStatus update_batch(const Samples& samples, std::size_t* processed = nullptr) noexcept {
+        return update_batch(std::data(samples), std::size(samples), nullptr, processed);
+    }
+
+    /// As above, with the quaternion after each sample written to `out`. Fails with
+    /// ORIENT_STATUS_COUNT_TOO_LARGE when `out` is smaller than `samples`.
+    template <class Samples, class Quaternions>
+    OrientStatus update_batch(const Samples& samples, Quaternions& out, std::size_t* processed = nullptr) noexcept {
+        static_assert(std::is_same_v<std::remove_cv_t<std::remove_pointer_t<decltype(std::data(out))>>, OrientQuaternion>,
+                      "output elements must be OrientQuaternion");
+        if (std::size(out) < std::size(samples)) {
+            if (processed) *processed = 0;
+            return ORIENT_STATUS_COUNT_TOO_LARGE;
+        }
+        return update_batch(std::data(samples), std::size(samples), std::data(out), processed);
+    }
+
+    OrientStatus quaternion(OrientQuaternion& q) const noexcept { return orient_filter_quaternion(h_, &q); }
+    /// The orientation; identity when the call fails (e.g. a moved-from filter).
+    OrientQuaternion quaternion() const noexcept {
+        OrientQuaternion q{1.0, 0.0, 0.0, 0.0};
+        orient_filter_quaternion(h_, &q);
+        return q;
+    }
+    OrientStatus euler(OrientEuler& e) const noexcept { return orient_filter_euler(h_, &e); }
+    OrientStatus rotation_matrix(double (&m)[9]) const noexcept { return orient_filter_rotation_matrix(h_, m); }
+    OrientStatus gravity(OrientVec3& v) const noexcept { return orient_filter_gravity(h_, &v); }
+    OrientStatus linear_accel(OrientVec3& v) const noexcept { return orient_filter_linear_accel(h_, &v); }
+    OrientStatus linear_accel_earth(OrientVec3& v) const noexcept {
+        return orient_filter_linear_accel_earth(h_, &v);
+    }
+    OrientStatus diagnostics(OrientDiagnostics& d) const noexcept { return orient_filter_diagnostics(h_, &d); }
+    uint32_t flags() const noexcept {
+        uint32_t f = 0;
+        orient_filter_flags(h_, &f);
+        return f;
+    }
+    bool initialized() const noexcept { return (flags() & ORIENT_FLAG_INITIALIZED) != 0; }
+    OrientStatus set_param(uint32_t id, double value) noexcept { return orient_filter_set_param(h_, id, value); }
+    OrientStatus get_param(uint32_t id, double& value) const noexcept {
+        return orient_filter_get_param(h_, id, &value);
+    }
+    OrientStatus reset() noexcept { return orient_filter_reset(h_); }
+    OrientStatus set_quaternion(const OrientQuaternion& q) noexcept { return orient_filter_set_quaternion(h_, &q); }
+
+private:
+    void reset_handle() noexcept {
+        if (h_) orient_filter_free(h_);
+        h_ = nullptr;
+    }
+    OrientFilter* h_ = nullptr;
+};
+
+}  // namespace orient
+
+#endif  // ORIENT_HPP

@@ -1,0 +1,206 @@
+// Tests bindings/cpp/orient.hpp: golden vectors bit for bit through single and batch
+// updates, move semantics, the non-throwing factory, and (with exceptions) the throwing
+// constructors. Built by tests/cpp_wrapper.rs with -std=c++17 -Wall -Wextra -Werror
+// -pedantic, once with and once without exceptions. Ends with "N passed, N failed".
+#include "orient.hpp"
+
+#include <array>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+static int passed = 0, failed = 0;
+
+#define CHECK(cond)                                                                   \
+    do {                                                                              \
+        if (cond) {                                                                   \
+            ++passed;                                                                 \
+        } else {                                                                      \
+            ++failed;                                                                 \
+            std::printf("FAIL %s:%d: %s\n", __FILE__, __LINE__, #cond);               \
+        }                                                                             \
+    } while (0)
+
+static double unhex(const std::string& s) {
+    uint64_t u = std::strtoull(s.c_str(), nullptr, 16);
+    double d;
+    std::memcpy(&d, &u, sizeof d);
+    return d;
+}
+
+static bool same(const OrientQuaternion& a, const OrientQuaternion& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+struct Case {
+    std::string name;
+    orient::Config config;
+    std::vector<OrientSample> samples;
+    std::vector<OrientQuaternion> expected;
+};
+
+static std::vector<Case> read_golden(const char* path) {
+    std::vector<Case> cases;
+    std::ifstream in(path);
+    std::string line;
+    Case current;
+    while (std::getline(in, line)) {
+        std::istringstream t(line);
+        std::string tag;
+        t >> tag;
+        if (tag == "case") {
+            int kind, frame, init, nparams;
+            std::string qw, qx, qy, qz;
+            t >> current.name >> kind >> frame >> init >> qw >> qx >> qy >> qz >> nparams;
+            auto c = orient::Config::defaults(static_cast<orient::Kind>(kind));
+            CHECK(c.ok());
+            if (!c) continue;
+            current.config = c.value();
+            current.config.raw().frame = frame;
+            current.config.raw().init = init;
+            current.config.raw().initial = OrientQuaternion{unhex(qw), unhex(qx), unhex(qy), unhex(qz)};
+            for (int i = 0; i < nparams; ++i) {
+                uint32_t id;
+                std::string v;
+                t >> id >> v;
+                CHECK(current.config.set(id, unhex(v)) == ORIENT_STATUS_OK);
+            }
+            current.samples.clear();
+            current.expected.clear();
+        } else if (tag == "s") {
+            std::string h[15];
+            unsigned flags;
+            t >> h[0] >> h[1] >> h[2] >> h[3] >> h[4] >> h[5] >> h[6] >> h[7] >> h[8] >> h[9] >> flags >> h[10] >>
+                h[11] >> h[12] >> h[13];
+            OrientSample s{};
+            s.dt = unhex(h[0]);
+            s.gyro = orient::vec3(unhex(h[1]), unhex(h[2]), unhex(h[3]));
+            s.accel = orient::vec3(unhex(h[4]), unhex(h[5]), unhex(h[6]));
+            s.mag = orient::vec3(unhex(h[7]), unhex(h[8]), unhex(h[9]));
+            s.flags = flags;
+            current.samples.push_back(s);
+            current.expected.push_back(OrientQuaternion{unhex(h[10]), unhex(h[11]), unhex(h[12]), unhex(h[13])});
+        } else if (tag == "end") {
+            cases.push_back(current);
+        }
+    }
+    return cases;
+}
+
+static void golden(const char* path) {
+    std::vector<Case> cases = read_golden(path);
+    CHECK(cases.size() >= 9);
+    for (const Case& c : cases) {
+        auto single = orient::Filter::create(c.config);
+        CHECK(single.ok());
+        if (!single) continue;
+        orient::Filter f = std::move(single).value();
+        std::size_t mismatches = 0;
+        for (std::size_t i = 0; i < c.samples.size(); ++i) {
+            if (f.update(c.samples[i]) != ORIENT_STATUS_OK || !same(f.quaternion(), c.expected[i])) ++mismatches;
+        }
+        if (mismatches) std::printf("FAIL golden %s: %zu mismatches\n", c.name.c_str(), mismatches);
+        CHECK(mismatches == 0);
+
+        // Batch from a std::vector into a std::vector.
+        auto batch = orient::Filter::create(c.config);
+        CHECK(batch.ok());
+        std::vector<OrientQuaternion> out(c.samples.size());
+        std::size_t processed = 0;
+        CHECK(batch.value().update_batch(c.samples, out, &processed) == ORIENT_STATUS_OK);
+        CHECK(processed == c.samples.size());
+        CHECK(std::memcmp(out.data(), c.expected.data(), out.size() * sizeof(OrientQuaternion)) == 0);
+    }
+    std::printf("golden: %zu cases\n", cases.size());
+}
+
+static void wrapper() {
+    // Non-throwing factory, error path with the library's message.
+    auto bad = orient::Config::defaults(static_cast<orient::Kind>(42));
+    CHECK(!bad.ok());
+    CHECK(bad.error().status == ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK(!bad.error().message.empty());
+
+    auto cfg = orient::Config::defaults(orient::Kind::Madgwick);
+    CHECK(cfg.ok());
+    orient::Config config = cfg.value();
+    CHECK(config.set("beta_marg", 0.05) == ORIENT_STATUS_OK);
+    CHECK(config.get(ORIENT_PARAM_MADGWICK_BETA_MARG) == 0.05);
+    CHECK(config.set("no_such", 1.0) == ORIENT_STATUS_UNKNOWN_PARAM);
+    CHECK(config.set(ORIENT_PARAM_MADGWICK_BETA_IMU, -3.0) == ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+    config.frame(orient::Frame::Ned);
+
+    orient::Config broken = config;
+    broken.raw().struct_size = 3;
+    auto r = orient::Filter::create(broken);
+    CHECK(!r.ok());
+    CHECK(r.error().status == ORIENT_STATUS_VERSION_MISMATCH);
+
+    // Move-only RAII.
+    static_assert(!std::is_copy_constructible_v<orient::Filter>);
+    static_assert(std::is_nothrow_move_constructible_v<orient::Filter>);
+    auto made = orient::Filter::create(config);
+    CHECK(made.ok());
+    orient::Filter a = std::move(made).value();
+    CHECK(static_cast<bool>(a));
+    orient::Filter b = std::move(a);
+    CHECK(!a && b);
+    CHECK(a.update(orient::sample(0.01, {0, 0, 0}, {0, 0, 9.81})) == ORIENT_STATUS_NULL_POINTER);
+    CHECK(b.update(orient::sample(0.01, {0, 0, 0.1}, {0, 0, 9.81}, {0, 20, -40})) == ORIENT_STATUS_OK);
+    CHECK(b.initialized());
+    orient::Filter c;
+    c = std::move(b);
+    CHECK(!b && c);
+    OrientQuaternion q = c.quaternion();
+    CHECK(std::fabs(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z - 1.0) < 1e-12);
+
+    // Batch with std::array, output too small, and a bad sample.
+    std::array<OrientSample, 3> samples = {orient::sample(0.01, {0, 0, 0.1}, {0, 0, 9.81}),
+                                           orient::sample(0.01, {0, 0, 0.1}, {0, 0, 9.81}),
+                                           orient::sample(-1.0, {0, 0, 0.1}, {0, 0, 9.81})};
+    std::array<OrientQuaternion, 2> small{};
+    CHECK(c.update_batch(samples, small) == ORIENT_STATUS_COUNT_TOO_LARGE);
+    std::array<OrientQuaternion, 3> out{};
+    std::size_t processed = 99;
+    CHECK(c.update_batch(samples, out, &processed) == ORIENT_STATUS_INVALID_DT);
+    CHECK(processed == 2);
+
+    OrientDiagnostics d{};
+    CHECK(c.diagnostics(d) == ORIENT_STATUS_OK);
+    CHECK(d.present == 0 && std::isnan(d.alpha));
+    CHECK(c.reset() == ORIENT_STATUS_OK && !c.initialized());
+}
+
+#if ORIENT_HPP_EXCEPTIONS
+static void exceptions() {
+    bool threw = false;
+    try {
+        orient::Filter f(static_cast<orient::Kind>(0));
+    } catch (const orient::Exception& e) {
+        threw = e.status() == ORIENT_STATUS_INVALID_ARGUMENT && std::strlen(e.what()) > 0;
+    }
+    CHECK(threw);
+    orient::Filter g(orient::Kind::Gmvdk);
+    CHECK(static_cast<bool>(g));
+}
+#endif
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: %s GOLDEN_FILE\n", argv[0]);
+        return 2;
+    }
+    wrapper();
+#if ORIENT_HPP_EXCEPTIONS
+    exceptions();
+#endif
+    golden(argv[1]);
+    std::printf("%d passed, %d failed\n", passed, failed);
+    return failed == 0 ? 0 : 1;
+}
