@@ -198,6 +198,16 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_PARAM_EKF_HEADING_STD 47
 
 /**
+ * Parameter slot (EKF): correlation time of linear acceleration, s, default 0.5.
+ */
+#define ORIENT_PARAM_EKF_MOTION_TAU 48
+
+/**
+ * Parameter slot (EKF): correlation time of magnetic heading errors, s, default 1.
+ */
+#define ORIENT_PARAM_EKF_HEADING_TAU 49
+
+/**
  * Parameter slot (GMVDK): SlopeAlpha, default 1.0 (paper, Appendix B.1).
  */
 #define ORIENT_PARAM_GMVDK_SLOPE_ALPHA 56

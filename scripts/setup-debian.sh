@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Installs what building and testing orient needs on a Debian machine: a C toolchain
-# and binutils (nm, readelf) from apt, Rust through rustup when cargo is missing, and
-# the pinned cbindgen 0.29.4 from crates.io. Safe to run again.
+# Installs what building and testing orient needs on a Debian machine: a C/C++
+# toolchain, binutils (nm, readelf), CMake and pkg-config (packaging tests), Mono's
+# compiler and runtime (C# binding tests) and abi-compliance-checker from apt; Rust
+# through rustup when cargo is missing; the pinned cbindgen 0.29.4 from crates.io.
+# Safe to run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -10,7 +12,8 @@ if [ "$(id -u)" != 0 ]; then sudo="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq
 $sudo apt-get install -y -qq --no-install-recommends \
-  build-essential binutils ca-certificates curl pkg-config >/dev/null
+  build-essential binutils ca-certificates curl pkg-config cmake \
+  mono-mcs mono-runtime abi-compliance-checker >/dev/null
 
 if ! command -v cargo >/dev/null 2>&1; then
   if [ -x "$HOME/.cargo/bin/cargo" ]; then

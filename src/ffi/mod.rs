@@ -675,6 +675,8 @@ mod tests {
             (ORIENT_PARAM_EKF_ACCEL_NOISE, params::id::EKF_ACCEL_NOISE),
             (ORIENT_PARAM_EKF_ACCEL_MOTION, params::id::EKF_ACCEL_MOTION),
             (ORIENT_PARAM_EKF_HEADING_STD, params::id::EKF_HEADING_STD),
+            (ORIENT_PARAM_EKF_MOTION_TAU, params::id::EKF_MOTION_TAU),
+            (ORIENT_PARAM_EKF_HEADING_TAU, params::id::EKF_HEADING_TAU),
             (ORIENT_PARAM_GMVDK_SLOPE_ALPHA, params::id::GMVDK_SLOPE_ALPHA),
             (ORIENT_PARAM_GMVDK_SLOPE_MUK, params::id::GMVDK_SLOPE_MUK),
             (ORIENT_PARAM_GMVDK_MU_WINDOW, params::id::GMVDK_MU_WINDOW),
@@ -689,6 +691,11 @@ mod tests {
         for (c, r) in slots {
             assert_eq!(c, r);
         }
+        // Every parameter of every kind has its ORIENT_PARAM_* constant above (the
+        // common three and Madgwick's two are checked first).
+        let all: std::collections::BTreeSet<u32> =
+            Kind::ALL.iter().flat_map(|k| k.params().map(|p| p.id)).collect();
+        assert_eq!(all.len(), slots.len() + 5);
     }
 
     #[test]

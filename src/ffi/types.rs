@@ -75,6 +75,10 @@ pub const ORIENT_PARAM_EKF_ACCEL_NOISE: u32 = 45;
 pub const ORIENT_PARAM_EKF_ACCEL_MOTION: u32 = 46;
 /// Parameter slot (EKF): magnetometer heading std, rad, default 0.1.
 pub const ORIENT_PARAM_EKF_HEADING_STD: u32 = 47;
+/// Parameter slot (EKF): correlation time of linear acceleration, s, default 0.5.
+pub const ORIENT_PARAM_EKF_MOTION_TAU: u32 = 48;
+/// Parameter slot (EKF): correlation time of magnetic heading errors, s, default 1.
+pub const ORIENT_PARAM_EKF_HEADING_TAU: u32 = 49;
 /// Parameter slot (GMVDK): SlopeAlpha, default 1.0 (paper, Appendix B.1).
 pub const ORIENT_PARAM_GMVDK_SLOPE_ALPHA: u32 = 56;
 /// Parameter slot (GMVDK): SlopeMuk, 1/rad, default 1.5 (paper, eq. (20)).

@@ -1,0 +1,533 @@
+// Orient.cs: the high-level C# API over Orient.Native (no UnityEngine dependency).
+//
+//   using (var f = new Orient.OrientFilter(Orient.Native.Kind.Madgwick))
+//   {
+//       f["beta_marg"] = 0.05;
+//       f.Update(Orient.OrientFilter.Marg(0.01, gyro, accel, mag));   // throws OrientException on bad input
+//       Orient.Native.Quaternion q = f.Quaternion;                     // ENU, scalar first
+//   }
+//
+// Status codes become OrientException with the library's message. Handles live in a
+// SafeHandle, so a forgotten Dispose is released by the finaliser and a double Dispose
+// is harmless. Units and conventions are the library's: rad/s, m/s^2, any magnetometer
+// unit, dt in seconds, Hamilton quaternions mapping sensor to earth (ENU by default).
+// UnityConvert turns them into Unity's left-handed, Y-up values.
+using System;
+using System.Collections.Generic;
+using System.Runtime.InteropServices;
+using System.Text;
+using Orient.Native;
+
+namespace Orient
+{
+    /// <summary>A call into the library failed; Status is its code.</summary>
+    public sealed class OrientException : Exception
+    {
+        public Status Status { get; private set; }
+
+        public OrientException(Status status, string message) : base(message)
+        {
+            Status = status;
+        }
+
+        /// <summary>Throws for any status but Ok, with the thread's last error detail.</summary>
+        public static void Check(Status status)
+        {
+            if (status != Status.Ok)
+            {
+                throw new OrientException(status, LastError(status));
+            }
+        }
+
+        internal static string LastError(Status status)
+        {
+            string detail = Marshal.PtrToStringAnsi(NativeMethods.orient_last_error());
+            if (string.IsNullOrEmpty(detail))
+            {
+                detail = Marshal.PtrToStringAnsi(NativeMethods.orient_status_message((int)status));
+            }
+            return status + ": " + detail;
+        }
+    }
+
+    /// <summary>Owns one OrientFilter handle; releases it exactly once.</summary>
+    public sealed class FilterHandle : SafeHandle
+    {
+        public FilterHandle() : base(IntPtr.Zero, true) { }
+
+        public override bool IsInvalid
+        {
+            get { return handle == IntPtr.Zero; }
+        }
+
+        internal void Set(IntPtr h)
+        {
+            SetHandle(h);
+        }
+
+        protected override bool ReleaseHandle()
+        {
+            return NativeMethods.orient_filter_free(handle) == Status.Ok;
+        }
+    }
+
+    /// <summary>What one parameter means (for inspectors and settings screens).</summary>
+    public struct ParameterInfo
+    {
+        public uint Id;
+        public string Name;
+        public string Unit;
+        public string Description;
+        public double Default;
+        public double Min;
+        public double Max;
+    }
+
+    /// <summary>A filter configuration: kind, frame, initial orientation, parameters.</summary>
+    public sealed class OrientSettings
+    {
+        internal Config raw;
+
+        public OrientSettings(Kind kind)
+        {
+            OrientException.Check(NativeMethods.orient_config_default((int)kind, out raw));
+        }
+
+        public Kind Kind
+        {
+            get { return (Kind)raw.Kind; }
+        }
+
+        public Frame Frame
+        {
+            get { return (Frame)raw.Frame; }
+            set { raw.Frame = (int)value; }
+        }
+
+        public Init Init
+        {
+            get { return (Init)raw.Init; }
+            set { raw.Init = (int)value; }
+        }
+
+        /// <summary>Used with Init.Given, in the configured frame.</summary>
+        public Native.Quaternion Initial
+        {
+            get { return raw.Initial; }
+            set { raw.Initial = value; }
+        }
+
+        /// <summary>A parameter by slot id (ORIENT_PARAM_*), range-checked on set.</summary>
+        public double this[uint id]
+        {
+            get
+            {
+                double v;
+                OrientException.Check(NativeMethods.orient_config_get_param(ref raw, id, out v));
+                return v;
+            }
+            set { OrientException.Check(NativeMethods.orient_config_set_param(ref raw, id, value)); }
+        }
+
+        /// <summary>A parameter by name (see Parameters), range-checked on set.</summary>
+        public double this[string name]
+        {
+            get { return this[OrientFilter.FindParameter(Kind, name)]; }
+            set { this[OrientFilter.FindParameter(Kind, name)] = value; }
+        }
+
+        /// <summary>Gravity magnitude for the gravity and linear-acceleration outputs, m/s^2.</summary>
+        public double Gravity
+        {
+            get { return this[Consts.ParamGravity]; }
+            set { this[Consts.ParamGravity] = value; }
+        }
+
+        /// <summary>Gyroscope full scale, rad/s (0 = no saturation check).</summary>
+        public double GyroRange
+        {
+            get { return this[Consts.ParamGyroRange]; }
+            set { this[Consts.ParamGyroRange] = value; }
+        }
+
+        /// <summary>Accelerometer full scale, m/s^2 (0 = no saturation check).</summary>
+        public double AccelRange
+        {
+            get { return this[Consts.ParamAccelRange]; }
+            set { this[Consts.ParamAccelRange] = value; }
+        }
+
+        /// <summary>Every parameter of this kind, with unit, default, range and source.</summary>
+        public IList<ParameterInfo> Parameters
+        {
+            get { return OrientFilter.ParametersOf(Kind); }
+        }
+    }
+
+    /// <summary>An orientation filter of any kind.</summary>
+    public sealed class OrientFilter : IDisposable
+    {
+        private readonly FilterHandle handle = new FilterHandle();
+
+        public OrientFilter(Kind kind) : this(new OrientSettings(kind)) { }
+
+        public OrientFilter(OrientSettings settings)
+        {
+            IntPtr h;
+            OrientException.Check(NativeMethods.orient_filter_new(ref settings.raw, out h));
+            handle.Set(h);
+            Kind = settings.Kind;
+            Frame = settings.Frame;
+        }
+
+        public Kind Kind { get; private set; }
+        public Frame Frame { get; private set; }
+
+        /// <summary>The library version, e.g. "0.1.0".</summary>
+        public static string Version
+        {
+            get { return Marshal.PtrToStringAnsi(NativeMethods.orient_version()); }
+        }
+
+        /// <summary>Madgwick's beta from the maximum gyroscope error, eq. (33).</summary>
+        public static double MadgwickBeta(double gyroErrorRadPerSecond)
+        {
+            return NativeMethods.orient_madgwick_beta(gyroErrorRadPerSecond);
+        }
+
+        private IntPtr H
+        {
+            get
+            {
+                if (handle.IsClosed || handle.IsInvalid)
+                {
+                    throw new ObjectDisposedException("OrientFilter");
+                }
+                return handle.DangerousGetHandle();
+            }
+        }
+
+        public void Dispose()
+        {
+            handle.Dispose();
+        }
+
+        public bool IsDisposed
+        {
+            get { return handle.IsClosed; }
+        }
+
+        // ---- samples ----
+
+        public static Sample Imu(double dt, Vec3 gyro, Vec3 accel)
+        {
+            Sample s = new Sample();
+            s.Dt = dt;
+            s.Gyro = gyro;
+            s.Accel = accel;
+            s.Flags = Consts.SampleGyro | Consts.SampleAccel;
+            return s;
+        }
+
+        public static Sample Marg(double dt, Vec3 gyro, Vec3 accel, Vec3 mag)
+        {
+            Sample s = Imu(dt, gyro, accel);
+            s.Mag = mag;
+            s.Flags |= Consts.SampleMag;
+            return s;
+        }
+
+        /// <summary>One sample; throws OrientException (state unchanged) when rejected.</summary>
+        public void Update(Sample sample)
+        {
+            Status s = NativeMethods.orient_filter_update(H, ref sample);
+            GC.KeepAlive(this);
+            OrientException.Check(s);
+        }
+
+        /// <summary>Like Update, returning the status instead of throwing.</summary>
+        public Status TryUpdate(ref Sample sample)
+        {
+            Status s = NativeMethods.orient_filter_update(H, ref sample);
+            GC.KeepAlive(this);
+            return s;
+        }
+
+        /// <summary>
+        /// Updates with samples[offset .. offset+count]; when quaternions is not null it
+        /// receives the orientation after each sample (from index 0). Returns the number of
+        /// samples processed; throws OrientException at the first bad sample (the ones before
+        /// it stay applied; its index is in the message).
+        /// </summary>
+        public unsafe int UpdateBatch(Sample[] samples, int offset, int count, Native.Quaternion[] quaternions)
+        {
+            if (samples == null) throw new ArgumentNullException("samples");
+            if (offset < 0 || count < 0 || offset + count > samples.Length)
+                throw new ArgumentOutOfRangeException("count");
+            if (quaternions != null && quaternions.Length < count)
+                throw new ArgumentException("quaternions is shorter than count", "quaternions");
+            if (count == 0) return 0;
+            UIntPtr processed = UIntPtr.Zero;
+            Status s;
+            fixed (Sample* ps = &samples[offset])
+            {
+                if (quaternions != null)
+                {
+                    fixed (Native.Quaternion* pq = quaternions)
+                    {
+                        s = NativeMethods.orient_filter_update_batch(H, ps, (UIntPtr)count, pq, &processed);
+                    }
+                }
+                else
+                {
+                    s = NativeMethods.orient_filter_update_batch(H, ps, (UIntPtr)count, null, &processed);
+                }
+            }
+            GC.KeepAlive(this);
+            OrientException.Check(s);
+            return (int)processed;
+        }
+
+        public int UpdateBatch(Sample[] samples, Native.Quaternion[] quaternions)
+        {
+            return UpdateBatch(samples, 0, samples == null ? 0 : samples.Length, quaternions);
+        }
+
+        // ---- outputs ----
+
+        /// <summary>Orientation, sensor to earth, in the configured frame.</summary>
+        public Native.Quaternion Quaternion
+        {
+            get
+            {
+                Native.Quaternion q;
+                OrientException.Check(NativeMethods.orient_filter_quaternion(H, out q));
+                GC.KeepAlive(this);
+                return q;
+            }
+            set
+            {
+                OrientException.Check(NativeMethods.orient_filter_set_quaternion(H, ref value));
+                GC.KeepAlive(this);
+            }
+        }
+
+        public Euler Euler
+        {
+            get
+            {
+                Euler e;
+                OrientException.Check(NativeMethods.orient_filter_euler(H, out e));
+                GC.KeepAlive(this);
+                return e;
+            }
+        }
+
+        /// <summary>Row-major rotation matrix, sensor to earth.</summary>
+        public unsafe double[] RotationMatrix
+        {
+            get
+            {
+                double[] m = new double[9];
+                fixed (double* p = m)
+                {
+                    OrientException.Check(NativeMethods.orient_filter_rotation_matrix(H, p));
+                }
+                GC.KeepAlive(this);
+                return m;
+            }
+        }
+
+        /// <summary>The accelerometer reading at rest (gravity's reaction), sensor frame, m/s^2.</summary>
+        public Vec3 Gravity
+        {
+            get
+            {
+                Vec3 v;
+                OrientException.Check(NativeMethods.orient_filter_gravity(H, out v));
+                GC.KeepAlive(this);
+                return v;
+            }
+        }
+
+        /// <summary>Accelerometer minus gravity, sensor frame, m/s^2.</summary>
+        public Vec3 LinearAcceleration
+        {
+            get
+            {
+                Vec3 v;
+                OrientException.Check(NativeMethods.orient_filter_linear_accel(H, out v));
+                GC.KeepAlive(this);
+                return v;
+            }
+        }
+
+        /// <summary>Linear acceleration in the earth frame, m/s^2.</summary>
+        public Vec3 LinearAccelerationEarth
+        {
+            get
+            {
+                Vec3 v;
+                OrientException.Check(NativeMethods.orient_filter_linear_accel_earth(H, out v));
+                GC.KeepAlive(this);
+                return v;
+            }
+        }
+
+        public Diagnostics Diagnostics
+        {
+            get
+            {
+                Diagnostics d;
+                OrientException.Check(NativeMethods.orient_filter_diagnostics(H, out d));
+                GC.KeepAlive(this);
+                return d;
+            }
+        }
+
+        public uint Flags
+        {
+            get
+            {
+                uint f;
+                OrientException.Check(NativeMethods.orient_filter_flags(H, out f));
+                GC.KeepAlive(this);
+                return f;
+            }
+        }
+
+        public bool Initialized
+        {
+            get { return (Flags & Consts.FlagInitialized) != 0; }
+        }
+
+        public void Reset()
+        {
+            OrientException.Check(NativeMethods.orient_filter_reset(H));
+            GC.KeepAlive(this);
+        }
+
+        // ---- parameters ----
+
+        /// <summary>A parameter by slot id; set changes a running filter (range-checked).</summary>
+        public double this[uint id]
+        {
+            get
+            {
+                double v;
+                OrientException.Check(NativeMethods.orient_filter_get_param(H, id, out v));
+                GC.KeepAlive(this);
+                return v;
+            }
+            set
+            {
+                OrientException.Check(NativeMethods.orient_filter_set_param(H, id, value));
+                GC.KeepAlive(this);
+            }
+        }
+
+        public double this[string name]
+        {
+            get { return this[FindParameter(Kind, name)]; }
+            set { this[FindParameter(Kind, name)] = value; }
+        }
+
+        internal static uint FindParameter(Kind kind, string name)
+        {
+            if (name == null) throw new ArgumentNullException("name");
+            byte[] bytes = Encoding.UTF8.GetBytes(name + "\0");
+            uint id;
+            OrientException.Check(NativeMethods.orient_param_find((int)kind, bytes, out id));
+            return id;
+        }
+
+        /// <summary>Every parameter of a kind, for inspectors.</summary>
+        public static IList<ParameterInfo> ParametersOf(Kind kind)
+        {
+            uint n;
+            OrientException.Check(NativeMethods.orient_param_count((int)kind, out n));
+            List<ParameterInfo> list = new List<ParameterInfo>((int)n);
+            for (uint i = 0; i < n; i++)
+            {
+                Native.ParamInfo info;
+                OrientException.Check(NativeMethods.orient_param_info((int)kind, i, out info));
+                ParameterInfo p = new ParameterInfo();
+                p.Id = info.Id;
+                p.Name = Marshal.PtrToStringAnsi(info.Name);
+                p.Unit = Marshal.PtrToStringAnsi(info.Unit);
+                p.Description = Marshal.PtrToStringAnsi(info.Description);
+                p.Default = info.DefaultValue;
+                p.Min = info.Min;
+                p.Max = info.Max;
+                list.Add(p);
+            }
+            return list;
+        }
+    }
+
+    /// <summary>
+    /// Conversions between orient's right-handed earth frames (ENU, NED, NWU; Z up for ENU)
+    /// and Unity's left-handed, Y-up world. The map is the reflection that swaps the second
+    /// and third axes: a vector (x, y, z) in ENU is (x, z, y) in Unity (east stays +X, up
+    /// becomes +Y, north +Z); a rotation q = (w, x, y, z) becomes (x, y, z, w) =
+    /// (-x, -z, -y, w) in Unity's component order.
+    /// </summary>
+    public static class UnityConvert
+    {
+        private const double H = 0.70710678118654752440;
+
+        /// <summary>q_ENU = c * q_frame for a quaternion expressed in `frame`.</summary>
+        public static Native.Quaternion ToEnu(Native.Quaternion q, Frame frame)
+        {
+            switch (frame)
+            {
+                case Frame.Ned:
+                    return Mul(new Native.Quaternion(0, H, H, 0), q);
+                case Frame.Nwu:
+                    return Mul(new Native.Quaternion(H, 0, 0, H), q);
+                default:
+                    return q;
+            }
+        }
+
+        /// <summary>An orientation (sensor to earth, `frame`) as Unity's (x, y, z, w).</summary>
+        public static void ToUnity(Native.Quaternion q, Frame frame, out double x, out double y, out double z, out double w)
+        {
+            Native.Quaternion e = ToEnu(q, frame);
+            x = -e.X;
+            y = -e.Z;
+            z = -e.Y;
+            w = e.W;
+        }
+
+        /// <summary>Unity's (x, y, z, w) as an ENU orientation.</summary>
+        public static Native.Quaternion FromUnity(double x, double y, double z, double w)
+        {
+            return new Native.Quaternion(w, -x, -z, -y);
+        }
+
+        /// <summary>An ENU vector as Unity's (x, y, z).</summary>
+        public static void ToUnity(Vec3 v, out double x, out double y, out double z)
+        {
+            x = v.X;
+            y = v.Z;
+            z = v.Y;
+        }
+
+        /// <summary>Unity's (x, y, z) as an ENU vector.</summary>
+        public static Vec3 FromUnity(double x, double y, double z)
+        {
+            return new Vec3(x, z, y);
+        }
+
+        /// <summary>Hamilton product a * b.</summary>
+        public static Native.Quaternion Mul(Native.Quaternion a, Native.Quaternion b)
+        {
+            return new Native.Quaternion(
+                a.W * b.W - a.X * b.X - a.Y * b.Y - a.Z * b.Z,
+                a.W * b.X + a.X * b.W + a.Y * b.Z - a.Z * b.Y,
+                a.W * b.Y - a.X * b.Z + a.Y * b.W + a.Z * b.X,
+                a.W * b.Z + a.X * b.Y - a.Y * b.X + a.Z * b.W);
+        }
+    }
+}

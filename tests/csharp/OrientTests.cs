@@ -1,0 +1,261 @@
+// The C# binding under Mono: golden vectors bit for bit through the wrapper (single and
+// batch), every status path, disposal, struct layout, Unity conversions.
+// Built and run by tests/csharp_binding.rs; ends with "N passed, N failed".
+using System;
+using System.Collections.Generic;
+using System.Globalization;
+using System.IO;
+using System.Runtime.InteropServices;
+using Orient;
+using Orient.Native;
+
+public static class OrientTests
+{
+    static int passed, failed;
+
+    static void Check(bool ok, string what)
+    {
+        if (ok) { passed++; }
+        else { failed++; Console.WriteLine("FAIL " + what); }
+    }
+
+    static void Throws(Status expected, Action action, string what)
+    {
+        try
+        {
+            action();
+            Check(false, what + ": no exception");
+        }
+        catch (OrientException e)
+        {
+            Check(e.Status == expected, what + ": got " + e.Status + " (" + e.Message + ")");
+        }
+    }
+
+    static double Unhex(string s)
+    {
+        return BitConverter.Int64BitsToDouble(unchecked((long)ulong.Parse(s, NumberStyles.HexNumber)));
+    }
+
+    static bool Same(Orient.Native.Quaternion a, Orient.Native.Quaternion b)
+    {
+        return BitConverter.DoubleToInt64Bits(a.W) == BitConverter.DoubleToInt64Bits(b.W)
+            && BitConverter.DoubleToInt64Bits(a.X) == BitConverter.DoubleToInt64Bits(b.X)
+            && BitConverter.DoubleToInt64Bits(a.Y) == BitConverter.DoubleToInt64Bits(b.Y)
+            && BitConverter.DoubleToInt64Bits(a.Z) == BitConverter.DoubleToInt64Bits(b.Z);
+    }
+
+    static void Layout()
+    {
+        Check(Marshal.SizeOf(typeof(Sample)) == 88, "sizeof Sample");
+        Check(Marshal.SizeOf(typeof(Config)) == 1072, "sizeof Config");
+        Check(Marshal.SizeOf(typeof(Diagnostics)) == 176, "sizeof Diagnostics");
+        Check(Marshal.SizeOf(typeof(ParamInfo)) == 56, "sizeof ParamInfo");
+        Check((int)Marshal.OffsetOf(typeof(Sample), "Flags") == 80, "offset Sample.Flags");
+        Check((int)Marshal.OffsetOf(typeof(Config), "Params") == 48, "offset Config.Params");
+        Check((int)Marshal.OffsetOf(typeof(Diagnostics), "Covariance") == 96, "offset Diagnostics.Covariance");
+        Check(NativeMethods.orient_abi_version() == Consts.AbiVersion, "ABI version");
+        Check(OrientFilter.Version.Length > 0, "version");
+    }
+
+    static void Golden(string path)
+    {
+        int cases = 0;
+        OrientSettings settings = null;
+        string name = "";
+        var samples = new List<Sample>();
+        var expected = new List<Orient.Native.Quaternion>();
+        foreach (string line in File.ReadAllLines(path))
+        {
+            string[] t = line.Split(new[] { ' ' }, StringSplitOptions.RemoveEmptyEntries);
+            if (t.Length == 0 || t[0].StartsWith("#")) continue;
+            if (t[0] == "case")
+            {
+                name = t[1];
+                settings = new OrientSettings((Kind)int.Parse(t[2]));
+                settings.Frame = (Frame)int.Parse(t[3]);
+                settings.Init = (Init)int.Parse(t[4]);
+                settings.Initial = new Orient.Native.Quaternion(Unhex(t[5]), Unhex(t[6]), Unhex(t[7]), Unhex(t[8]));
+                int n = int.Parse(t[9]);
+                for (int i = 0; i < n; i++)
+                {
+                    settings[uint.Parse(t[10 + 2 * i])] = Unhex(t[11 + 2 * i]);
+                }
+                samples.Clear();
+                expected.Clear();
+            }
+            else if (t[0] == "s")
+            {
+                Sample s = new Sample();
+                s.Dt = Unhex(t[1]);
+                s.Gyro = new Vec3(Unhex(t[2]), Unhex(t[3]), Unhex(t[4]));
+                s.Accel = new Vec3(Unhex(t[5]), Unhex(t[6]), Unhex(t[7]));
+                s.Mag = new Vec3(Unhex(t[8]), Unhex(t[9]), Unhex(t[10]));
+                s.Flags = uint.Parse(t[11]);
+                samples.Add(s);
+                expected.Add(new Orient.Native.Quaternion(Unhex(t[12]), Unhex(t[13]), Unhex(t[14]), Unhex(t[15])));
+            }
+            else if (t[0] == "end")
+            {
+                cases++;
+                int mismatches = 0;
+                using (var f = new OrientFilter(settings))
+                {
+                    for (int i = 0; i < samples.Count; i++)
+                    {
+                        f.Update(samples[i]);
+                        if (!Same(f.Quaternion, expected[i])) mismatches++;
+                    }
+                }
+                Check(mismatches == 0, "golden " + name + " single: " + mismatches + " mismatches");
+                using (var f = new OrientFilter(settings))
+                {
+                    var output = new Orient.Native.Quaternion[samples.Count];
+                    int done = f.UpdateBatch(samples.ToArray(), output);
+                    Check(done == samples.Count, "golden " + name + " batch count");
+                    mismatches = 0;
+                    for (int i = 0; i < output.Length; i++)
+                    {
+                        if (!Same(output[i], expected[i])) mismatches++;
+                    }
+                    Check(mismatches == 0, "golden " + name + " batch: " + mismatches + " mismatches");
+                }
+            }
+        }
+        Check(cases >= 9, "golden cases: " + cases);
+        Console.WriteLine("golden: " + cases + " cases");
+    }
+
+    static Sample Good()
+    {
+        return OrientFilter.Marg(0.01, new Vec3(0.1, -0.2, 0.3), new Vec3(0.5, 0.2, 9.7), new Vec3(10, 20, -40));
+    }
+
+    static void StatusPaths()
+    {
+        Throws(Status.InvalidArgument, () => new OrientSettings((Kind)42), "unknown kind");
+        var settings = new OrientSettings(Kind.Madgwick);
+        Throws(Status.ParamOutOfRange, () => settings["beta_imu"] = -1.0, "beta out of range");
+        Throws(Status.UnknownParam, () => settings["no_such"] = 1.0, "unknown name");
+        Throws(Status.UnknownParam, () => settings[99u] = 1.0, "unknown slot");
+        settings["beta_marg"] = 0.05;
+        Check(settings[Consts.ParamMadgwickBetaMarg] == 0.05, "set by name, read by id");
+        Check(settings.Parameters.Count == 5, "parameter list");
+        Check(settings.Gravity == 9.80665, "gravity default");
+
+        foreach (Kind kind in new[] { Kind.Madgwick, Kind.Mahony, Kind.Complementary, Kind.Ekf, Kind.Gmvdk })
+        {
+            using (var f = new OrientFilter(kind))
+            {
+                f.GyroRangeForTest(30.0);
+                // Warm up past any start-up period.
+                Sample still = Good();
+                still.Gyro = new Vec3(0, 0, 0);
+                int n = 0;
+                while (!f.Initialized && n++ < 1000) f.Update(still);
+                Check(f.Initialized, kind + " initialises");
+                f.Update(Good());
+                Orient.Native.Quaternion before = f.Quaternion;
+                Sample s;
+                s = Good(); s.Dt = 0; Throws(Status.InvalidDt, () => f.Update(s), kind + " dt 0");
+                s = Good(); s.Dt = double.NaN; Throws(Status.InvalidDt, () => f.Update(s), kind + " dt NaN");
+                s = Good(); s.Gyro.Y = double.NaN; Throws(Status.NonFinite, () => f.Update(s), kind + " gyro NaN");
+                s = Good(); s.Accel = new Vec3(0, 0, 0); Throws(Status.ZeroVector, () => f.Update(s), kind + " zero accel");
+                s = Good(); s.Mag.X = double.PositiveInfinity; Throws(Status.NonFinite, () => f.Update(s), kind + " mag inf");
+                s = Good(); s.Gyro.X = 31; Throws(Status.Saturated, () => f.Update(s), kind + " saturated");
+                s = Good(); s.Flags = Consts.SampleAccel; Throws(Status.MissingSensor, () => f.Update(s), kind + " no gyro");
+                s = Good(); s.Flags |= 8; Throws(Status.InvalidArgument, () => f.Update(s), kind + " unknown flag");
+                Check(Same(before, f.Quaternion), kind + " state unchanged after rejections");
+                Diagnostics d = f.Diagnostics;
+                Check((d.Present != 0) == (kind != Kind.Madgwick), kind + " diagnostics present");
+                Check(kind == Kind.Gmvdk ? d.Alpha >= 0 && d.Alpha <= 1 : double.IsNaN(d.Alpha), kind + " alpha");
+            }
+        }
+
+        // Batch: stops at the first bad sample, reports its index, keeps the ones before.
+        using (var f = new OrientFilter(Kind.Madgwick))
+        using (var twin = new OrientFilter(Kind.Madgwick))
+        {
+            var batch = new[] { Good(), Good(), Good(), Good() };
+            batch[2].Accel.X = double.NaN;
+            try
+            {
+                f.UpdateBatch(batch, null);
+                Check(false, "batch should throw");
+            }
+            catch (OrientException e)
+            {
+                Check(e.Status == Status.NonFinite && e.Message.Contains("sample 2"), "batch error: " + e.Message);
+            }
+            twin.UpdateBatch(batch, 0, 2, null);
+            Check(Same(f.Quaternion, twin.Quaternion), "batch keeps the samples before the bad one");
+            Throws(Status.NoData, () => new OrientFilter(Kind.Ekf).LinearAcceleration.ToString(), "no data yet");
+        }
+
+        // Disposal: twice is harmless, use afterwards is an ObjectDisposedException.
+        var g = new OrientFilter(Kind.Mahony);
+        g.Dispose();
+        g.Dispose();
+        Check(g.IsDisposed, "disposed");
+        try
+        {
+            g.Update(Good());
+            Check(false, "use after dispose");
+        }
+        catch (ObjectDisposedException)
+        {
+            passed++;
+        }
+        // The native free reports a stale handle instead of crashing.
+        Check(NativeMethods.orient_filter_free(IntPtr.Zero) == Status.Ok, "free(NULL)");
+        Check(Math.Abs(OrientFilter.MadgwickBeta(0.1) - Math.Sqrt(0.75) * 0.1) < 1e-15, "beta eq. 33");
+    }
+
+    static void Conversions()
+    {
+        // ENU yaw +90° (east -> north) is a turn to the left seen from above; in Unity that
+        // is -90° about +Y and takes +X (east) to +Z (north).
+        var q = new Orient.Native.Quaternion(Math.Sqrt(0.5), 0, 0, Math.Sqrt(0.5));
+        double x, y, z, w;
+        UnityConvert.ToUnity(q, Frame.Enu, out x, out y, out z, out w);
+        Check(Math.Abs(x) < 1e-15 && Math.Abs(y + Math.Sqrt(0.5)) < 1e-15 && Math.Abs(z) < 1e-15, "yaw to Unity");
+        // Rotate Unity's +X with (x, y, z, w): q v q*.
+        var u = new Orient.Native.Quaternion(w, x, y, z);
+        var v = UnityConvert.Mul(UnityConvert.Mul(u, new Orient.Native.Quaternion(0, 1, 0, 0)),
+                                 new Orient.Native.Quaternion(u.W, -u.X, -u.Y, -u.Z));
+        Check(Math.Abs(v.X) < 1e-12 && Math.Abs(v.Y) < 1e-12 && Math.Abs(v.Z - 1) < 1e-12, "east goes to north (+Z)");
+        // Round trips, and frames agree: the same physical orientation from NED and ENU.
+        var back = UnityConvert.FromUnity(x, y, z, w);
+        Check(Same(back, q), "Unity round trip");
+        var ned = UnityConvert.Mul(new Orient.Native.Quaternion(0, Math.Sqrt(0.5), Math.Sqrt(0.5), 0), q);
+        double x2, y2, z2, w2;
+        UnityConvert.ToUnity(ned, Frame.Ned, out x2, out y2, out z2, out w2);
+        // The same rotation (q and -q are one rotation).
+        Check(Math.Abs(Math.Abs(x2 * x + y2 * y + z2 * z + w2 * w) - 1) < 1e-12, "NED = ENU in Unity");
+        Vec3 up = UnityConvert.FromUnity(0, 1, 0);
+        Check(up.X == 0 && up.Y == 0 && up.Z == 1, "Unity up is ENU up");
+    }
+
+    public static int Main(string[] args)
+    {
+        if (args.Length != 1)
+        {
+            Console.Error.WriteLine("usage: OrientTests.exe GOLDEN_FILE");
+            return 2;
+        }
+        Layout();
+        StatusPaths();
+        Conversions();
+        Golden(args[0]);
+        Console.WriteLine(passed + " passed, " + failed + " failed");
+        return failed == 0 ? 0 : 1;
+    }
+}
+
+static class TestExtensions
+{
+    public static void GyroRangeForTest(this OrientFilter f, double range)
+    {
+        f[Consts.ParamGyroRange] = range;
+    }
+}

@@ -1,0 +1,157 @@
+//! The C# binding: its declarations match include/orient.h, its wrapper replays the
+//! golden vectors bit for bit under Mono, and the Unity scripts compile against a stub
+//! of UnityEngine. Needs Mono's mcs and mono (scripts/setup-debian.sh installs them).
+#![cfg(not(miri))]
+
+mod common;
+
+use common::native::{check, deps_dir, out_dir, root};
+use std::collections::BTreeMap;
+use std::process::Command;
+
+fn read(path: &str) -> String {
+    std::fs::read_to_string(root().join(path)).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// The text without /* */ and // comments or preprocessor lines.
+fn code_only(text: &str) -> String {
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(start) = rest.find("/*") {
+        out.push_str(&rest[..start]);
+        rest = rest[start..].find("*/").map_or("", |end| &rest[start + end + 2..]);
+    }
+    out.push_str(rest);
+    out.lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .filter(|l| !l.trim_start().starts_with('#'))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Function name -> parameter count, from C or C# declarations (joined over lines).
+fn functions(text: &str, marker: &str) -> BTreeMap<String, usize> {
+    let flat = code_only(text).split_whitespace().collect::<Vec<_>>().join(" ");
+    let mut out = BTreeMap::new();
+    for piece in flat.split(';') {
+        if !piece.contains(marker) {
+            continue;
+        }
+        let Some(open) = piece.find("orient_") else { continue };
+        let rest = &piece[open..];
+        let Some(paren) = rest.find('(') else { continue };
+        let name = rest[..paren].trim().to_string();
+        let args = rest[paren + 1..].rsplit_once(')').map(|(a, _)| a.trim()).unwrap_or("");
+        let count = if args.is_empty() || args == "void" { 0 } else { args.split(',').count() };
+        out.insert(name, count);
+    }
+    out
+}
+
+fn camel(screaming: &str) -> String {
+    screaming
+        .split('_')
+        .map(|w| {
+            let mut c = w.chars();
+            c.next()
+                .map(|f| f.to_ascii_uppercase().to_string() + &c.as_str().to_ascii_lowercase())
+                .unwrap_or_default()
+        })
+        .collect()
+}
+
+#[test]
+fn csharp_declarations_match_the_header() {
+    let header = read("include/orient.h");
+    let cs = read("bindings/csharp/Orient.Native.cs");
+
+    let c_fns = functions(&header, "orient_");
+    let cs_fns = functions(&cs, "static extern");
+    assert_eq!(c_fns.len(), 28, "{c_fns:?}");
+    assert_eq!(
+        c_fns, cs_fns,
+        "functions (name -> parameter count) differ between orient.h and Orient.Native.cs"
+    );
+
+    // Every #define ORIENT_X N is `public const uint X = N;` (camel-cased).
+    let mut missing = Vec::new();
+    for line in header.lines().filter_map(|l| l.strip_prefix("#define ORIENT_")) {
+        let mut parts = line.split_whitespace();
+        let (Some(name), Some(value)) = (parts.next(), parts.next()) else { continue };
+        let decl = format!("public const uint {} = {value};", camel(name));
+        if !cs.contains(&decl) {
+            missing.push(decl);
+        }
+    }
+    assert!(missing.is_empty(), "constants missing or different in Orient.Native.cs: {missing:?}");
+    let cs_consts = cs.matches("public const uint ").count();
+    let c_consts =
+        header.lines().filter(|l| l.starts_with("#define ORIENT_") && !l.contains("ORIENT_H")).count();
+    assert_eq!(cs_consts, c_consts, "Orient.Native.cs has constants the header lacks");
+
+    // Every enumerator ORIENT_<ENUM>_<NAME> = N appears as `<Name> = N,` in the C# enum.
+    for (prefix, enum_name) in [
+        ("ORIENT_STATUS_", "Status"),
+        ("ORIENT_KIND_", "Kind"),
+        ("ORIENT_FRAME_", "Frame"),
+        ("ORIENT_INIT_", "Init"),
+    ] {
+        let start =
+            cs.find(&format!("public enum {enum_name} : int")).unwrap_or_else(|| panic!("enum {enum_name}"));
+        let body = &cs[start..start + cs[start..].find('}').unwrap()];
+        let mut n = 0;
+        for line in header.lines().map(str::trim).filter(|l| l.starts_with(prefix) && l.contains(" = ")) {
+            let (name, value) = line.trim_end_matches(',').split_once(" = ").unwrap();
+            let expected = format!("{} = {value},", camel(&name[prefix.len()..]));
+            assert!(body.contains(&expected), "enum {enum_name} lacks `{expected}`");
+            n += 1;
+        }
+        assert_eq!(body.matches(" = ").count(), n, "enum {enum_name} has members the header lacks");
+    }
+}
+
+fn tool(name: &str) -> Command {
+    let probe = Command::new(name).arg("--version").output();
+    assert!(
+        probe.is_ok_and(|o| o.status.success()),
+        "{name} not found: install Debian's mono-mcs and mono-runtime (scripts/setup-debian.sh does)"
+    );
+    Command::new(name)
+}
+
+#[test]
+fn csharp_wrapper_replays_the_golden_vectors_under_mono() {
+    let dir = out_dir("csharp");
+    std::fs::copy(deps_dir().join("liborient.so"), dir.join("liborient.so")).unwrap();
+    let exe = dir.join("OrientTests.exe");
+    let mut mcs = tool("mcs");
+    mcs.args(["-unsafe", "-warnaserror", "-nologo"])
+        .arg(format!("-out:{}", exe.display()))
+        .arg(root().join("bindings/csharp/Orient.Native.cs"))
+        .arg(root().join("bindings/csharp/Orient.cs"))
+        .arg(root().join("tests/csharp/OrientTests.cs"));
+    check(mcs, "mcs OrientTests");
+    let mut mono = tool("mono");
+    mono.arg(&exe).arg(common::golden::PATH).env("LD_LIBRARY_PATH", &dir);
+    let out = mono.output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    print!("{stdout}");
+    eprint!("{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "mono OrientTests.exe failed");
+    let summary = stdout.lines().last().unwrap_or("");
+    assert!(summary.ends_with(" 0 failed") && !summary.starts_with("0 passed"), "{summary}");
+}
+
+#[test]
+fn unity_scripts_compile_against_the_unityengine_stub() {
+    let dir = out_dir("unity");
+    let mut mcs = tool("mcs");
+    mcs.args(["-unsafe", "-warnaserror", "-nologo", "-target:library"])
+        .arg(format!("-out:{}", dir.join("Orient.Unity.dll").display()))
+        .arg(root().join("bindings/csharp/Orient.Native.cs"))
+        .arg(root().join("bindings/csharp/Orient.cs"))
+        .arg(root().join("bindings/unity/Runtime/OrientUnity.cs"))
+        .arg(root().join("bindings/unity/Samples~/HandBone/OrientBoneDriver.cs"))
+        .arg(root().join("tests/csharp/UnityEngineStub.cs"));
+    check(mcs, "mcs Unity scripts");
+}
