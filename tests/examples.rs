@@ -1,0 +1,84 @@
+//! The examples in every language build and run on the demo recording.
+#![cfg(not(miri))]
+
+mod common;
+
+use common::native::{check, compiler, deps_dir, link_shared, out_dir, root, run};
+use std::process::Command;
+
+const EXCERPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/data/broad_01_excerpt.csv");
+
+fn stdout_of(output: std::process::Output, what: &str) -> String {
+    let text = String::from_utf8_lossy(&output.stdout).into_owned();
+    print!("{text}");
+    eprint!("{}", String::from_utf8_lossy(&output.stderr));
+    assert!(output.status.success(), "{what} failed");
+    text
+}
+
+#[test]
+fn c_example_prints_the_orientation() {
+    let dir = out_dir("example_c");
+    let exe = dir.join("print_orientation");
+    let mut cmd = compiler(false);
+    cmd.args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .arg(root().join("examples/c/print_orientation.c"))
+        .arg("-o")
+        .arg(&exe);
+    link_shared(&mut cmd, &dir);
+    check(cmd, "compiling print_orientation.c");
+    let out = stdout_of(run(&exe, &[EXCERPT]), "print_orientation");
+    assert!(out.contains("13500 samples; final q = ("), "{out}");
+}
+
+#[test]
+fn cpp_example_runs_every_filter_side_by_side() {
+    let dir = out_dir("example_cpp");
+    let exe = dir.join("side_by_side");
+    let mut cmd = compiler(true);
+    cmd.args(["-std=c++17", "-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .arg("-I")
+        .arg(root().join("bindings/cpp"))
+        .arg(root().join("examples/cpp/side_by_side.cpp"))
+        .arg("-o")
+        .arg(&exe);
+    link_shared(&mut cmd, &dir);
+    check(cmd, "compiling side_by_side.cpp");
+    let out = stdout_of(run(&exe, &[EXCERPT]), "side_by_side");
+    assert!(out.contains("13500 samples, 5 filters"), "{out}");
+    for kind in ["madgwick", "mahony", "complementary", "ekf", "gmvdk"] {
+        assert!(out.lines().any(|l| l.starts_with(kind) && l.contains("RMS error")), "{kind}: {out}");
+    }
+}
+
+#[test]
+fn csharp_console_example_runs_under_mono() {
+    let dir = out_dir("example_csharp");
+    std::fs::copy(deps_dir().join("liborient.so"), dir.join("liborient.so")).unwrap();
+    let exe = dir.join("ConsoleExample.exe");
+    let mut mcs = Command::new("mcs");
+    mcs.args(["-unsafe", "-warnaserror", "-nologo"])
+        .arg(format!("-out:{}", exe.display()))
+        .arg(root().join("bindings/csharp/Orient.Native.cs"))
+        .arg(root().join("bindings/csharp/Orient.cs"))
+        .arg(root().join("examples/csharp/ConsoleExample.cs"));
+    check(mcs, "mcs ConsoleExample");
+    let out = Command::new("mono").arg(&exe).arg(EXCERPT).env("LD_LIBRARY_PATH", &dir).output().unwrap();
+    let out = stdout_of(out, "ConsoleExample.exe");
+    assert!(out.contains("13500 samples; ENU q = (") && out.contains("alpha "), "{out}");
+}
+
+#[test]
+fn rust_quickstart_example_runs() {
+    let bin = deps_dir().parent().unwrap().join("examples/quickstart");
+    if !bin.exists() {
+        let status = Command::new(env!("CARGO"))
+            .args(["build", "--quiet", "--example", "quickstart", "--manifest-path"])
+            .arg(root().join("Cargo.toml"))
+            .status()
+            .unwrap();
+        assert!(status.success());
+    }
+    let out = stdout_of(Command::new(&bin).output().unwrap(), "quickstart");
+    assert_eq!(out.lines().filter(|l| l.contains("error vs truth")).count(), 5, "{out}");
+}
