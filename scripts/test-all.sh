@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Every test: setup, formatting, lints, the generated header and the exported
-# symbols, then cargo test (Rust unit and integration tests, doc tests, the C test
-# program against the .so and the .a, golden vectors, BROAD recordings in
-# ../shared/data).
+# symbols, the ABI against its baseline, then cargo test: Rust unit and integration
+# tests, doc tests, the C test program against the .so and the .a, the C++ wrapper
+# (with and without exceptions), the C# binding under Mono and the Unity scripts
+# against a stub, the examples in every language, the install layout with CMake and
+# pkg-config consumers, golden vectors, and the BROAD recordings in ../shared/data.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup-debian.sh
@@ -14,5 +16,7 @@ echo "== clippy"
 cargo clippy --all-targets --quiet -- -D warnings
 echo "== header and exports"
 scripts/check-header.sh
+echo "== ABI against the committed baseline"
+scripts/check-abi.sh
 echo "== cargo test"
 cargo test
