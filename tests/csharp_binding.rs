@@ -143,15 +143,30 @@ fn csharp_wrapper_replays_the_golden_vectors_under_mono() {
 }
 
 #[test]
-fn unity_scripts_compile_against_the_unityengine_stub() {
+fn unity_package_assembles_and_compiles_against_the_unityengine_stub() {
     let dir = out_dir("unity");
+    let mut package = Command::new(root().join("scripts/package-unity.sh"));
+    package.arg(&dir);
+    check(package, "package-unity.sh");
+    let pkg = dir.join("com.orient.filters");
+    for f in [
+        "package.json",
+        "Runtime/Orient.Runtime.asmdef",
+        "Runtime/Orient.cs",
+        "Samples~/HandBone/OrientBoneDriver.cs",
+    ] {
+        assert!(pkg.join(f).exists(), "{f} missing from the package");
+    }
+    let asmdef = std::fs::read_to_string(pkg.join("Runtime/Orient.Runtime.asmdef")).unwrap();
+    assert!(asmdef.contains("\"allowUnsafeCode\": true"));
+    // Everything the package compiles in Unity, here against the stub.
     let mut mcs = tool("mcs");
     mcs.args(["-unsafe", "-warnaserror", "-nologo", "-target:library"])
         .arg(format!("-out:{}", dir.join("Orient.Unity.dll").display()))
-        .arg(root().join("bindings/csharp/Orient.Native.cs"))
-        .arg(root().join("bindings/csharp/Orient.cs"))
-        .arg(root().join("bindings/unity/Runtime/OrientUnity.cs"))
-        .arg(root().join("bindings/unity/Samples~/HandBone/OrientBoneDriver.cs"))
+        .arg(pkg.join("Runtime/Orient.Native.cs"))
+        .arg(pkg.join("Runtime/Orient.cs"))
+        .arg(pkg.join("Runtime/OrientUnity.cs"))
+        .arg(pkg.join("Samples~/HandBone/OrientBoneDriver.cs"))
         .arg(root().join("tests/csharp/UnityEngineStub.cs"));
     check(mcs, "mcs Unity scripts");
 }
