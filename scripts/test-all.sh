@@ -4,10 +4,12 @@
 # tests, doc tests, the C test program against the .so and the .a, the C++ wrapper
 # (with and without exceptions), the C# binding under Mono and the Unity scripts
 # against a stub, the examples in every language, the install layout with CMake and
-# pkg-config consumers, golden vectors, and the BROAD recordings in ../shared/data.
+# pkg-config consumers, golden vectors, and the BROAD recordings in ../shared/data;
+# then the same suite for aarch64 and armv7 under qemu-user (the golden vectors must
+# match bit for bit there too).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup-debian.sh
+scripts/setup-debian.sh --cross
 export PATH="$HOME/.cargo/bin:$PATH"
 
 echo "== format"
@@ -20,3 +22,7 @@ echo "== ABI against the committed baseline"
 scripts/check-abi.sh
 echo "== cargo test"
 cargo test
+for board in aarch64 armv7; do
+  echo "== cargo test for $board under qemu"
+  scripts/test-cross.sh "$board"
+done

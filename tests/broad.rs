@@ -6,7 +6,9 @@
 
 use orient::eval::{remove_heading_offset, score, Recording, Scores};
 use orient::{Config, Filter, Frame, Kind, Quat};
+use std::collections::HashMap;
 use std::path::PathBuf;
+use std::sync::{Mutex, OnceLock};
 
 fn broad_dir() -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/broad");
@@ -20,13 +22,28 @@ fn broad_dir() -> Option<PathBuf> {
     panic!("{} not found (set ORIENT_SKIP_SHARED_DATA=1 to skip)", dir.display());
 }
 
+/// A trial, read once per test process (parsing is most of the cost under emulation);
+/// without `with_mag` its magnetometer readings are dropped.
 fn trial(dir: &PathBuf, prefix: &str, with_mag: bool) -> Recording {
-    let entry = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .find(|p| p.file_name().unwrap().to_string_lossy().starts_with(prefix))
-        .unwrap_or_else(|| panic!("trial {prefix} missing"));
-    Recording::read(&entry, with_mag).unwrap()
+    static CACHE: OnceLock<Mutex<HashMap<String, Recording>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    let mut rec = {
+        let mut map = cache.lock().unwrap();
+        map.entry(prefix.to_string())
+            .or_insert_with(|| {
+                let entry = std::fs::read_dir(dir)
+                    .unwrap()
+                    .map(|e| e.unwrap().path())
+                    .find(|p| p.file_name().unwrap().to_string_lossy().starts_with(prefix))
+                    .unwrap_or_else(|| panic!("trial {prefix} missing"));
+                Recording::read(&entry, true).unwrap()
+            })
+            .clone()
+    };
+    if !with_mag {
+        rec.mag.clear();
+    }
+    rec
 }
 
 fn run(config: &Config, rec: &Recording) -> Vec<Quat> {

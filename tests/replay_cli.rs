@@ -1,6 +1,8 @@
 //! The replay tool's interface: other scripts depend on it.
 #![cfg(not(miri))]
 
+mod common;
+
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
@@ -25,7 +27,7 @@ fn replay() -> PathBuf {
 }
 
 fn run(args: &[&str]) -> Output {
-    Command::new(replay()).args(args).output().unwrap()
+    common::native::command(&replay()).args(args).output().unwrap()
 }
 
 fn tmp(name: &str) -> PathBuf {

@@ -377,6 +377,26 @@ impl Gmvdk {
         }
     }
 
+    /// Back to the state of [`Gmvdk::new`] with the current settings, keeping the
+    /// window's allocation: no heap use after creation.
+    pub fn reset(&mut self) {
+        self.window.head = 0;
+        self.window.len = 0;
+        self.q = Quat::IDENTITY;
+        self.q_start = Quat::IDENTITY;
+        self.bias = Vec3::ZERO;
+        self.a_init = None;
+        self.m_init = None;
+        self.g0 = 0.0;
+        self.ms_gyro = 0.0;
+        self.ms_accel = 0.0;
+        self.time = 0.0;
+        self.startup = Some(Startup::default());
+        self.regression = Regression::default();
+        self.trust = Trust::default();
+        self.mag_seen = false;
+    }
+
     /// The output: ENU, or relative to the start-up pose with `relative_output`.
     pub fn quaternion(&self) -> Quat {
         if self.settings.relative_output {
@@ -612,6 +632,27 @@ mod tests {
             assert!(m <= 1.0);
         }
         assert!(fast.len <= 1001);
+    }
+
+    #[test]
+    fn reset_equals_a_new_filter() {
+        let mut f = Gmvdk::new(GmvdkSettings::default());
+        f.set_quaternion(Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.3));
+        for _ in 0..50 {
+            f.update(
+                0.01,
+                Vec3::new(0.1, 0.0, 0.0),
+                Some(Vec3::new(0.0, 1.0, 9.7)),
+                Some(Vec3::new(5.0, 20.0, -40.0)),
+            )
+            .unwrap();
+        }
+        f.reset();
+        let fresh = Gmvdk::new(GmvdkSettings::default());
+        // The window's stale slots do not matter: len is 0.
+        assert_eq!((f.window.len, f.window.head), (0, 0));
+        f.window = fresh.window.clone();
+        assert_eq!(f, fresh);
     }
 
     #[test]

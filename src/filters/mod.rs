@@ -405,6 +405,17 @@ impl Core {
         each!(self, f => f.set_quaternion(q))
     }
 
+    /// Back to the state of [`Core::new`] without touching the heap.
+    fn reset(&mut self, config: &Config) {
+        match self {
+            Core::Gmvdk(g) => {
+                g.settings = gmvdk_settings(config);
+                g.reset();
+            }
+            _ => *self = Core::new(config),
+        }
+    }
+
     /// Takes new settings from the configuration; the state is kept.
     fn configure(&mut self, config: &Config) {
         match self {
@@ -561,7 +572,7 @@ impl Filter {
 
     /// Back to the state right after [`Filter::new`]; the settings are kept.
     pub fn reset(&mut self) {
-        self.core = Core::new(&self.config);
+        self.core.reset(&self.config);
         self.last_accel = None;
         self.flags = 0;
         match self.config.init {

@@ -1,6 +1,6 @@
 //! Building and running programs in other languages against the library, for the
-//! tests: where cargo test left liborient.so/.a, the C/C++ compiler, and a runner that
-//! honours ORIENT_TEST_RUNNER (e.g. "qemu-aarch64 -L /usr/aarch64-linux-gnu").
+//! tests: where cargo test left liborient.so/.a, the C/C++ compiler for the target, and
+//! a runner that starts foreign binaries through qemu (or ORIENT_TEST_RUNNER).
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
@@ -68,20 +68,45 @@ pub fn check(mut cmd: Command, what: &str) {
     );
 }
 
-/// Runs a program the tests built, through ORIENT_TEST_RUNNER when it is set
-/// (binfmt_misc may be absent for foreign binaries).
-pub fn run(program: &Path, args: &[&str]) -> Output {
-    let runner = std::env::var("ORIENT_TEST_RUNNER").unwrap_or_default();
-    let mut words = runner.split_whitespace();
-    let mut cmd = match words.next() {
-        Some(first) => {
-            let mut c = Command::new(first);
+/// True when the tests run for another target than the machine's (under qemu).
+pub fn cross() -> bool {
+    let (target, host) = (env!("ORIENT_BUILD_TARGET"), env!("ORIENT_BUILD_HOST"));
+    target != host
+}
+
+/// The emulator command for a foreign target: ORIENT_TEST_RUNNER when set, else qemu
+/// for the Linux board targets of .cargo/config.toml.
+fn runner() -> Option<String> {
+    if let Ok(r) = std::env::var("ORIENT_TEST_RUNNER") {
+        return (!r.trim().is_empty()).then_some(r);
+    }
+    if !cross() {
+        return None;
+    }
+    match env!("ORIENT_BUILD_TARGET") {
+        "aarch64-unknown-linux-gnu" => Some("qemu-aarch64 -L /usr/aarch64-linux-gnu".into()),
+        "armv7-unknown-linux-gnueabihf" => Some("qemu-arm -L /usr/arm-linux-gnueabihf".into()),
+        t => panic!("no emulator known for {t}: set ORIENT_TEST_RUNNER"),
+    }
+}
+
+/// A command that starts a program built for the target (through the emulator when
+/// cross-testing: binfmt_misc may be absent).
+pub fn command(program: &Path) -> Command {
+    match runner() {
+        Some(r) => {
+            let mut words = r.split_whitespace();
+            let mut c = Command::new(words.next().unwrap());
             c.args(words).arg(program);
             c
         }
         None => Command::new(program),
-    };
-    cmd.args(args).output().unwrap_or_else(|e| panic!("cannot run {}: {e}", program.display()))
+    }
+}
+
+/// Runs a program the tests built, through the emulator when cross-testing.
+pub fn run(program: &Path, args: &[&str]) -> Output {
+    command(program).args(args).output().unwrap_or_else(|e| panic!("cannot run {}: {e}", program.display()))
 }
 
 /// Runs a test program and requires a zero exit and a closing "N passed, 0 failed" line.
