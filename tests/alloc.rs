@@ -130,10 +130,22 @@ fn updates_and_outputs_do_not_allocate_for_any_kind() {
 #[test]
 fn footprint_of_one_filter_per_kind() {
     // Printed for the notes; bounded so that a state that grows by accident is seen.
-    let handle = std::mem::size_of::<Filter>();
+    use orient::filters::{
+        complementary::Complementary, ekf::Ekf, gmvdk::Gmvdk, madgwick::Madgwick, mahony::Mahony,
+    };
+    use std::mem::size_of;
+    let handle = size_of::<Filter>();
     println!(
         "Filter (any kind, inline): {handle} bytes; GMVDK adds a {} byte window on the heap",
         2 * 8 * 1024
+    );
+    println!(
+        "filter states: madgwick {}, mahony {}, complementary {}, ekf {}, gmvdk {} (+16384 heap) bytes",
+        size_of::<Madgwick>(),
+        size_of::<Mahony>(),
+        size_of::<Complementary>(),
+        size_of::<Ekf>(),
+        size_of::<Gmvdk>()
     );
     assert!(handle <= 2304, "{handle}");
 }
