@@ -87,6 +87,12 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_FLAG_MAG_USED 4
 
 /**
+ * `orient_filter_flags`: the last accepted update followed a gap (dt above
+ * ORIENT_PARAM_GAP_DT) and integrated over ORIENT_PARAM_GAP_DT instead of dt.
+ */
+#define ORIENT_FLAG_GAP 8
+
+/**
  * Parameter slot (every kind): gravity magnitude for the gravity and linear
  * acceleration outputs, m/s^2, default 9.80665.
  */
@@ -103,6 +109,13 @@ typedef struct OrientFilter OrientFilter;
  * at or beyond it is rejected with ORIENT_STATUS_SATURATED. Default 0 = no check.
  */
 #define ORIENT_PARAM_ACCEL_RANGE 2
+
+/**
+ * Parameter slot (every kind): the longest dt (s) taken as it is; a larger dt is a gap in
+ * the data: the step integrates over this value instead and sets ORIENT_FLAG_GAP.
+ * Default 1; 0 turns the policy off (every finite dt > 0 is integrated as given).
+ */
+#define ORIENT_PARAM_GAP_DT 3
 
 /**
  * Parameter slot (Madgwick): beta for steps without magnetometer, rad/s, default 0.041
@@ -133,7 +146,7 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_PARAM_COMPLEMENTARY_KP 24
 
 /**
- * Parameter slot (complementary): K_I at rest, 1/s^2, default 0.05.
+ * Parameter slot (complementary): K_I at rest, 1/s^2, default 0.01.
  */
 #define ORIENT_PARAM_COMPLEMENTARY_KI 25
 
@@ -385,6 +398,16 @@ enum OrientStatus
    * A bug: the library panicked. The panic was caught at the C boundary.
    */
   ORIENT_STATUS_PANIC = 18,
+  /**
+   * The output buffer is smaller than the data (orient_filter_save: see
+   * orient_filter_state_size).
+   */
+  ORIENT_STATUS_BUFFER_TOO_SMALL = 19,
+  /**
+   * A state blob that is truncated, corrupted (checksum), of another format version or
+   * of another filter kind; the filter is unchanged.
+   */
+  ORIENT_STATUS_INVALID_STATE = 20,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -838,6 +861,29 @@ OrientStatus orient_filter_linear_accel_earth(const OrientFilter *filter, struct
  */
 OrientStatus orient_filter_diagnostics(const OrientFilter *filter,
                                        struct OrientDiagnostics *diagnostics);
+
+/**
+ * Size in bytes of this filter's state blob (orient_filter_save); constant per kind.
+ */
+OrientStatus orient_filter_state_size(const OrientFilter *filter, size_t *size);
+
+/**
+ * Saves the configuration and state as a versioned, checksummed blob into `buffer`
+ * (`capacity` bytes); `*written` receives its length. ORIENT_STATUS_BUFFER_TOO_SMALL
+ * when `capacity` is below orient_filter_state_size(). A filter loaded with the blob
+ * continues bit for bit as this one would.
+ */
+OrientStatus orient_filter_save(const OrientFilter *filter,
+                                uint8_t *buffer,
+                                size_t capacity,
+                                size_t *written);
+
+/**
+ * Restores a blob from orient_filter_save into a filter of the same kind (configuration
+ * included). ORIENT_STATUS_INVALID_STATE, with the filter unchanged, for a blob that is
+ * truncated, corrupted, of another format version or of another kind.
+ */
+OrientStatus orient_filter_load(OrientFilter *filter, const uint8_t *buffer, size_t size);
 
 /**
  * ORIENT_FLAG_* bits of the filter's state.

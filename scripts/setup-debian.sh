@@ -16,7 +16,7 @@ export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq
 $sudo apt-get install -y -qq --no-install-recommends \
   build-essential binutils ca-certificates curl pkg-config cmake \
-  mono-mcs mono-runtime abi-compliance-checker >/dev/null
+  mono-mcs mono-runtime abi-compliance-checker valgrind >/dev/null
 
 if ! command -v cargo >/dev/null 2>&1; then
   if [ -x "$HOME/.cargo/bin/cargo" ]; then

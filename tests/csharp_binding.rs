@@ -67,7 +67,7 @@ fn csharp_declarations_match_the_header() {
 
     let c_fns = functions(&header, "orient_");
     let cs_fns = functions(&cs, "static extern");
-    assert_eq!(c_fns.len(), 28, "{c_fns:?}");
+    assert!(c_fns.len() >= 31, "the header parse found too few functions: {c_fns:?}");
     assert_eq!(
         c_fns, cs_fns,
         "functions (name -> parameter count) differ between orient.h and Orient.Native.cs"

@@ -250,6 +250,20 @@ public:
         return orient_filter_get_param(h_, id, &value);
     }
     OrientStatus reset() noexcept { return orient_filter_reset(h_); }
+
+    /// Size of save()'s snapshot (constant per kind).
+    std::size_t state_size() const noexcept {
+        std::size_t n = 0;
+        orient_filter_state_size(h_, &n);
+        return n;
+    }
+    /// Writes a versioned, checksummed snapshot of configuration and state.
+    OrientStatus save(uint8_t* buffer, std::size_t capacity, std::size_t* written) const noexcept {
+        return orient_filter_save(h_, buffer, capacity, written);
+    }
+    /// Restores save()'s snapshot; ORIENT_STATUS_INVALID_STATE (nothing changed) when it is
+    /// truncated, corrupted, of another version or of another kind.
+    OrientStatus load(const uint8_t* buffer, std::size_t size) noexcept { return orient_filter_load(h_, buffer, size); }
     OrientStatus set_quaternion(const OrientQuaternion& q) noexcept { return orient_filter_set_quaternion(h_, &q); }
 
 private:

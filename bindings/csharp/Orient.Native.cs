@@ -32,6 +32,8 @@ namespace Orient.Native
         CountTooLarge = 16,
         VersionMismatch = 17,
         Panic = 18,
+        BufferTooSmall = 19,
+        InvalidState = 20,
     }
 
     /// <summary>OrientKind.</summary>
@@ -71,9 +73,11 @@ namespace Orient.Native
         public const uint FlagInitialized = 1; // ORIENT_FLAG_INITIALIZED
         public const uint FlagAccelUsed = 2; // ORIENT_FLAG_ACCEL_USED
         public const uint FlagMagUsed = 4; // ORIENT_FLAG_MAG_USED
+        public const uint FlagGap = 8; // ORIENT_FLAG_GAP
         public const uint ParamGravity = 0; // ORIENT_PARAM_GRAVITY
         public const uint ParamGyroRange = 1; // ORIENT_PARAM_GYRO_RANGE
         public const uint ParamAccelRange = 2; // ORIENT_PARAM_ACCEL_RANGE
+        public const uint ParamGapDt = 3; // ORIENT_PARAM_GAP_DT
         public const uint ParamMadgwickBetaImu = 8; // ORIENT_PARAM_MADGWICK_BETA_IMU
         public const uint ParamMadgwickBetaMarg = 9; // ORIENT_PARAM_MADGWICK_BETA_MARG
         public const uint ParamMahonyKp = 16; // ORIENT_PARAM_MAHONY_KP
@@ -275,6 +279,15 @@ namespace Orient.Native
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern Status orient_filter_diagnostics(IntPtr filter, out Diagnostics diagnostics);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_state_size(IntPtr filter, out UIntPtr size);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_save(IntPtr filter, byte[] buffer, UIntPtr capacity, out UIntPtr written);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_load(IntPtr filter, byte[] buffer, UIntPtr size);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern Status orient_filter_flags(IntPtr filter, out uint flags);

@@ -401,6 +401,28 @@ namespace Orient
             get { return (Flags & Consts.FlagInitialized) != 0; }
         }
 
+        /// <summary>A versioned, checksummed snapshot of configuration and state. A filter
+        /// of the same kind that loads it continues bit for bit as this one would.</summary>
+        public byte[] SaveState()
+        {
+            UIntPtr size;
+            OrientException.Check(NativeMethods.orient_filter_state_size(H, out size));
+            byte[] blob = new byte[(int)size];
+            UIntPtr written;
+            OrientException.Check(NativeMethods.orient_filter_save(H, blob, size, out written));
+            GC.KeepAlive(this);
+            return blob;
+        }
+
+        /// <summary>Restores SaveState's snapshot; throws OrientException (InvalidState) for
+        /// a truncated, corrupted, foreign-kind or foreign-version blob, changing nothing.</summary>
+        public void LoadState(byte[] blob)
+        {
+            if (blob == null) throw new ArgumentNullException("blob");
+            OrientException.Check(NativeMethods.orient_filter_load(H, blob, (UIntPtr)blob.Length));
+            GC.KeepAlive(this);
+        }
+
         public void Reset()
         {
             OrientException.Check(NativeMethods.orient_filter_reset(H));

@@ -2,6 +2,7 @@
 //! to status codes.
 
 use super::types::OrientStatus;
+use crate::filters::state::StateError;
 use crate::filters::Error;
 use core::cell::RefCell;
 use core::ffi::c_char;
@@ -66,6 +67,15 @@ pub(crate) fn from_core(e: Error) -> OrientStatus {
     fail(status, format_args!("{e}"))
 }
 
+/// The status for a snapshot error, with its message recorded.
+pub(crate) fn from_state(e: StateError) -> OrientStatus {
+    let status = match e {
+        StateError::BufferTooSmall(_) => OrientStatus::BufferTooSmall,
+        _ => OrientStatus::InvalidState,
+    };
+    fail(status, format_args!("{e}"))
+}
+
 /// A pointer to this thread's last error detail (NUL-terminated, empty if none).
 pub(crate) fn detail_ptr() -> *const c_char {
     DETAIL.with(|cell| cell.as_ptr() as *const c_char)
@@ -114,6 +124,8 @@ pub(crate) fn status_message(status: i32) -> &'static [u8] {
         16 => b"count too large for any buffer\0",
         17 => b"struct_size does not match this library's OrientConfig\0",
         18 => b"internal panic caught at the C boundary\0",
+        19 => b"output buffer too small\0",
+        20 => b"state blob truncated, corrupted, or of another version or kind\0",
         _ => b"unknown status code\0",
     }
 }
@@ -146,7 +158,7 @@ mod tests {
 
     #[test]
     fn every_status_has_a_message() {
-        for code in 0..=18 {
+        for code in 0..=20 {
             assert_ne!(status_message(code), b"unknown status code\0", "{code}");
         }
         assert_eq!(status_message(99), b"unknown status code\0");

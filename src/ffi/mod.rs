@@ -21,7 +21,7 @@ pub use types::*;
 use crate::filters::{Config, Filter, Init, Kind, Sample};
 use crate::math::{Frame, Quat, Vec3};
 use core::ffi::{c_char, CStr};
-use error::{detail_ptr, fail, from_core, guard, guard_value, status_message};
+use error::{detail_ptr, fail, from_core, from_state, guard, guard_value, status_message};
 use once_cell::sync::Lazy;
 use std::ffi::CString;
 
@@ -599,6 +599,65 @@ pub unsafe extern "C" fn orient_filter_diagnostics(
     })
 }
 
+/// Size in bytes of this filter's state blob (orient_filter_save); constant per kind.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_state_size(
+    filter: *const OrientFilter,
+    size: *mut usize,
+) -> OrientStatus {
+    guard(|| put(size, handle(filter)?.filter.state_size()))
+}
+
+/// Saves the configuration and state as a versioned, checksummed blob into `buffer`
+/// (`capacity` bytes); `*written` receives its length. ORIENT_STATUS_BUFFER_TOO_SMALL
+/// when `capacity` is below orient_filter_state_size(). A filter loaded with the blob
+/// continues bit for bit as this one would.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_save(
+    filter: *const OrientFilter,
+    buffer: *mut u8,
+    capacity: usize,
+    written: *mut usize,
+) -> OrientStatus {
+    guard(|| {
+        let h = handle(filter)?;
+        if buffer.is_null() || written.is_null() {
+            return Err(null());
+        }
+        if capacity > isize::MAX as usize {
+            return Err(fail(
+                OrientStatus::CountTooLarge,
+                format_args!("capacity {capacity} cannot be a buffer"),
+            ));
+        }
+        let out = core::slice::from_raw_parts_mut(buffer, capacity);
+        let n = h.filter.save(out).map_err(from_state)?;
+        written.write(n);
+        Ok(())
+    })
+}
+
+/// Restores a blob from orient_filter_save into a filter of the same kind (configuration
+/// included). ORIENT_STATUS_INVALID_STATE, with the filter unchanged, for a blob that is
+/// truncated, corrupted, of another format version or of another kind.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_load(
+    filter: *mut OrientFilter,
+    buffer: *const u8,
+    size: usize,
+) -> OrientStatus {
+    guard(|| {
+        let h = handle_mut(filter)?;
+        if buffer.is_null() {
+            return Err(null());
+        }
+        if size > isize::MAX as usize {
+            return Err(fail(OrientStatus::CountTooLarge, format_args!("size {size} cannot be a buffer")));
+        }
+        h.filter.load(core::slice::from_raw_parts(buffer, size)).map_err(from_state)
+    })
+}
+
 /// ORIENT_FLAG_* bits of the filter's state.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_flags(filter: *const OrientFilter, flags: *mut u32) -> OrientStatus {
@@ -647,6 +706,8 @@ mod tests {
         assert_eq!(ORIENT_FLAG_INITIALIZED, flags::INITIALIZED);
         assert_eq!(ORIENT_FLAG_ACCEL_USED, flags::ACCEL_USED);
         assert_eq!(ORIENT_FLAG_MAG_USED, flags::MAG_USED);
+        assert_eq!(ORIENT_FLAG_GAP, flags::GAP);
+        assert_eq!(ORIENT_PARAM_GAP_DT, params::id::GAP_DT);
         assert_eq!(core::mem::size_of::<OrientSample>(), 88);
         assert_eq!(core::mem::size_of::<OrientConfig>(), 1072);
         use crate::filters::diag;
@@ -692,10 +753,10 @@ mod tests {
             assert_eq!(c, r);
         }
         // Every parameter of every kind has its ORIENT_PARAM_* constant above (the
-        // common three and Madgwick's two are checked first).
+        // common four and Madgwick's two are checked first).
         let all: std::collections::BTreeSet<u32> =
             Kind::ALL.iter().flat_map(|k| k.params().map(|p| p.id)).collect();
-        assert_eq!(all.len(), slots.len() + 5);
+        assert_eq!(all.len(), slots.len() + 6);
     }
 
     #[test]
@@ -724,7 +785,7 @@ mod tests {
             let k = OrientKind::Madgwick as i32;
             let mut n = 0;
             assert_eq!(orient_param_count(k, &mut n), OrientStatus::Ok);
-            assert_eq!(n, 5);
+            assert_eq!(n, 6);
             let mut info = core::mem::MaybeUninit::<OrientParamInfo>::uninit();
             for i in 0..n {
                 assert_eq!(orient_param_info(k, i, info.as_mut_ptr()), OrientStatus::Ok);

@@ -25,6 +25,9 @@ pub const ORIENT_FLAG_INITIALIZED: u32 = 1;
 pub const ORIENT_FLAG_ACCEL_USED: u32 = 2;
 /// `orient_filter_flags`: the last accepted update used the magnetometer.
 pub const ORIENT_FLAG_MAG_USED: u32 = 4;
+/// `orient_filter_flags`: the last accepted update followed a gap (dt above
+/// ORIENT_PARAM_GAP_DT) and integrated over ORIENT_PARAM_GAP_DT instead of dt.
+pub const ORIENT_FLAG_GAP: u32 = 8;
 
 /// Parameter slot (every kind): gravity magnitude for the gravity and linear
 /// acceleration outputs, m/s^2, default 9.80665.
@@ -35,6 +38,10 @@ pub const ORIENT_PARAM_GYRO_RANGE: u32 = 1;
 /// Parameter slot (every kind): accelerometer full scale, m/s^2; a sample with any axis
 /// at or beyond it is rejected with ORIENT_STATUS_SATURATED. Default 0 = no check.
 pub const ORIENT_PARAM_ACCEL_RANGE: u32 = 2;
+/// Parameter slot (every kind): the longest dt (s) taken as it is; a larger dt is a gap in
+/// the data: the step integrates over this value instead and sets ORIENT_FLAG_GAP.
+/// Default 1; 0 turns the policy off (every finite dt > 0 is integrated as given).
+pub const ORIENT_PARAM_GAP_DT: u32 = 3;
 /// Parameter slot (Madgwick): beta for steps without magnetometer, rad/s, default 0.041
 /// (Madgwick 2010, section V). beta = sqrt(3/4) * max gyro error, eq. (33):
 /// see orient_madgwick_beta().
@@ -49,7 +56,7 @@ pub const ORIENT_PARAM_MAHONY_KP: u32 = 16;
 pub const ORIENT_PARAM_MAHONY_KI: u32 = 17;
 /// Parameter slot (complementary): K_P at rest, 1/s, default 1.0.
 pub const ORIENT_PARAM_COMPLEMENTARY_KP: u32 = 24;
-/// Parameter slot (complementary): K_I at rest, 1/s^2, default 0.05.
+/// Parameter slot (complementary): K_I at rest, 1/s^2, default 0.01.
 pub const ORIENT_PARAM_COMPLEMENTARY_KI: u32 = 25;
 /// Parameter slot (complementary): rest threshold on |gyro - bias|, rad/s, default 0.02.
 pub const ORIENT_PARAM_COMPLEMENTARY_GYRO_REST: u32 = 26;
@@ -163,6 +170,12 @@ pub enum OrientStatus {
     VersionMismatch = 17,
     /// A bug: the library panicked. The panic was caught at the C boundary.
     Panic = 18,
+    /// The output buffer is smaller than the data (orient_filter_save: see
+    /// orient_filter_state_size).
+    BufferTooSmall = 19,
+    /// A state blob that is truncated, corrupted (checksum), of another format version or
+    /// of another filter kind; the filter is unchanged.
+    InvalidState = 20,
 }
 
 /// Filter kinds, as the `kind` argument and `OrientConfig.kind`.

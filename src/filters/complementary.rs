@@ -25,9 +25,13 @@
 //!   following ω_b: a bias estimate wound up by a large initial error would otherwise
 //!   stop the filter from ever seeing rest again. The paper gives no numbers; the defaults are
 //!   about three times the per-sample noise of its sensor (0.03 °/s/√Hz, 650 µg/√Hz)
-//!   at 100 Hz, rounded up for hand-held use. The paper gives no K_P, K_I either: the
-//!   defaults settle the attitude with a 1 s time constant and the bias within about
-//!   20 s of accumulated rest (overdamped, K_I < K_P²/4).
+//!   at 100 Hz, rounded up for hand-held use. The paper gives no K_P, K_I either:
+//!   K_P = 1/s settles the attitude with a 1 s time constant at rest. K_I is bounded by
+//!   the rest gating: the bias learned at a rest corrects the attitude error accumulated
+//!   over the motion before it, and the loop's gain per rest is about K_I·T/K_P for T
+//!   seconds of motion, which must stay below 2 (it overshoots and diverges above; the
+//!   24-hour test showed this with K_I = 0.05 and 50 s of motion per minute).
+//!   K_I = 0.01/s² keeps that gain at or below 1 for rests up to 100 s apart.
 //! - Start-up: the first `init_duration` seconds are the stationary period: ω_b = mean
 //!   gyroscope; Ê₃ = mean accelerometer direction; Ê₂ = the sensor ê₂ axis projected on
 //!   the horizontal plane; Ê₁ = Ê₂ × Ê₃. Native frame: (Ê₁, Ê₂, Ê₃) read as
@@ -44,7 +48,7 @@ use crate::math::{Frame, Quat, Vec3};
 pub struct ComplementarySettings {
     /// K_P (1/s), active at rest only, eq. (4). Default 1.0 (see module doc).
     pub kp: f64,
-    /// K_I (1/s²), active at rest only, eq. (5)/(10). Default 0.05.
+    /// K_I (1/s²), active at rest only, eq. (5)/(10). Default 0.01 (see module doc).
     pub ki: f64,
     /// Rest threshold on |ω_m − ω̄| (rad/s), ω̄ the start-up mean. Default 0.02.
     pub gyro_rest: f64,
@@ -61,7 +65,7 @@ impl Default for ComplementarySettings {
     fn default() -> Self {
         ComplementarySettings {
             kp: 1.0,
-            ki: 0.05,
+            ki: 0.01,
             gyro_rest: 0.02,
             accel_rest: 0.2,
             init_duration: 2.0,
@@ -86,8 +90,9 @@ pub(crate) const PARAMS: [ParamSpec; 6] = [
         name: "ki",
         unit: "1/s^2",
         doc: "Integral gain K_I for the gyro bias, eqs. (5) and (10), applied only at rest; \
-              default 0.05 (overdamped with K_P = 1; the paper gives no value).",
-        default: 0.05,
+              default 0.01 (the paper gives no value): stable for rests up to 100 s apart, since \
+              the loop gain per rest is about K_I * motion time / K_P and must stay below 2.",
+        default: 0.01,
         min: 0.0,
         max: 1000.0,
     },
@@ -193,6 +198,25 @@ impl Complementary {
     pub fn set_quaternion(&mut self, q: Quat) {
         self.q = q;
         self.startup = None;
+    }
+
+    pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
+        c.quat(&mut self.q);
+        c.vec3(&mut self.bias);
+        c.f64(&mut self.g0);
+        c.vec3(&mut self.b0);
+        c.bool(&mut self.rest);
+        let mut present = self.startup.is_some();
+        c.bool(&mut present);
+        let mut s = self.startup.clone().unwrap_or_default();
+        c.f64(&mut s.time);
+        c.u32(&mut s.n);
+        c.vec3(&mut s.gyro);
+        c.vec3(&mut s.accel);
+        c.f64(&mut s.accel_norm);
+        c.vec3(&mut s.mag);
+        c.u32(&mut s.n_mag);
+        self.startup = present.then_some(s);
     }
 
     pub fn bias(&self) -> Vec3 {

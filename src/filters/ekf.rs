@@ -306,6 +306,15 @@ impl Ekf {
         self.x[3] = q.z;
     }
 
+    pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
+        for v in self.x.iter_mut() {
+            c.f64(v);
+        }
+        for v in self.p.iter_mut() {
+            c.f64(v);
+        }
+    }
+
     /// The angular rate estimate ω (rad/s).
     pub fn rate(&self) -> Vec3 {
         Vec3::new(self.x[4], self.x[5], self.x[6])

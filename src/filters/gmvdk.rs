@@ -415,6 +415,51 @@ impl Gmvdk {
         self.startup = None;
     }
 
+    pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
+        c.quat(&mut self.q);
+        c.quat(&mut self.q_start);
+        c.vec3(&mut self.bias);
+        c.opt_vec3(&mut self.a_init);
+        c.opt_vec3(&mut self.m_init);
+        c.f64(&mut self.g0);
+        c.f64(&mut self.ms_gyro);
+        c.f64(&mut self.ms_accel);
+        c.f64(&mut self.time);
+        let mut present = self.startup.is_some();
+        c.bool(&mut present);
+        let mut s = self.startup.clone().unwrap_or_default();
+        c.f64(&mut s.time);
+        c.u32(&mut s.n);
+        c.vec3(&mut s.gyro);
+        c.vec3(&mut s.accel);
+        c.vec3(&mut s.mag);
+        c.u32(&mut s.n_mag);
+        self.startup = present.then_some(s);
+        let r = &mut self.regression;
+        for v in [&mut r.n, &mut r.t0, &mut r.st, &mut r.stt, &mut r.last_t] {
+            c.f64(v);
+        }
+        c.vec3(&mut r.sy);
+        c.vec3(&mut r.sty);
+        let w = &mut *self.window;
+        c.usize(&mut w.head);
+        c.usize(&mut w.len);
+        if w.head >= WINDOW_SLOTS || w.len > WINDOW_SLOTS {
+            c.fail();
+            w.head = 0;
+            w.len = 0;
+        }
+        for i in 0..WINDOW_SLOTS {
+            c.f64(&mut w.t[i]);
+            c.f64(&mut w.v[i]);
+        }
+        c.f64(&mut self.trust.alpha);
+        c.f64(&mut self.trust.mu_ka);
+        c.f64(&mut self.trust.mu_km);
+        c.f64(&mut self.trust.mu_k);
+        c.bool(&mut self.mag_seen);
+    }
+
     pub fn bias(&self) -> Vec3 {
         self.bias
     }

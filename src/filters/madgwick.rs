@@ -167,6 +167,10 @@ impl Madgwick {
         self.q
     }
 
+    pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
+        c.quat(&mut self.q);
+    }
+
     /// Sets the estimate; `q` must be a unit quaternion.
     pub fn set_quaternion(&mut self, q: Quat) {
         self.q = q;

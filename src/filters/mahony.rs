@@ -82,6 +82,11 @@ impl Mahony {
         self.q = q;
     }
 
+    pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
+        c.quat(&mut self.q);
+        c.vec3(&mut self.bias);
+    }
+
     /// The bias estimate b (rad/s), subtracted from the gyroscope.
     pub fn bias(&self) -> Vec3 {
         self.bias

@@ -8,6 +8,7 @@ pub mod gmvdk;
 pub mod madgwick;
 pub mod mahony;
 pub mod params;
+pub mod state;
 
 use crate::math::{Euler, Frame, Quat, Vec3};
 use complementary::{Complementary, ComplementarySettings};
@@ -17,6 +18,7 @@ use gmvdk::{Gmvdk, GmvdkSettings};
 use madgwick::{Madgwick, MadgwickSettings};
 use mahony::{Mahony, MahonySettings};
 use params::{id, ParamSpec, COMMON, MAX_PARAMS};
+use state::{Codec, Reader, StateError, Writer};
 
 /// The filter kinds. Hosts swap filters by changing this value alone.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -279,6 +281,9 @@ pub mod flags {
     pub const ACCEL_USED: u32 = 2;
     /// The last accepted update used the magnetometer.
     pub const MAG_USED: u32 = 4;
+    /// The last accepted update followed a gap: dt was above `gap_dt` and the step
+    /// integrated over `gap_dt` instead.
+    pub const GAP: u32 = 8;
 }
 
 /// What one core update did.
@@ -464,6 +469,10 @@ impl Core {
             }
         }
         d
+    }
+
+    fn codec(&mut self, c: &mut dyn Codec) {
+        each!(self, f => f.codec(c))
     }
 
     fn kind(&self) -> Kind {
@@ -664,7 +673,10 @@ impl Filter {
             self.set_frame_quaternion(q);
             saved
         });
-        match self.core.update(s.dt, gyro, s.accel, s.mag) {
+        let gap_dt = self.config.slot(id::GAP_DT);
+        let gap = gap_dt > 0.0 && s.dt > gap_dt;
+        let dt = if gap { gap_dt } else { s.dt };
+        match self.core.update(dt, gyro, s.accel, s.mag) {
             Some(step) => {
                 self.flags = if step.initializing {
                     0
@@ -672,6 +684,7 @@ impl Filter {
                     flags::INITIALIZED
                         | if step.used_accel { flags::ACCEL_USED } else { 0 }
                         | if step.used_mag { flags::MAG_USED } else { 0 }
+                        | if gap { flags::GAP } else { 0 }
                 };
                 if s.accel.is_some() {
                     self.last_accel = s.accel;
@@ -692,6 +705,58 @@ impl Filter {
     /// [`Diagnostics`]; fields that do not apply are absent and NaN).
     pub fn diagnostics(&self) -> Diagnostics {
         self.core.diagnostics()
+    }
+
+    /// The configuration and state fields of a snapshot, in order (see [`state`]).
+    fn codec(&mut self, c: &mut dyn Codec) {
+        let mut head = ConfigFields::of(&self.config);
+        head.codec(c);
+        c.u32(&mut self.flags);
+        c.opt_vec3(&mut self.last_accel);
+        self.core.codec(c);
+    }
+
+    fn kind_byte(&self) -> u8 {
+        Kind::ALL.iter().position(|k| *k == self.kind()).unwrap_or(0) as u8 + 1
+    }
+
+    fn payload_len(&self) -> usize {
+        let mut counter = Writer { buf: None, pos: 0 };
+        self.clone().codec(&mut counter);
+        counter.pos
+    }
+
+    /// Size in bytes of [`Filter::save`]'s blob for this filter (constant per kind).
+    pub fn state_size(&self) -> usize {
+        state::HEADER + self.payload_len() + state::TRAILER
+    }
+
+    /// Writes a snapshot of the configuration and state into `out`; returns its length.
+    /// Loading it into a filter of the same kind continues bit for bit as this one would.
+    pub fn save(&self, out: &mut [u8]) -> Result<usize, StateError> {
+        let len = self.payload_len();
+        let mut copy = self.clone();
+        state::seal(out, self.kind_byte(), len, |w| copy.codec(w))
+    }
+
+    /// Restores a snapshot from [`Filter::save`]. On error nothing changes: the blob
+    /// must be whole, unmodified (checksum), of this format version and of this kind.
+    pub fn load(&mut self, blob: &[u8]) -> Result<(), StateError> {
+        let payload = state::open(blob, self.kind_byte(), self.payload_len())?;
+        let mut r = Reader { buf: payload, pos: 0, ok: true };
+        let mut head = ConfigFields::of(&self.config);
+        head.codec(&mut r);
+        let config = head.config(self.kind()).filter(|_| r.ok).ok_or(StateError::Corrupt)?;
+        let mut fresh = Filter::new(&config).map_err(|_| StateError::Corrupt)?;
+        r.u32(&mut fresh.flags);
+        r.opt_vec3(&mut fresh.last_accel);
+        fresh.core.codec(&mut r);
+        let q = fresh.core.quaternion();
+        if !r.ok || r.pos != payload.len() || fresh.flags & !15 != 0 || (q.norm() - 1.0).abs() > 1e-9 {
+            return Err(StateError::Corrupt);
+        }
+        *self = fresh;
+        Ok(())
     }
 
     /// True once the filter has an orientation.
@@ -742,6 +807,47 @@ impl Filter {
     /// [`Filter::linear_accel`] rotated into the earth frame.
     pub fn linear_accel_earth(&self) -> Option<Vec3> {
         self.linear_accel().map(|a| self.quaternion().rotate(a))
+    }
+}
+
+/// The configuration as it travels in a snapshot.
+struct ConfigFields {
+    frame: u32,
+    init: u32,
+    initial: Quat,
+    params: [f64; MAX_PARAMS],
+}
+
+impl ConfigFields {
+    fn of(c: &Config) -> ConfigFields {
+        let (init, initial) = match c.init {
+            Init::AccMag => (0, Quat::IDENTITY),
+            Init::Identity => (1, Quat::IDENTITY),
+            Init::Given(q) => (2, q),
+        };
+        let frame = Frame::ALL.iter().position(|f| *f == c.frame).unwrap_or(0) as u32;
+        ConfigFields { frame, init, initial, params: c.params }
+    }
+
+    fn codec(&mut self, c: &mut dyn Codec) {
+        c.u32(&mut self.frame);
+        c.u32(&mut self.init);
+        c.quat(&mut self.initial);
+        for p in self.params.iter_mut() {
+            c.f64(p);
+        }
+    }
+
+    /// The configuration, if every field is valid for `kind`.
+    fn config(&self, kind: Kind) -> Option<Config> {
+        let frame = *Frame::ALL.get(self.frame as usize)?;
+        let init = match self.init {
+            0 => Init::AccMag,
+            1 => Init::Identity,
+            2 => Init::Given(self.initial),
+            _ => return None,
+        };
+        Config::from_slots(kind, frame, init, &self.params).ok()
     }
 }
 

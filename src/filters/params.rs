@@ -17,6 +17,8 @@ pub mod id {
     pub const GYRO_RANGE: u32 = 1;
     /// Accelerometer full-scale range; readings at or beyond it are rejected as saturated.
     pub const ACCEL_RANGE: u32 = 2;
+    /// The longest dt taken as given; a larger one is a gap (see `GAP` flag).
+    pub const GAP_DT: u32 = 3;
 
     /// Madgwick β for steps without a magnetometer.
     pub const MADGWICK_BETA_IMU: u32 = 8;
@@ -82,7 +84,7 @@ impl ParamSpec {
 }
 
 /// The settings every kind has.
-pub const COMMON: [ParamSpec; 3] = [
+pub const COMMON: [ParamSpec; 4] = [
     ParamSpec {
         id: id::GRAVITY,
         name: "gravity",
@@ -110,6 +112,17 @@ pub const COMMON: [ParamSpec; 3] = [
         doc: "Accelerometer full scale: a sample with any axis at or beyond it is rejected as \
               saturated; 0 turns the check off (default).",
         default: 0.0,
+        min: 0.0,
+        max: 1e6,
+    },
+    ParamSpec {
+        id: id::GAP_DT,
+        name: "gap_dt",
+        unit: "s",
+        doc: "Longest dt taken as given: a larger dt is a gap in the data (dropped packets), and \
+              the step integrates over gap_dt instead and sets the GAP flag; default 1 (at least \
+              10x any sensor period in use); 0 turns it off.",
+        default: 1.0,
         min: 0.0,
         max: 1e6,
     },

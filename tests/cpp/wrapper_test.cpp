@@ -171,6 +171,17 @@ static void wrapper() {
     CHECK(c.update_batch(samples, out, &processed) == ORIENT_STATUS_INVALID_DT);
     CHECK(processed == 2);
 
+    // Snapshot and restore into a second filter.
+    std::vector<uint8_t> blob(c.state_size());
+    std::size_t written = 0;
+    CHECK(c.save(blob.data(), blob.size(), &written) == ORIENT_STATUS_OK && written == blob.size());
+    auto copy = orient::Filter::create(config);
+    CHECK(copy.ok());
+    CHECK(copy.value().load(blob.data(), blob.size()) == ORIENT_STATUS_OK);
+    CHECK(same(copy.value().quaternion(), c.quaternion()));
+    blob[blob.size() / 2] ^= 1;
+    CHECK(copy.value().load(blob.data(), blob.size()) == ORIENT_STATUS_INVALID_STATE);
+
     OrientDiagnostics d{};
     CHECK(c.diagnostics(d) == ORIENT_STATUS_OK);
     CHECK(d.present == 0 && std::isnan(d.alpha));

@@ -140,7 +140,7 @@ public static class OrientTests
         Throws(Status.UnknownParam, () => settings[99u] = 1.0, "unknown slot");
         settings["beta_marg"] = 0.05;
         Check(settings[Consts.ParamMadgwickBetaMarg] == 0.05, "set by name, read by id");
-        Check(settings.Parameters.Count == 5, "parameter list");
+        Check(settings.Parameters.Count == 6, "parameter list");
         Check(settings.Gravity == 9.80665, "gravity default");
 
         foreach (Kind kind in new[] { Kind.Madgwick, Kind.Mahony, Kind.Complementary, Kind.Ekf, Kind.Gmvdk })
@@ -190,6 +190,25 @@ public static class OrientTests
             twin.UpdateBatch(batch, 0, 2, null);
             Check(Same(f.Quaternion, twin.Quaternion), "batch keeps the samples before the bad one");
             Throws(Status.NoData, () => new OrientFilter(Kind.Ekf).LinearAcceleration.ToString(), "no data yet");
+        }
+
+        // Snapshots: a split run equals an unbroken one; damaged blobs are refused.
+        using (var whole = new OrientFilter(Kind.Ekf))
+        using (var first = new OrientFilter(Kind.Ekf))
+        using (var second = new OrientFilter(Kind.Ekf))
+        {
+            for (int i = 0; i < 50; i++) { whole.Update(Good()); first.Update(Good()); }
+            byte[] blob = first.SaveState();
+            byte[] bad = (byte[])blob.Clone();
+            bad[30] ^= 1;
+            Throws(Status.InvalidState, () => second.LoadState(bad), "corrupted blob");
+            second.LoadState(blob);
+            for (int i = 0; i < 50; i++) { whole.Update(Good()); second.Update(Good()); }
+            Check(Same(whole.Quaternion, second.Quaternion), "split run equals unbroken run");
+            using (var other = new OrientFilter(Kind.Madgwick))
+            {
+                Throws(Status.InvalidState, () => other.LoadState(blob), "blob of another kind");
+            }
         }
 
         // Disposal: twice is harmless, use afterwards is an ObjectDisposedException.

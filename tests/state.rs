@@ -1,0 +1,188 @@
+//! Snapshots: a run split at sample N (save, load into a fresh filter, continue) equals
+//! an unbroken run bit for bit, for every kind, through the Rust API and the C ABI; a
+//! blob that is corrupted, truncated, of another kind or another version is refused and
+//! changes nothing.
+
+mod common;
+
+use common::sim::{simulate, Moment};
+use orient::ffi::*;
+use orient::filters::state::StateError;
+use orient::{Config, Filter, Kind, Quat, Sample, Vec3};
+
+fn samples() -> Vec<Sample> {
+    simulate(Quat::IDENTITY, 12.0, 100.0, (0.002, 0.05, 0.3), |t| Moment {
+        omega: if t < 3.0 {
+            Vec3::ZERO
+        } else {
+            Vec3::new(0.5 * (0.7 * t).sin(), 0.3, -0.4 * (0.5 * t).cos())
+        },
+        bias: Vec3::new(0.01, -0.004, 0.006),
+        ..Default::default()
+    })
+    .samples
+}
+
+fn bits(q: Quat) -> [u64; 4] {
+    [q.w.to_bits(), q.x.to_bits(), q.y.to_bits(), q.z.to_bits()]
+}
+
+#[test]
+fn split_runs_equal_unbroken_runs_for_every_kind() {
+    let s = samples();
+    for kind in Kind::ALL {
+        let config = Config::new(kind).unwrap();
+        for split in [0, 50, 150, 700] {
+            let mut whole = Filter::new(&config).unwrap();
+            let mut first = Filter::new(&config).unwrap();
+            for x in &s[..split] {
+                whole.update(x).unwrap();
+                first.update(x).unwrap();
+            }
+            let mut blob = vec![0u8; first.state_size()];
+            let n = first.save(&mut blob).unwrap();
+            assert_eq!(n, blob.len());
+            let mut second = Filter::new(&config).unwrap();
+            second.load(&blob).unwrap();
+            assert_eq!(second, first, "{kind:?} split {split}: loaded state differs");
+            for x in &s[split..] {
+                whole.update(x).unwrap();
+                second.update(x).unwrap();
+                assert_eq!(bits(whole.quaternion()), bits(second.quaternion()), "{kind:?} split {split}");
+            }
+        }
+    }
+}
+
+#[test]
+fn damaged_blobs_are_refused_and_change_nothing() {
+    let s = samples();
+    for kind in Kind::ALL {
+        let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
+        for x in &s[..400] {
+            f.update(x).unwrap();
+        }
+        let mut blob = vec![0u8; f.state_size()];
+        f.save(&mut blob).unwrap();
+        let mut target = Filter::new(&Config::new(kind).unwrap()).unwrap();
+        target.update(&s[0]).unwrap();
+        let before = target.clone();
+        assert_eq!(target.load(&blob[..blob.len() - 1]), Err(StateError::Truncated));
+        assert_eq!(target.load(&blob[..7]), Err(StateError::Truncated));
+        assert_eq!(target.load(&[]), Err(StateError::Truncated));
+        // Every single-bit flip somewhere in the blob (a stride keeps GMVDK's 16 KiB fast).
+        let stride = (blob.len() / 500).max(1);
+        for i in (0..blob.len()).step_by(stride) {
+            let mut bad = blob.clone();
+            bad[i] ^= 1 << (i % 8);
+            assert!(target.load(&bad).is_err(), "{kind:?}: flipped bit in byte {i} accepted");
+        }
+        // Another version (checksum redone so that only the version is wrong).
+        let mut v2 = blob.clone();
+        v2[4] = 2;
+        let end = v2.len() - 8;
+        let sum = orient::filters::state::checksum(&v2[..end]);
+        v2[end..].copy_from_slice(&sum.to_le_bytes());
+        assert_eq!(target.load(&v2), Err(StateError::Version(2)));
+        assert_eq!(target, before, "{kind:?}: a refused load changed the filter");
+        // Another kind.
+        for other in Kind::ALL.into_iter().filter(|k| *k != kind) {
+            let mut g = Filter::new(&Config::new(other).unwrap()).unwrap();
+            assert!(matches!(g.load(&blob), Err(StateError::Kind(_))), "{kind:?} into {other:?}");
+        }
+        // Too small an output buffer.
+        let mut small = vec![0u8; blob.len() - 1];
+        assert_eq!(f.save(&mut small), Err(StateError::BufferTooSmall(blob.len())));
+    }
+}
+
+fn c_sample(s: &Sample) -> OrientSample {
+    let v = |v: Option<Vec3>| {
+        let v = v.unwrap();
+        OrientVec3 { x: v.x, y: v.y, z: v.z }
+    };
+    OrientSample {
+        dt: s.dt,
+        gyro: v(s.gyro),
+        accel: v(s.accel),
+        mag: v(s.mag),
+        flags: ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL | ORIENT_SAMPLE_MAG,
+        reserved: 0,
+    }
+}
+
+#[test]
+fn split_runs_through_the_c_abi() {
+    let s: Vec<OrientSample> = samples().iter().map(c_sample).collect();
+    for kind in 1..=5 {
+        unsafe {
+            let mut c = std::mem::MaybeUninit::<OrientConfig>::uninit();
+            assert_eq!(orient_config_default(kind, c.as_mut_ptr()), OrientStatus::Ok);
+            let (mut whole, mut first, mut second) =
+                (std::ptr::null_mut(), std::ptr::null_mut(), std::ptr::null_mut());
+            for h in [&mut whole, &mut first, &mut second] {
+                assert_eq!(orient_filter_new(c.as_ptr(), h), OrientStatus::Ok);
+            }
+            let split = 500;
+            let mut out = vec![OrientQuaternion::default(); s.len()];
+            assert_eq!(
+                orient_filter_update_batch(
+                    whole,
+                    s.as_ptr(),
+                    s.len(),
+                    out.as_mut_ptr(),
+                    std::ptr::null_mut()
+                ),
+                OrientStatus::Ok
+            );
+            assert_eq!(
+                orient_filter_update_batch(
+                    first,
+                    s.as_ptr(),
+                    split,
+                    std::ptr::null_mut(),
+                    std::ptr::null_mut()
+                ),
+                OrientStatus::Ok
+            );
+            let mut size = 0;
+            assert_eq!(orient_filter_state_size(first, &mut size), OrientStatus::Ok);
+            let mut blob = vec![0u8; size];
+            let mut written = 0;
+            assert_eq!(
+                orient_filter_save(first, blob.as_mut_ptr(), size - 1, &mut written),
+                OrientStatus::BufferTooSmall
+            );
+            assert_eq!(orient_filter_save(first, blob.as_mut_ptr(), size, &mut written), OrientStatus::Ok);
+            assert_eq!(written, size);
+            assert_eq!(orient_filter_free(first), OrientStatus::Ok);
+            let mut bad = blob.clone();
+            bad[20] ^= 4;
+            assert_eq!(orient_filter_load(second, bad.as_ptr(), bad.len()), OrientStatus::InvalidState);
+            assert_eq!(orient_filter_load(second, blob.as_ptr(), blob.len() - 3), OrientStatus::InvalidState);
+            assert_eq!(orient_filter_load(second, std::ptr::null(), 10), OrientStatus::NullPointer);
+            assert_eq!(orient_filter_load(second, blob.as_ptr(), blob.len()), OrientStatus::Ok);
+            let mut rest = vec![OrientQuaternion::default(); s.len() - split];
+            let n = s.len() - split;
+            assert_eq!(
+                orient_filter_update_batch(
+                    second,
+                    s[split..].as_ptr(),
+                    n,
+                    rest.as_mut_ptr(),
+                    std::ptr::null_mut()
+                ),
+                OrientStatus::Ok
+            );
+            for (i, (a, b)) in out[split..].iter().zip(&rest).enumerate() {
+                let same = a.w.to_bits() == b.w.to_bits()
+                    && a.x.to_bits() == b.x.to_bits()
+                    && a.y.to_bits() == b.y.to_bits()
+                    && a.z.to_bits() == b.z.to_bits();
+                assert!(same, "kind {kind}: sample {} differs after the split", split + i);
+            }
+            orient_filter_free(whole);
+            orient_filter_free(second);
+        }
+    }
+}
