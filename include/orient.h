@@ -353,7 +353,7 @@ enum OrientStatus
    */
   ORIENT_STATUS_NON_FINITE = 7,
   /**
-   * dt is zero, negative, NaN or infinite.
+   * dt is below 1e-9 s (zero, negative, subnormal), NaN or infinite.
    */
   ORIENT_STATUS_INVALID_DT = 8,
   /**
@@ -612,7 +612,7 @@ typedef struct OrientVec3 {
  */
 typedef struct OrientSample {
   /**
-   * Seconds since the previous sample; finite and > 0.
+   * Seconds since the previous sample; finite and at least 1e-9.
    */
   double dt;
   /**
@@ -800,13 +800,21 @@ OrientStatus orient_filter_get_param(const OrientFilter *filter, uint32_t id, do
 /**
  * One update. On any status but OK the filter's state is exactly as before.
  *
- * Checks, in order: dt finite and > 0 (INVALID_DT); flags and reserved
- * (INVALID_ARGUMENT); gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
- * ORIENT_PARAM_GYRO_RANGE (SATURATED); accelerometer and magnetometer, when present:
- * finite (NON_FINITE), norm not zero (ZERO_VECTOR) nor overflowing (TOO_LARGE),
- * accelerometer within ORIENT_PARAM_ACCEL_RANGE (SATURATED); under ORIENT_INIT_ACC_MAG
- * the first accepted sample must carry an accelerometer (NOT_INITIALIZED). A
- * magnetometer parallel to gravity gives no heading: that step uses the IMU update.
+ * Checks, in order: dt finite and at least 1e-9 s (INVALID_DT; in a batch this
+ * catches timestamps going backwards); flags and reserved (INVALID_ARGUMENT); gyroscope present
+ * (MISSING_SENSOR), finite (NON_FINITE), within ORIENT_PARAM_GYRO_RANGE (SATURATED);
+ * accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
+ * below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
+ * nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE
+ * (SATURATED); until the filter has an orientation, every sample must carry an
+ * accelerometer (NOT_INITIALIZED). Subnormal components in an otherwise usable vector
+ * are accepted. Fields whose ORIENT_SAMPLE_* bit is clear are never read.
+ *
+ * Recoveries that are not errors: a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
+ * packets) is integrated as ORIENT_PARAM_GAP_DT and flagged ORIENT_FLAG_GAP; a
+ * magnetometer parallel to gravity gives no heading, so that step is an IMU update
+ * (ORIENT_FLAG_MAG_USED clear). A step whose result would not be finite returns
+ * NUMERIC (only reachable with ORIENT_PARAM_GAP_DT = 0).
  */
 OrientStatus orient_filter_update(OrientFilter *filter, const struct OrientSample *sample);
 

@@ -31,6 +31,15 @@ export PATH="$HOME/.cargo/bin:$PATH"
 if [ "$(cbindgen --version 2>/dev/null || true)" != "cbindgen 0.29.4" ]; then
   cargo install cbindgen --locked --version 0.29.4 --quiet
 fi
+# Nightly with Miri (the FFI's unsafe code under Miri) and cargo-fuzz (fuzzing the C ABI).
+if ! rustup component list --toolchain nightly --installed 2>/dev/null | grep -q '^miri'; then
+  rustup toolchain install nightly --profile minimal --component miri,rust-src >/dev/null 2>&1 ||
+    rustup toolchain install nightly --profile minimal --component miri,rust-src
+fi
+if ! command -v cargo-fuzz >/dev/null 2>&1; then
+  cargo install cargo-fuzz --locked --quiet
+fi
+
 if [ "$cross" = 1 ]; then
   $sudo apt-get install -y -qq --no-install-recommends \
     gcc-aarch64-linux-gnu g++-aarch64-linux-gnu gcc-arm-linux-gnueabihf g++-arm-linux-gnueabihf \

@@ -22,6 +22,12 @@ echo "== ABI against the committed baseline"
 scripts/check-abi.sh
 echo "== cargo test"
 cargo test
+echo "== Miri on the library's unit tests (unsafe FFI code included)"
+# Tree Borrows: nalgebra's matrix views break the stricter Stacked Borrows model
+# inside nalgebra itself (cholesky -> gemv), which is not orient's code.
+MIRIFLAGS="-Zmiri-tree-borrows" cargo +nightly miri test --lib
+echo "== fuzzing the C ABI (short run; scripts/fuzz.sh SECONDS for longer)"
+scripts/fuzz.sh 60
 for board in aarch64 armv7; do
   echo "== cargo test for $board under qemu"
   scripts/test-cross.sh "$board"

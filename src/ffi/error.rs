@@ -113,7 +113,7 @@ pub(crate) fn status_message(status: i32) -> &'static [u8] {
         5 => b"the filter kind has no such parameter\0",
         6 => b"parameter value not finite or out of range\0",
         7 => b"a sample field holds NaN or infinity\0",
-        8 => b"dt must be finite and greater than zero\0",
+        8 => b"dt must be finite and at least 1e-9 s\0",
         9 => b"zero vector: norm too small to normalise\0",
         10 => b"vector too large: norm overflows\0",
         11 => b"sensor reading at or beyond its configured range\0",

@@ -146,7 +146,7 @@ pub enum OrientStatus {
     ParamOutOfRange = 6,
     /// A present sample field, or a given quaternion, holds NaN or +-Inf.
     NonFinite = 7,
-    /// dt is zero, negative, NaN or infinite.
+    /// dt is below 1e-9 s (zero, negative, subnormal), NaN or infinite.
     InvalidDt = 8,
     /// An accelerometer, magnetometer or quaternion whose norm is zero (or so small
     /// that its square is not a normal double).
@@ -255,7 +255,7 @@ pub struct OrientEuler {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OrientSample {
-    /// Seconds since the previous sample; finite and > 0.
+    /// Seconds since the previous sample; finite and at least 1e-9.
     pub dt: f64,
     /// Angular rate, rad/s, sensor frame.
     pub gyro: OrientVec3,

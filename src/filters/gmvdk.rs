@@ -625,6 +625,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn slerp_matches_eq16_and_its_endpoints() {
         let a = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.2);
         let b = Quat::from_axis_angle(Vec3::new(0.0, 1.0, 1.0), 1.0);
@@ -657,6 +658,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn running_minimum_covers_exactly_the_time_window() {
         let mut w = MinWindow::new();
         let dt = 0.01;
@@ -680,6 +682,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn reset_equals_a_new_filter() {
         let mut f = Gmvdk::new(GmvdkSettings::default());
         f.set_quaternion(Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.3));
@@ -713,6 +716,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn still_sensor_trusts_the_accelerometer_and_converges() {
         let mut f = Gmvdk::new(GmvdkSettings::default());
         let truth = Quat::from_axis_angle(Vec3::new(0.2, 0.4, 1.0), 0.8);

@@ -144,7 +144,7 @@ pub enum Error {
     ParamOutOfRange { id: u32, value: f64 },
     /// A NaN or infinite value in a present field.
     NonFinite(Field),
-    /// dt is zero, negative or not finite.
+    /// dt is below 1 ns (zero, negative, subnormal) or not finite.
     InvalidDt(f64),
     /// A vector whose norm is zero or too small to normalise.
     ZeroVector(Field),
@@ -169,7 +169,7 @@ impl fmt::Display for Error {
                 write!(f, "parameter {id}: value {value} is out of range")
             }
             Error::NonFinite(field) => write!(f, "{} has a NaN or infinite value", field.name()),
-            Error::InvalidDt(dt) => write!(f, "dt must be finite and > 0 s, got {dt}"),
+            Error::InvalidDt(dt) => write!(f, "dt must be finite and at least 1e-9 s, got {dt}"),
             Error::ZeroVector(field) => {
                 write!(f, "{} vector is zero or too small to normalise", field.name())
             }
@@ -272,6 +272,9 @@ impl Config {
         self.params[id as usize]
     }
 }
+
+/// The smallest dt accepted (s): 1 ns.
+pub const MIN_DT: f64 = 1e-9;
 
 /// State flags reported by [`Filter::flags`].
 pub mod flags {
@@ -623,7 +626,9 @@ impl Filter {
 
     /// Checks a sample against every rule without touching the state.
     pub fn check(&self, s: &Sample) -> Result<(), Error> {
-        if !(s.dt.is_finite() && s.dt > 0.0) {
+        // No sensor samples faster than 1 GHz: a smaller dt (a subnormal one, say) is a
+        // host bug, and would overflow noise variances that scale with 1/dt.
+        if !(s.dt.is_finite() && s.dt >= MIN_DT) {
             return Err(Error::InvalidDt(s.dt));
         }
         let gyro = s.gyro.ok_or(Error::MissingSensor(Field::Gyro))?;
