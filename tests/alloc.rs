@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::sim::{simulate, Moment};
+use common::sim::{c_sample, simulate, Moment};
 use orient::{Config, Filter, Kind, Quat, Sample, Vec3};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -85,24 +85,7 @@ fn updates_and_outputs_do_not_allocate_for_any_kind() {
             assert_eq!(orient_config_default(k, c.as_mut_ptr()), OrientStatus::Ok);
             let mut h = std::ptr::null_mut();
             assert_eq!(orient_filter_new(c.as_ptr(), &mut h), OrientStatus::Ok);
-            let samples: Vec<OrientSample> = run
-                .samples
-                .iter()
-                .map(|s| {
-                    let v = |v: Option<Vec3>| {
-                        let v = v.unwrap();
-                        OrientVec3 { x: v.x, y: v.y, z: v.z }
-                    };
-                    OrientSample {
-                        dt: s.dt,
-                        gyro: v(s.gyro),
-                        accel: v(s.accel),
-                        mag: v(s.mag),
-                        flags: ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL | ORIENT_SAMPLE_MAG,
-                        reserved: 0,
-                    }
-                })
-                .collect();
+            let samples: Vec<OrientSample> = run.samples.iter().map(c_sample).collect();
             let mut out = vec![OrientQuaternion::default(); samples.len()];
             let bad_c = OrientSample { dt: f64::NAN, ..samples[0] };
             // Warm the thread-local error buffer once (its first use may set it up).

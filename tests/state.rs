@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::sim::{simulate, Moment};
+use common::sim::{c_sample, simulate, Moment};
 use orient::ffi::*;
 use orient::filters::state::StateError;
 use orient::{Config, Filter, Kind, Quat, Sample, Vec3};
@@ -93,21 +93,6 @@ fn damaged_blobs_are_refused_and_change_nothing() {
         // Too small an output buffer.
         let mut small = vec![0u8; blob.len() - 1];
         assert_eq!(f.save(&mut small), Err(StateError::BufferTooSmall(blob.len())));
-    }
-}
-
-fn c_sample(s: &Sample) -> OrientSample {
-    let v = |v: Option<Vec3>| {
-        let v = v.unwrap();
-        OrientVec3 { x: v.x, y: v.y, z: v.z }
-    };
-    OrientSample {
-        dt: s.dt,
-        gyro: v(s.gyro),
-        accel: v(s.accel),
-        mag: v(s.mag),
-        flags: ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL | ORIENT_SAMPLE_MAG,
-        reserved: 0,
     }
 }
 

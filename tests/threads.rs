@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::sim::{simulate, Moment};
+use common::sim::{c_sample, simulate, Moment};
 use orient::ffi::*;
 use orient::{Quat, Vec3};
 
@@ -24,20 +24,7 @@ fn inputs(seed: usize) -> Vec<OrientSample> {
     })
     .samples
     .iter()
-    .map(|s| {
-        let v = |v: Option<Vec3>| {
-            let v = v.unwrap();
-            OrientVec3 { x: v.x, y: v.y, z: v.z }
-        };
-        OrientSample {
-            dt: s.dt,
-            gyro: v(s.gyro),
-            accel: v(s.accel),
-            mag: v(s.mag),
-            flags: ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL | ORIENT_SAMPLE_MAG,
-            reserved: 0,
-        }
-    })
+    .map(c_sample)
     .collect()
 }
 

@@ -103,3 +103,20 @@ pub fn inclination_error(est: Quat, truth: Quat) -> f64 {
     let b = truth.rotate_inverse(up);
     a.dot(b).clamp(-1.0, 1.0).acos()
 }
+
+/// A sample as the C ABI's OrientSample; absent sensors have their flag cleared.
+pub fn c_sample(s: &Sample) -> orient::ffi::OrientSample {
+    use orient::ffi::*;
+    let v = |v: Option<Vec3>| v.map_or(OrientVec3::default(), |v| OrientVec3 { x: v.x, y: v.y, z: v.z });
+    let flag = |present: bool, bit: u32| if present { bit } else { 0 };
+    OrientSample {
+        dt: s.dt,
+        gyro: v(s.gyro),
+        accel: v(s.accel),
+        mag: v(s.mag),
+        flags: flag(s.gyro.is_some(), ORIENT_SAMPLE_GYRO)
+            | flag(s.accel.is_some(), ORIENT_SAMPLE_ACCEL)
+            | flag(s.mag.is_some(), ORIENT_SAMPLE_MAG),
+        reserved: 0,
+    }
+}
