@@ -44,7 +44,9 @@ fn quaternion(h: *mut OrientFilter) -> OrientQuaternion {
 }
 
 fn same(a: OrientQuaternion, b: OrientQuaternion) -> bool {
-    a.w.to_bits() == b.w.to_bits() && a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits()
+    a.w.to_bits() == b.w.to_bits()
+        && a.x.to_bits() == b.x.to_bits()
+        && a.y.to_bits() == b.y.to_bits()
         && a.z.to_bits() == b.z.to_bits()
 }
 
@@ -165,7 +167,10 @@ fuzz_target!(|data: &[u8]| {
                     assert_eq!(orient_filter_state_size(h, &mut size), OrientStatus::Ok);
                     blob.resize(size, 0);
                     let mut written = 0;
-                    assert_eq!(orient_filter_save(h, blob.as_mut_ptr(), size, &mut written), OrientStatus::Ok);
+                    assert_eq!(
+                        orient_filter_save(h, blob.as_mut_ptr(), size, &mut written),
+                        OrientStatus::Ok
+                    );
                 }
                 8 if !handles.is_empty() => {
                     // Load the last blob, often damaged or cut.
