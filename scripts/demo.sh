@@ -3,7 +3,7 @@
 # prints its error against the optical ground truth.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup-debian.sh
+scripts/setup-debian.sh --demo
 export PATH="$HOME/.cargo/bin:$PATH"
 cargo build --release --quiet --example replay
 for mode in "" "--no-mag"; do
