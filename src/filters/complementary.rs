@@ -40,6 +40,7 @@
 //!   defines north instead, aligning the output with the configured earth frame.
 
 use super::params::{id, ParamSpec};
+use super::startup::StartupMeans;
 use super::Step;
 use crate::math::{Frame, Quat, Vec3};
 
@@ -138,18 +139,6 @@ pub(crate) const PARAMS: [ParamSpec; 6] = [
     },
 ];
 
-/// Sums over the start-up period.
-#[derive(Clone, Debug, Default, PartialEq)]
-struct Startup {
-    time: f64,
-    n: u32,
-    gyro: Vec3,
-    accel: Vec3,
-    accel_norm: f64,
-    mag: Vec3,
-    n_mag: u32,
-}
-
 /// McGinnis' complementary filter. Native frame: East-North-Up with "north" from the
 /// start-up period (see the module doc).
 #[derive(Clone, Debug, PartialEq)]
@@ -162,7 +151,7 @@ pub struct Complementary {
     /// ω_m's stationary value: the start-up mean (zero without a start-up period).
     b0: Vec3,
     rest: bool,
-    startup: Option<Startup>,
+    startup: Option<StartupMeans>,
 }
 
 /// The rotation `exp(ω dt)` as a unit quaternion (exact for a constant rate).
@@ -185,7 +174,7 @@ impl Complementary {
             g0: 0.0,
             b0: Vec3::ZERO,
             rest: false,
-            startup: Some(Startup::default()),
+            startup: Some(StartupMeans::default()),
         }
     }
 
@@ -206,17 +195,7 @@ impl Complementary {
         c.f64(&mut self.g0);
         c.vec3(&mut self.b0);
         c.bool(&mut self.rest);
-        let mut present = self.startup.is_some();
-        c.bool(&mut present);
-        let mut s = self.startup.clone().unwrap_or_default();
-        c.f64(&mut s.time);
-        c.u32(&mut s.n);
-        c.vec3(&mut s.gyro);
-        c.vec3(&mut s.accel);
-        c.f64(&mut s.accel_norm);
-        c.vec3(&mut s.mag);
-        c.u32(&mut s.n_mag);
-        self.startup = present.then_some(s);
+        StartupMeans::codec(&mut self.startup, c);
     }
 
     pub fn bias(&self) -> Vec3 {
@@ -234,10 +213,10 @@ impl Complementary {
 
     /// The attitude from the start-up means: Ê₃ up, Ê₂ from the sensor's y axis (or the
     /// field), rows of R_ES = [Ê₁; Ê₂; Ê₃].
-    fn initial_attitude(&self, s: &Startup) -> Quat {
-        let accel = s.accel * (1.0 / s.n as f64);
-        if self.settings.align_heading && s.n_mag > 0 {
-            if let Some(q) = Frame::Enu.attitude_from(accel, Some(s.mag * (1.0 / s.n_mag as f64))) {
+    fn initial_attitude(&self, s: &StartupMeans) -> Quat {
+        let accel = s.accel();
+        if self.settings.align_heading {
+            if let Some(q) = s.mag().and_then(|m| Frame::Enu.attitude_from(accel, Some(m))) {
                 return q;
             }
         }
@@ -259,27 +238,18 @@ impl Complementary {
         if let Some(mut s) = self.startup.clone() {
             // The wrapper guarantees an accelerometer reading until initialised.
             let a = accel?;
-            s.time += dt;
-            s.n += 1;
-            s.gyro = s.gyro + gyro;
-            s.accel = s.accel + a;
-            s.accel_norm += a.norm();
-            if let Some(m) = mag {
-                s.mag = s.mag + m;
-                s.n_mag += 1;
-            }
-            if s.time + 1e-12 < self.settings.init_duration {
+            if !s.add(dt, gyro, a, mag, self.settings.init_duration) {
                 self.startup = Some(s);
                 step.initializing = true;
                 return Some(step);
             }
             self.q = self.initial_attitude(&s);
-            self.bias = s.gyro * (1.0 / s.n as f64);
+            self.bias = s.gyro();
             self.b0 = self.bias;
-            self.g0 = s.accel_norm / s.n as f64;
+            self.g0 = s.accel_norm();
             self.startup = None;
             step.used_accel = true;
-            step.used_mag = self.settings.align_heading && s.n_mag > 0;
+            step.used_mag = self.settings.align_heading && s.mag().is_some();
             return Some(step);
         }
         let Some(a) = accel else {

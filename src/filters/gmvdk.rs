@@ -50,6 +50,7 @@
 //!   as it does when μ_K = 0.
 
 use super::params::{id, ParamSpec};
+use super::startup::StartupMeans;
 use super::Step;
 use crate::math::{Frame, Quat, Vec3};
 
@@ -315,16 +316,6 @@ impl Regression {
     }
 }
 
-#[derive(Clone, Debug, Default, PartialEq)]
-struct Startup {
-    time: f64,
-    n: u32,
-    gyro: Vec3,
-    accel: Vec3,
-    mag: Vec3,
-    n_mag: u32,
-}
-
 /// The trust values of the last update.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Trust {
@@ -347,7 +338,7 @@ pub struct Gmvdk {
     ms_gyro: f64,
     ms_accel: f64,
     time: f64,
-    startup: Option<Startup>,
+    startup: Option<StartupMeans>,
     regression: Regression,
     /// Boxed at creation (16 KiB): keeps the other kinds' handles small; never
     /// reallocated by an update.
@@ -369,7 +360,7 @@ impl Gmvdk {
             ms_gyro: 0.0,
             ms_accel: 0.0,
             time: 0.0,
-            startup: Some(Startup::default()),
+            startup: Some(StartupMeans::default()),
             regression: Regression::default(),
             window: Box::new(MinWindow::new()),
             trust: Trust::default(),
@@ -391,7 +382,7 @@ impl Gmvdk {
         self.ms_gyro = 0.0;
         self.ms_accel = 0.0;
         self.time = 0.0;
-        self.startup = Some(Startup::default());
+        self.startup = Some(StartupMeans::default());
         self.regression = Regression::default();
         self.trust = Trust::default();
         self.mag_seen = false;
@@ -425,16 +416,7 @@ impl Gmvdk {
         c.f64(&mut self.ms_gyro);
         c.f64(&mut self.ms_accel);
         c.f64(&mut self.time);
-        let mut present = self.startup.is_some();
-        c.bool(&mut present);
-        let mut s = self.startup.clone().unwrap_or_default();
-        c.f64(&mut s.time);
-        c.u32(&mut s.n);
-        c.vec3(&mut s.gyro);
-        c.vec3(&mut s.accel);
-        c.vec3(&mut s.mag);
-        c.u32(&mut s.n_mag);
-        self.startup = present.then_some(s);
+        StartupMeans::codec(&mut self.startup, c);
         let r = &mut self.regression;
         for v in [&mut r.n, &mut r.t0, &mut r.st, &mut r.stt, &mut r.last_t] {
             c.f64(v);
@@ -477,17 +459,16 @@ impl Gmvdk {
         self.startup.is_some()
     }
 
-    fn finish_startup(&mut self, s: &Startup) {
-        let inv = 1.0 / s.n as f64;
-        let accel = s.accel * inv;
-        let mag = (s.n_mag > 0).then(|| s.mag * (1.0 / s.n_mag as f64));
+    fn finish_startup(&mut self, s: &StartupMeans) {
+        let accel = s.accel();
+        let mag = s.mag();
         let q = Frame::Enu
             .attitude_from(accel, mag)
             .or_else(|| Frame::Enu.attitude_from(accel, None))
             .unwrap_or(Quat::IDENTITY);
         self.q = q;
         self.q_start = q;
-        self.bias = s.gyro * inv;
+        self.bias = s.gyro();
         self.a_init = Some(q.rotate(accel));
         self.m_init = mag.map(|m| q.rotate(m));
         self.g0 = accel.norm();
@@ -497,16 +478,8 @@ impl Gmvdk {
         let mut step = Step::default();
         if let Some(mut s) = self.startup.clone() {
             let a = accel?;
-            s.time += dt;
-            s.n += 1;
-            s.gyro = s.gyro + gyro;
-            s.accel = s.accel + a;
-            if let Some(m) = mag {
-                s.mag = s.mag + m;
-                s.n_mag += 1;
-            }
             self.time += dt;
-            if s.time + 1e-12 < self.settings.init_duration {
+            if !s.add(dt, gyro, a, mag, self.settings.init_duration) {
                 self.startup = Some(s);
                 step.initializing = true;
                 return Some(step);
@@ -514,7 +487,7 @@ impl Gmvdk {
             self.finish_startup(&s);
             self.startup = None;
             step.used_accel = true;
-            step.used_mag = s.n_mag > 0;
+            step.used_mag = s.mag().is_some();
             return Some(step);
         }
         let st = self.settings;

@@ -8,6 +8,7 @@ pub mod gmvdk;
 pub mod madgwick;
 pub mod mahony;
 pub mod params;
+mod startup;
 pub mod state;
 
 use crate::math::{Euler, Frame, Quat, Vec3};
