@@ -280,12 +280,8 @@ impl Complementary {
     }
 
     fn commit(&mut self, q: Quat, bias: Vec3, step: Step) -> Option<Step> {
-        let n2 = q.norm_squared();
-        if !(n2.is_finite() && n2 > 0.0 && bias.is_finite()) {
-            return None;
-        }
         // exp() is unit up to rounding; renormalise so it cannot drift over long runs.
-        self.q = q.scale(1.0 / n2.sqrt());
+        self.q = q.try_normalized().filter(|_| bias.is_finite())?;
         self.bias = bias;
         Some(step)
     }

@@ -217,16 +217,7 @@ impl Madgwick {
             }
         };
         // (29): integrate, then keep the estimate on the unit sphere.
-        let q_new = q + q_dot.scale(dt);
-        let n2 = q_new.norm_squared();
-        if !(n2.is_finite() && n2 > 0.0) {
-            return None;
-        }
-        let q_new = q_new.scale(1.0 / n2.sqrt());
-        if !q_new.is_finite() {
-            return None;
-        }
-        self.q = q_new;
+        self.q = (q + q_dot.scale(dt)).try_normalized()?;
         Some(step)
     }
 }

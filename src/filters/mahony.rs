@@ -127,11 +127,7 @@ impl Mahony {
             omega = omega + e * self.settings.kp;
         }
         let q = self.q + (self.q * Quat::pure(omega)).scale(0.5 * dt);
-        let n2 = q.norm_squared();
-        if !(n2.is_finite() && n2 > 0.0 && bias.is_finite()) {
-            return None;
-        }
-        self.q = q.scale(1.0 / n2.sqrt());
+        self.q = q.try_normalized().filter(|_| bias.is_finite())?;
         self.bias = bias;
         Some(step)
     }

@@ -82,6 +82,17 @@ impl Quat {
         self.scale(1.0 / self.norm())
     }
 
+    /// The quaternion divided by its norm, or `None` when the norm is zero, overflows or
+    /// the result is not finite (the check every filter's update makes before it commits).
+    #[inline]
+    pub fn try_normalized(self) -> Option<Quat> {
+        let n2 = self.norm_squared();
+        if !(n2.is_finite() && n2 > 0.0) {
+            return None;
+        }
+        Some(self.scale(1.0 / n2.sqrt())).filter(|q| q.is_finite())
+    }
+
     pub fn is_finite(self) -> bool {
         self.w.is_finite() && self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
     }
