@@ -333,7 +333,8 @@ enum OrientStatus
    */
   ORIENT_STATUS_INVALID_HANDLE = 2,
   /**
-   * The kind is known but not built in this version of the library.
+   * The kind is known but not built in this version of the library (reserved: every
+   * kind is built in this version).
    */
   ORIENT_STATUS_UNSUPPORTED_KIND = 3,
   /**

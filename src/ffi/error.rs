@@ -52,7 +52,6 @@ pub(crate) fn fail(status: OrientStatus, detail: fmt::Arguments<'_>) -> OrientSt
 /// The status for a core error, with its message recorded.
 pub(crate) fn from_core(e: Error) -> OrientStatus {
     let status = match e {
-        Error::UnsupportedKind(_) => OrientStatus::UnsupportedKind,
         Error::UnknownParam(_) => OrientStatus::UnknownParam,
         Error::ParamOutOfRange { .. } => OrientStatus::ParamOutOfRange,
         Error::NonFinite(_) => OrientStatus::NonFinite,

@@ -88,12 +88,6 @@ fn kind_from(kind: i32) -> Result<Kind, OrientStatus> {
         5 => Kind::Gmvdk,
         _ => return Err(fail(OrientStatus::InvalidArgument, format_args!("unknown filter kind {kind}"))),
     };
-    if !k.is_supported() {
-        return Err(fail(
-            OrientStatus::UnsupportedKind,
-            format_args!("filter kind '{}' is not built in this version", k.name()),
-        ));
-    }
     Ok(k)
 }
 

@@ -136,7 +136,8 @@ pub enum OrientStatus {
     NullPointer = 1,
     /// The handle is not a live OrientFilter (freed, foreign or misaligned pointer).
     InvalidHandle = 2,
-    /// The kind is known but not built in this version of the library.
+    /// The kind is known but not built in this version of the library (reserved: every
+    /// kind is built in this version).
     UnsupportedKind = 3,
     /// An enum value, flag bit or index that the library does not know.
     InvalidArgument = 4,

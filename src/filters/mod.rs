@@ -54,11 +54,6 @@ impl Kind {
         Kind::ALL.into_iter().find(|k| k.name().eq_ignore_ascii_case(name))
     }
 
-    /// True when this build implements the kind.
-    pub fn is_supported(self) -> bool {
-        true
-    }
-
     /// The settings this kind has beyond the common ones.
     fn own_params(self) -> &'static [ParamSpec] {
         match self {
@@ -137,8 +132,6 @@ impl Field {
 /// Why a call was refused. A refused call changes nothing.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Error {
-    /// The kind is known but not built yet.
-    UnsupportedKind(Kind),
     /// This kind has no parameter in that slot.
     UnknownParam(u32),
     /// A parameter value outside its range or not finite.
@@ -164,7 +157,6 @@ pub enum Error {
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            Error::UnsupportedKind(k) => write!(f, "filter kind '{}' is not built yet", k.name()),
             Error::UnknownParam(id) => write!(f, "this filter kind has no parameter {id}"),
             Error::ParamOutOfRange { id, value } => {
                 write!(f, "parameter {id}: value {value} is out of range")
@@ -210,11 +202,9 @@ pub struct Config {
 
 impl Config {
     /// The defaults of `kind`: ENU, initialised from the first accelerometer (and
-    /// magnetometer) sample, every parameter at its documented default.
+    /// magnetometer) sample, every parameter at its documented default. Every kind is
+    /// built today; the `Result` leaves room for kinds a build may leave out.
     pub fn new(kind: Kind) -> Result<Config, Error> {
-        if !kind.is_supported() {
-            return Err(Error::UnsupportedKind(kind));
-        }
         let mut params = [0.0; MAX_PARAMS];
         for p in kind.params() {
             params[p.id as usize] = p.default;
