@@ -170,6 +170,24 @@ fn main() {
             vec![(id::GMVDK_INIT_DURATION, 0.5)],
             motion_after_rest(9, 80, 300, |_| marg),
         ),
+        case(
+            "robust_marg_enu",
+            Kind::Robust,
+            Frame::Enu,
+            0,
+            Quat::IDENTITY,
+            vec![(id::ROBUST_REST_TIME, 0.3), (id::ROBUST_HARD_IRON_TIME, 0.5)],
+            motion_after_rest(10, 80, 300, |_| marg),
+        ),
+        case(
+            "robust_imu_ned_given",
+            Kind::Robust,
+            Frame::Ned,
+            2,
+            q0,
+            vec![(id::ROBUST_BIAS_TAU_MOTION, 5.0)],
+            motion(11, 300, |_| imu),
+        ),
     ];
     std::fs::write(golden::PATH, golden::write(&cases)).expect("write golden file");
     let n: usize = cases.iter().map(|c| c.rows.len()).sum();

@@ -51,7 +51,7 @@ typedef struct OrientFilter OrientFilter;
 /**
  * Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
  * kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
- * EKF 40-55, GMVDK 56-79); 80-127 are free for later versions.
+ * EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
  */
 #define ORIENT_MAX_PARAMS 128
 
@@ -271,6 +271,71 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_PARAM_GMVDK_RELATIVE_OUTPUT 65
 
 /**
+ * Parameter slot (robust): accelerometer low-pass time constant, s, default 2.5.
+ */
+#define ORIENT_PARAM_ROBUST_TAU_ACC 80
+
+/**
+ * Parameter slot (robust): magnetometer heading time constant, s, default 9.
+ */
+#define ORIENT_PARAM_ROBUST_TAU_MAG 81
+
+/**
+ * Parameter slot (robust): rest threshold on the gyroscope, rad/s, default 0.0349 (2 deg/s).
+ */
+#define ORIENT_PARAM_ROBUST_REST_GYRO 82
+
+/**
+ * Parameter slot (robust): rest threshold on the accelerometer, m/s^2, default 0.5.
+ */
+#define ORIENT_PARAM_ROBUST_REST_ACCEL 83
+
+/**
+ * Parameter slot (robust): time the rest conditions must hold, s, default 1.5.
+ */
+#define ORIENT_PARAM_ROBUST_REST_TIME 84
+
+/**
+ * Parameter slot (robust): rest-detection low-pass time constant, s, default 0.5.
+ */
+#define ORIENT_PARAM_ROBUST_REST_TAU 85
+
+/**
+ * Parameter slot (robust): bias time constant at rest, s, default 2.
+ */
+#define ORIENT_PARAM_ROBUST_BIAS_TAU_REST 86
+
+/**
+ * Parameter slot (robust): bias time constant in motion, s, default 100; 0 = off.
+ */
+#define ORIENT_PARAM_ROBUST_BIAS_TAU_MOTION 87
+
+/**
+ * Parameter slot (robust): largest bias the motion estimate reaches, rad/s, default 0.0349.
+ */
+#define ORIENT_PARAM_ROBUST_BIAS_LIMIT 88
+
+/**
+ * Parameter slot (robust): magnetic disturbance threshold on the norm, fraction, default 0.1.
+ */
+#define ORIENT_PARAM_ROBUST_MAG_NORM_TH 89
+
+/**
+ * Parameter slot (robust): magnetic disturbance threshold on the dip, rad, default 0.1745.
+ */
+#define ORIENT_PARAM_ROBUST_MAG_DIP_TH 90
+
+/**
+ * Parameter slot (robust): consistent time before hard-iron compensation, s, default 3; 0 = off.
+ */
+#define ORIENT_PARAM_ROBUST_HARD_IRON_TIME 91
+
+/**
+ * Parameter slot (robust): largest accelerometer tilt within a rest, rad, default 0.0087 (0.5 deg).
+ */
+#define ORIENT_PARAM_ROBUST_REST_TILT 92
+
+/**
  * OrientDiagnostics.present: gyro_bias holds a value.
  */
 #define ORIENT_DIAG_GYRO_BIAS 1
@@ -446,6 +511,11 @@ enum OrientKind
    * GMVDK 2024 double-SLERP filter with trust alpha and mu_K; start-up period.
    */
   ORIENT_KIND_GMVDK = 5,
+  /**
+   * Recommended: strapdown with a quasi-inertial accelerometer low-pass, rest and motion
+   * gyro-bias estimation, magnetic disturbance rejection and hard-iron compensation.
+   */
+  ORIENT_KIND_ROBUST = 6,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L

@@ -4,6 +4,7 @@
 mod common;
 
 use common::native::{check, command, compiler, cross, deps_dir, link_shared, out_dir, root, run};
+use orient::Kind;
 use std::process::Command;
 
 const EXCERPT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/data/broad_01_excerpt.csv");
@@ -84,5 +85,5 @@ fn rust_quickstart_example_runs() {
         assert!(status.success());
     }
     let out = stdout_of(command(&bin).output().unwrap(), "quickstart");
-    assert_eq!(out.lines().filter(|l| l.contains("error vs truth")).count(), 5, "{out}");
+    assert_eq!(out.lines().filter(|l| l.contains("error vs truth")).count(), Kind::ALL.len(), "{out}");
 }

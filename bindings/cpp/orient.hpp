@@ -43,6 +43,7 @@ enum class Kind : int32_t {
     Complementary = ORIENT_KIND_COMPLEMENTARY,
     Ekf = ORIENT_KIND_EKF,
     Gmvdk = ORIENT_KIND_GMVDK,
+    Robust = ORIENT_KIND_ROBUST,
 };
 
 enum class Frame : int32_t { Enu = ORIENT_FRAME_ENU, Ned = ORIENT_FRAME_NED, Nwu = ORIENT_FRAME_NWU };

@@ -44,6 +44,7 @@ namespace Orient.Native
         Complementary = 3,
         Ekf = 4,
         Gmvdk = 5,
+        Robust = 6,
     }
 
     /// <summary>OrientFrame: the earth frame outputs are expressed in.</summary>
@@ -108,6 +109,19 @@ namespace Orient.Native
         public const uint ParamGmvdkBiasWindow = 63; // ORIENT_PARAM_GMVDK_BIAS_WINDOW
         public const uint ParamGmvdkStaticAlpha = 64; // ORIENT_PARAM_GMVDK_STATIC_ALPHA
         public const uint ParamGmvdkRelativeOutput = 65; // ORIENT_PARAM_GMVDK_RELATIVE_OUTPUT
+        public const uint ParamRobustTauAcc = 80; // ORIENT_PARAM_ROBUST_TAU_ACC
+        public const uint ParamRobustTauMag = 81; // ORIENT_PARAM_ROBUST_TAU_MAG
+        public const uint ParamRobustRestGyro = 82; // ORIENT_PARAM_ROBUST_REST_GYRO
+        public const uint ParamRobustRestAccel = 83; // ORIENT_PARAM_ROBUST_REST_ACCEL
+        public const uint ParamRobustRestTime = 84; // ORIENT_PARAM_ROBUST_REST_TIME
+        public const uint ParamRobustRestTau = 85; // ORIENT_PARAM_ROBUST_REST_TAU
+        public const uint ParamRobustBiasTauRest = 86; // ORIENT_PARAM_ROBUST_BIAS_TAU_REST
+        public const uint ParamRobustBiasTauMotion = 87; // ORIENT_PARAM_ROBUST_BIAS_TAU_MOTION
+        public const uint ParamRobustBiasLimit = 88; // ORIENT_PARAM_ROBUST_BIAS_LIMIT
+        public const uint ParamRobustMagNormTh = 89; // ORIENT_PARAM_ROBUST_MAG_NORM_TH
+        public const uint ParamRobustMagDipTh = 90; // ORIENT_PARAM_ROBUST_MAG_DIP_TH
+        public const uint ParamRobustHardIronTime = 91; // ORIENT_PARAM_ROBUST_HARD_IRON_TIME
+        public const uint ParamRobustRestTilt = 92; // ORIENT_PARAM_ROBUST_REST_TILT
         public const uint DiagGyroBias = 1; // ORIENT_DIAG_GYRO_BIAS
         public const uint DiagRest = 2; // ORIENT_DIAG_REST
         public const uint DiagAlpha = 4; // ORIENT_DIAG_ALPHA

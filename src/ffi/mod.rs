@@ -86,6 +86,7 @@ fn kind_from(kind: i32) -> Result<Kind, OrientStatus> {
         3 => Kind::Complementary,
         4 => Kind::Ekf,
         5 => Kind::Gmvdk,
+        6 => Kind::Robust,
         _ => return Err(fail(OrientStatus::InvalidArgument, format_args!("unknown filter kind {kind}"))),
     };
     Ok(k)
@@ -98,6 +99,7 @@ fn kind_to(kind: Kind) -> i32 {
         Kind::Complementary => OrientKind::Complementary,
         Kind::Ekf => OrientKind::Ekf,
         Kind::Gmvdk => OrientKind::Gmvdk,
+        Kind::Robust => OrientKind::Robust,
     }) as i32
 }
 
@@ -750,6 +752,19 @@ mod tests {
             (ORIENT_PARAM_GMVDK_BIAS_WINDOW, params::id::GMVDK_BIAS_WINDOW),
             (ORIENT_PARAM_GMVDK_STATIC_ALPHA, params::id::GMVDK_STATIC_ALPHA),
             (ORIENT_PARAM_GMVDK_RELATIVE_OUTPUT, params::id::GMVDK_RELATIVE_OUTPUT),
+            (ORIENT_PARAM_ROBUST_TAU_ACC, params::id::ROBUST_TAU_ACC),
+            (ORIENT_PARAM_ROBUST_TAU_MAG, params::id::ROBUST_TAU_MAG),
+            (ORIENT_PARAM_ROBUST_REST_GYRO, params::id::ROBUST_REST_GYRO),
+            (ORIENT_PARAM_ROBUST_REST_ACCEL, params::id::ROBUST_REST_ACCEL),
+            (ORIENT_PARAM_ROBUST_REST_TIME, params::id::ROBUST_REST_TIME),
+            (ORIENT_PARAM_ROBUST_REST_TAU, params::id::ROBUST_REST_TAU),
+            (ORIENT_PARAM_ROBUST_BIAS_TAU_REST, params::id::ROBUST_BIAS_TAU_REST),
+            (ORIENT_PARAM_ROBUST_BIAS_TAU_MOTION, params::id::ROBUST_BIAS_TAU_MOTION),
+            (ORIENT_PARAM_ROBUST_BIAS_LIMIT, params::id::ROBUST_BIAS_LIMIT),
+            (ORIENT_PARAM_ROBUST_MAG_NORM_TH, params::id::ROBUST_MAG_NORM_TH),
+            (ORIENT_PARAM_ROBUST_MAG_DIP_TH, params::id::ROBUST_MAG_DIP_TH),
+            (ORIENT_PARAM_ROBUST_HARD_IRON_TIME, params::id::ROBUST_HARD_IRON_TIME),
+            (ORIENT_PARAM_ROBUST_REST_TILT, params::id::ROBUST_REST_TILT),
         ];
         for (c, r) in slots {
             assert_eq!(c, r);

@@ -8,7 +8,7 @@ pub const ORIENT_ABI_VERSION: u32 = 1;
 
 /// Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
 /// kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
-/// EKF 40-55, GMVDK 56-79); 80-127 are free for later versions.
+/// EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
 pub const ORIENT_MAX_PARAMS: usize = 128;
 
 /// `OrientSample.flags`: the gyroscope field holds a reading (every filter needs one).
@@ -107,6 +107,33 @@ pub const ORIENT_PARAM_GMVDK_STATIC_ALPHA: u32 = 64;
 /// Parameter slot (GMVDK): 1 = output relative to the start-up pose, default 0.
 pub const ORIENT_PARAM_GMVDK_RELATIVE_OUTPUT: u32 = 65;
 
+/// Parameter slot (robust): accelerometer low-pass time constant, s, default 2.5.
+pub const ORIENT_PARAM_ROBUST_TAU_ACC: u32 = 80;
+/// Parameter slot (robust): magnetometer heading time constant, s, default 9.
+pub const ORIENT_PARAM_ROBUST_TAU_MAG: u32 = 81;
+/// Parameter slot (robust): rest threshold on the gyroscope, rad/s, default 0.0349 (2 deg/s).
+pub const ORIENT_PARAM_ROBUST_REST_GYRO: u32 = 82;
+/// Parameter slot (robust): rest threshold on the accelerometer, m/s^2, default 0.5.
+pub const ORIENT_PARAM_ROBUST_REST_ACCEL: u32 = 83;
+/// Parameter slot (robust): time the rest conditions must hold, s, default 1.5.
+pub const ORIENT_PARAM_ROBUST_REST_TIME: u32 = 84;
+/// Parameter slot (robust): rest-detection low-pass time constant, s, default 0.5.
+pub const ORIENT_PARAM_ROBUST_REST_TAU: u32 = 85;
+/// Parameter slot (robust): bias time constant at rest, s, default 2.
+pub const ORIENT_PARAM_ROBUST_BIAS_TAU_REST: u32 = 86;
+/// Parameter slot (robust): bias time constant in motion, s, default 100; 0 = off.
+pub const ORIENT_PARAM_ROBUST_BIAS_TAU_MOTION: u32 = 87;
+/// Parameter slot (robust): largest bias the motion estimate reaches, rad/s, default 0.0349.
+pub const ORIENT_PARAM_ROBUST_BIAS_LIMIT: u32 = 88;
+/// Parameter slot (robust): magnetic disturbance threshold on the norm, fraction, default 0.1.
+pub const ORIENT_PARAM_ROBUST_MAG_NORM_TH: u32 = 89;
+/// Parameter slot (robust): magnetic disturbance threshold on the dip, rad, default 0.1745.
+pub const ORIENT_PARAM_ROBUST_MAG_DIP_TH: u32 = 90;
+/// Parameter slot (robust): consistent time before hard-iron compensation, s, default 3; 0 = off.
+pub const ORIENT_PARAM_ROBUST_HARD_IRON_TIME: u32 = 91;
+/// Parameter slot (robust): largest accelerometer tilt within a rest, rad, default 0.0087 (0.5 deg).
+pub const ORIENT_PARAM_ROBUST_REST_TILT: u32 = 92;
+
 /// OrientDiagnostics.present: gyro_bias holds a value.
 pub const ORIENT_DIAG_GYRO_BIAS: u32 = 1;
 /// OrientDiagnostics.present: rest holds a value.
@@ -193,6 +220,9 @@ pub enum OrientKind {
     Ekf = 4,
     /// GMVDK 2024 double-SLERP filter with trust alpha and mu_K; start-up period.
     Gmvdk = 5,
+    /// Recommended: strapdown with a quasi-inertial accelerometer low-pass, rest and motion
+    /// gyro-bias estimation, magnetic disturbance rejection and hard-iron compensation.
+    Robust = 6,
 }
 
 /// Earth frames, as `OrientConfig.frame`.

@@ -8,6 +8,7 @@ pub mod gmvdk;
 pub mod madgwick;
 pub mod mahony;
 pub mod params;
+pub mod robust;
 mod startup;
 pub mod state;
 
@@ -19,6 +20,7 @@ use gmvdk::{Gmvdk, GmvdkSettings};
 use madgwick::{Madgwick, MadgwickSettings};
 use mahony::{Mahony, MahonySettings};
 use params::{id, ParamSpec, COMMON, MAX_PARAMS};
+use robust::{Robust, RobustSettings};
 use state::{Codec, Reader, StateError, Writer};
 
 /// The filter kinds. Hosts swap filters by changing this value alone.
@@ -34,10 +36,14 @@ pub enum Kind {
     Ekf,
     /// GMVDK 2024 double-SLERP filter (MARG; IMU without its magnetometer pipeline).
     Gmvdk,
+    /// orient's recommended filter: quasi-inertial accelerometer low-pass, rest and motion
+    /// bias estimation, magnetic disturbance rejection with hard-iron compensation.
+    Robust,
 }
 
 impl Kind {
-    pub const ALL: [Kind; 5] = [Kind::Madgwick, Kind::Mahony, Kind::Complementary, Kind::Ekf, Kind::Gmvdk];
+    pub const ALL: [Kind; 6] =
+        [Kind::Madgwick, Kind::Mahony, Kind::Complementary, Kind::Ekf, Kind::Gmvdk, Kind::Robust];
 
     /// The lower-case name used by the replay tool: `madgwick`, `mahony`, ...
     pub fn name(self) -> &'static str {
@@ -47,6 +53,7 @@ impl Kind {
             Kind::Complementary => "complementary",
             Kind::Ekf => "ekf",
             Kind::Gmvdk => "gmvdk",
+            Kind::Robust => "robust",
         }
     }
 
@@ -62,6 +69,7 @@ impl Kind {
             Kind::Complementary => &complementary::PARAMS,
             Kind::Ekf => &ekf::PARAMS,
             Kind::Gmvdk => &gmvdk::PARAMS,
+            Kind::Robust => &robust::PARAMS,
         }
     }
 
@@ -74,6 +82,7 @@ impl Kind {
             Kind::Complementary => GYRO_BIAS | REST,
             Kind::Ekf => GYRO_BIAS | RATE | COVARIANCE,
             Kind::Gmvdk => GYRO_BIAS | ALPHA | MU_KA | MU_KM | MU_K,
+            Kind::Robust => GYRO_BIAS | REST,
         }
     }
 
@@ -351,6 +360,7 @@ enum Core {
     Complementary(Complementary),
     Ekf(Ekf),
     Gmvdk(Gmvdk),
+    Robust(Robust),
 }
 
 /// Runs the same expression on whichever filter the core holds.
@@ -362,6 +372,7 @@ macro_rules! each {
             Core::Complementary($f) => $body,
             Core::Ekf($f) => $body,
             Core::Gmvdk($f) => $body,
+            Core::Robust($f) => $body,
         }
     };
 }
@@ -374,6 +385,7 @@ impl Core {
             Kind::Complementary => Core::Complementary(Complementary::new(complementary_settings(config))),
             Kind::Ekf => Core::Ekf(Ekf::new(ekf_settings(config))),
             Kind::Gmvdk => Core::Gmvdk(Gmvdk::new(gmvdk_settings(config))),
+            Kind::Robust => Core::Robust(Robust::new(robust_settings(config))),
         }
     }
 
@@ -381,7 +393,7 @@ impl Core {
     fn native_frame(&self) -> Frame {
         match self {
             Core::Madgwick(_) | Core::Mahony(_) => Frame::Nwu,
-            Core::Complementary(_) | Core::Gmvdk(_) => Frame::Enu,
+            Core::Complementary(_) | Core::Gmvdk(_) | Core::Robust(_) => Frame::Enu,
             Core::Ekf(_) => Frame::Ned,
         }
     }
@@ -423,6 +435,7 @@ impl Core {
             Core::Complementary(f) => f.settings = complementary_settings(config),
             Core::Ekf(f) => f.settings = ekf_settings(config),
             Core::Gmvdk(f) => f.settings = gmvdk_settings(config),
+            Core::Robust(f) => f.settings = robust_settings(config),
         }
     }
 
@@ -444,6 +457,10 @@ impl Core {
                 d.gyro_bias = f.drift();
                 d.rate = f.rate();
                 d.covariance = f.covariance_diagonal();
+            }
+            Core::Robust(f) => {
+                d.gyro_bias = f.bias();
+                d.rest = if f.at_rest() { 1.0 } else { 0.0 };
             }
             Core::Gmvdk(f) => {
                 d.gyro_bias = f.bias();
@@ -476,6 +493,7 @@ impl Core {
             Core::Complementary(_) => Kind::Complementary,
             Core::Ekf(_) => Kind::Ekf,
             Core::Gmvdk(_) => Kind::Gmvdk,
+            Core::Robust(_) => Kind::Robust,
         }
     }
 }
@@ -527,6 +545,24 @@ fn gmvdk_settings(c: &Config) -> GmvdkSettings {
         bias_window: c.slot(id::GMVDK_BIAS_WINDOW),
         static_alpha: c.slot(id::GMVDK_STATIC_ALPHA),
         relative_output: c.slot(id::GMVDK_RELATIVE_OUTPUT) >= 0.5,
+    }
+}
+
+fn robust_settings(c: &Config) -> RobustSettings {
+    RobustSettings {
+        tau_acc: c.slot(id::ROBUST_TAU_ACC),
+        tau_mag: c.slot(id::ROBUST_TAU_MAG),
+        rest_gyro: c.slot(id::ROBUST_REST_GYRO),
+        rest_accel: c.slot(id::ROBUST_REST_ACCEL),
+        rest_time: c.slot(id::ROBUST_REST_TIME),
+        rest_tilt: c.slot(id::ROBUST_REST_TILT),
+        rest_tau: c.slot(id::ROBUST_REST_TAU),
+        bias_tau_rest: c.slot(id::ROBUST_BIAS_TAU_REST),
+        bias_tau_motion: c.slot(id::ROBUST_BIAS_TAU_MOTION),
+        bias_limit: c.slot(id::ROBUST_BIAS_LIMIT),
+        mag_norm_th: c.slot(id::ROBUST_MAG_NORM_TH),
+        mag_dip_th: c.slot(id::ROBUST_MAG_DIP_TH),
+        hard_iron_time: c.slot(id::ROBUST_HARD_IRON_TIME),
     }
 }
 

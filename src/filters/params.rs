@@ -3,7 +3,7 @@
 //! name without knowing each filter.
 //!
 //! Slots 0-7 are common to every kind; each kind has its own block (Madgwick 8-15,
-//! Mahony 16-23, complementary 24-39, EKF 40-55, GMVDK 56-79; 80-127 free). A slot
+//! Mahony 16-23, complementary 24-39, EKF 40-55, GMVDK 56-79, robust 80-103; 104-127 free). A slot
 //! number is never reused for a different meaning.
 
 /// Number of parameter slots in a configuration.
@@ -56,6 +56,20 @@ pub mod id {
     pub const GMVDK_BIAS_WINDOW: u32 = 63;
     pub const GMVDK_STATIC_ALPHA: u32 = 64;
     pub const GMVDK_RELATIVE_OUTPUT: u32 = 65;
+
+    pub const ROBUST_TAU_ACC: u32 = 80;
+    pub const ROBUST_TAU_MAG: u32 = 81;
+    pub const ROBUST_REST_GYRO: u32 = 82;
+    pub const ROBUST_REST_ACCEL: u32 = 83;
+    pub const ROBUST_REST_TIME: u32 = 84;
+    pub const ROBUST_REST_TAU: u32 = 85;
+    pub const ROBUST_BIAS_TAU_REST: u32 = 86;
+    pub const ROBUST_BIAS_TAU_MOTION: u32 = 87;
+    pub const ROBUST_BIAS_LIMIT: u32 = 88;
+    pub const ROBUST_MAG_NORM_TH: u32 = 89;
+    pub const ROBUST_MAG_DIP_TH: u32 = 90;
+    pub const ROBUST_HARD_IRON_TIME: u32 = 91;
+    pub const ROBUST_REST_TILT: u32 = 92;
 }
 
 /// What one parameter slot means.

@@ -231,8 +231,8 @@ static void config_paths(void) {
     CHECK_STATUS(orient_config_default(ORIENT_KIND_MADGWICK, NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_config_default(0, &c), ORIENT_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(orient_config_default(99, &c), ORIENT_STATUS_INVALID_ARGUMENT);
-    CHECK_STATUS(orient_config_default(ORIENT_KIND_GMVDK + 1, &c), ORIENT_STATUS_INVALID_ARGUMENT);
-    for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_GMVDK; k++) {
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST + 1, &c), ORIENT_STATUS_INVALID_ARGUMENT);
+    for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_ROBUST; k++) {
         CHECK_STATUS(orient_config_default(k, &c), ORIENT_STATUS_OK);
         CHECK(c.kind == k);
         CHECK_STATUS(orient_param_count(k, &count), ORIENT_STATUS_OK);
@@ -554,7 +554,8 @@ static void diagnostics(int32_t kind) {
     CHECK_STATUS(orient_filter_diagnostics(f, NULL), ORIENT_STATUS_NULL_POINTER);
     switch (kind) {
     case ORIENT_KIND_MAHONY: expected = ORIENT_DIAG_GYRO_BIAS; break;
-    case ORIENT_KIND_COMPLEMENTARY: expected = ORIENT_DIAG_GYRO_BIAS | ORIENT_DIAG_REST; break;
+    case ORIENT_KIND_COMPLEMENTARY:
+    case ORIENT_KIND_ROBUST: expected = ORIENT_DIAG_GYRO_BIAS | ORIENT_DIAG_REST; break;
     case ORIENT_KIND_EKF: expected = ORIENT_DIAG_GYRO_BIAS | ORIENT_DIAG_RATE | ORIENT_DIAG_COVARIANCE; break;
     case ORIENT_KIND_GMVDK:
         expected = ORIENT_DIAG_GYRO_BIAS | ORIENT_DIAG_ALPHA | ORIENT_DIAG_MU_KA | ORIENT_DIAG_MU_KM | ORIENT_DIAG_MU_K;
@@ -583,7 +584,7 @@ int main(int argc, char **argv) {
     status_messages();
     config_paths();
     handle_paths();
-    for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_GMVDK; k++) {
+    for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_ROBUST; k++) {
         bad_input(k);
         diagnostics(k);
     }

@@ -1,0 +1,782 @@
+//! orient's recommended filter: a gyroscope strapdown corrected by a low-passed
+//! accelerometer in a quasi-inertial frame and by a gated magnetometer heading, with gyro
+//! bias estimation at rest and in motion.
+//!
+//! The seed filters correct the attitude towards each accelerometer sample, so every
+//! linear acceleration tilts them, and towards each magnetometer sample, so every nearby
+//! magnet turns them. This filter is built on three facts instead:
+//!
+//! 1. Over a few seconds linear acceleration averages out *in the earth frame* (a hand
+//!    cannot keep accelerating one way), while gravity does not. So the accelerometer
+//!    is rotated into a frame that follows the gyroscope alone (the quasi-inertial frame
+//!    I, which drifts only slowly) and low-passed there; the inclination is corrected
+//!    to the filtered vector. Fast translation (BROAD trial 15) and tapping (24) then
+//!    barely tilt the estimate. The idea is that of VQF (D. Laidig, T. Seel, "VQF:
+//!    Highly accurate IMU orientation estimation with bias estimation and magnetic
+//!    disturbance rejection", Information Fusion 91, 2023); the implementation and the
+//!    mechanisms below are orient's own.
+//! 2. At rest the gyroscope reads its bias. Rest is detected from the spread of the
+//!    gyroscope and accelerometer around their own low-passed values; the bias then
+//!    follows the low-passed gyroscope. In motion, the accelerometer correction that the
+//!    filter keeps applying is the drift a bias error causes: a slow integral of it,
+//!    mapped back into the sensor frame, estimates the bias components that tilt the
+//!    estimate (the vertical one is unobservable from gravity).
+//! 3. The undisturbed earth field has a fixed norm and dip. A reading whose norm or dip
+//!    leaves the reference is not used for heading; the gyroscope holds the heading
+//!    meanwhile, and corrections resume at the slow heading rate, so there is no jump.
+//!    A magnet attached to the sensor adds a constant vector in the *sensor* frame
+//!    (hard iron). While the field is disturbed the filter estimates that vector as the
+//!    reading minus the reference field seen at the current orientation; when the
+//!    estimate stays consistent for `hard_iron_time` and the compensated field passes
+//!    the norm and dip tests, the compensated field is used. A disturbance fixed in
+//!    the room is not a constant sensor-frame vector once the sensor moves, so it
+//!    fails the consistency test or, later, the norm and dip tests.
+//!
+//! Structure: `q = q_δ ⊗ q_inc ⊗ q_gyr` with `q_gyr` the bias-corrected strapdown (sensor
+//! to I), `q_inc` the inclination correction (I to E′) and `q_δ` a rotation by δ about
+//! the vertical (E′ to E, heading from the magnetometer). Native frame: ENU.
+//!
+//! Low-pass filters use the gain `dt / (τ + dt)` (backward Euler), which is stable for
+//! any dt and needs no transcendental per sample.
+
+use super::complementary::rotation_of;
+use super::params::{id, ParamSpec};
+use super::state::Codec;
+use super::Step;
+use crate::math::{Quat, Vec3};
+
+/// Settings of the recommended filter. Every default holds for hand-held and body-worn
+/// sensors at 50-1000 Hz; none is fitted to a single recording.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RobustSettings {
+    /// Time constant of the accelerometer low-pass in the quasi-inertial frame (s).
+    pub tau_acc: f64,
+    /// Time constant of the magnetometer heading correction (s).
+    pub tau_mag: f64,
+    /// Rest: gyroscope spread and low-passed magnitude below this (rad/s).
+    pub rest_gyro: f64,
+    /// Rest: accelerometer spread below this (m/s²).
+    pub rest_accel: f64,
+    /// Rest: largest change of the accelerometer direction within a rest (rad).
+    pub rest_tilt: f64,
+    /// Rest: conditions must hold this long (s).
+    pub rest_time: f64,
+    /// Time constant of the rest-detection low-pass (s).
+    pub rest_tau: f64,
+    /// Time constant of the bias estimate at rest (s).
+    pub bias_tau_rest: f64,
+    /// Time constant of the bias estimate in motion (s); 0 turns it off.
+    pub bias_tau_motion: f64,
+    /// Largest bias the motion estimate may reach (rad/s).
+    pub bias_limit: f64,
+    /// Magnetic disturbance: relative deviation of the field norm from the reference.
+    pub mag_norm_th: f64,
+    /// Magnetic disturbance: deviation of the dip angle from the reference (rad).
+    pub mag_dip_th: f64,
+    /// Seconds of a consistent hard-iron estimate before it is used; 0 turns it off.
+    pub hard_iron_time: f64,
+}
+
+impl Default for RobustSettings {
+    fn default() -> Self {
+        let p = |i: u32| PARAMS.iter().find(|p| p.id == i).map_or(0.0, |p| p.default);
+        RobustSettings {
+            tau_acc: p(id::ROBUST_TAU_ACC),
+            tau_mag: p(id::ROBUST_TAU_MAG),
+            rest_gyro: p(id::ROBUST_REST_GYRO),
+            rest_accel: p(id::ROBUST_REST_ACCEL),
+            rest_time: p(id::ROBUST_REST_TIME),
+            rest_tilt: p(id::ROBUST_REST_TILT),
+            rest_tau: p(id::ROBUST_REST_TAU),
+            bias_tau_rest: p(id::ROBUST_BIAS_TAU_REST),
+            bias_tau_motion: p(id::ROBUST_BIAS_TAU_MOTION),
+            bias_limit: p(id::ROBUST_BIAS_LIMIT),
+            mag_norm_th: p(id::ROBUST_MAG_NORM_TH),
+            mag_dip_th: p(id::ROBUST_MAG_DIP_TH),
+            hard_iron_time: p(id::ROBUST_HARD_IRON_TIME),
+        }
+    }
+}
+
+pub(crate) const PARAMS: [ParamSpec; 13] = [
+    ParamSpec {
+        id: id::ROBUST_TAU_ACC,
+        name: "tau_acc",
+        unit: "s",
+        doc: "Time constant of the accelerometer low-pass (2nd-order Butterworth, cutoff \
+              sqrt(2)/(2 pi tau)) in the quasi-inertial frame; default 2.5 (orient: long enough \
+              to average out hand and body accelerations; BROAD scores vary by under 0.03 deg \
+              over 2.5-3 s).",
+        default: 2.5,
+        min: 1e-3,
+        max: 1000.0,
+    },
+    ParamSpec {
+        id: id::ROBUST_TAU_MAG,
+        name: "tau_mag",
+        unit: "s",
+        doc: "Time constant of the magnetometer heading correction; default 9 (VQF's default: \
+              slow enough that a short undetected disturbance moves heading little).",
+        default: 9.0,
+        min: 1e-3,
+        max: 1000.0,
+    },
+    ParamSpec {
+        id: id::ROBUST_REST_GYRO,
+        name: "rest_gyro",
+        unit: "rad/s",
+        doc: "Rest when the gyroscope's spread around its low-pass and the low-pass itself stay \
+              below this; default 0.0349 (2 deg/s, VQF's default; MEMS biases are below it).",
+        default: 0.03490658503988659,
+        min: 0.0,
+        max: 10.0,
+    },
+    ParamSpec {
+        id: id::ROBUST_REST_ACCEL,
+        name: "rest_accel",
+        unit: "m/s^2",
+        doc: "Rest when the accelerometer's spread around its low-pass stays below this; \
+              default 0.5 (VQF's default).",
+        default: 0.5,
+        min: 0.0,
+        max: 100.0,
+    },
+    ParamSpec {
+        id: id::ROBUST_REST_TIME,
+        name: "rest_time",
+        unit: "s",
+        doc: "How long the rest conditions must hold before the sensor counts as resting; \
+              default 1.5 (VQF's default).",
+        default: 1.5,
+        min: 0.0,
+        max: 3600.0,
+    },
+    ParamSpec {
+        id: id::ROBUST_REST_TILT,
+        name: "rest_tilt",
+        unit: "rad",
+        doc: "Rest also needs the low-passed accelerometer direction to stay within this angle \
+              of where the still period began, so a slow turn under rest_gyro is not learned \
+              as bias; default 0.0087 (0.5 deg, orient: 10x the direction noise after the \
+              rest low-pass of a consumer MEMS accelerometer).",
+        default: 0.008726646259971648,
+        min: 0.0,
+        max: 3.2,
+    },
+    ParamSpec {
+        id: id::ROBUST_REST_TAU,
+        name: "rest_tau",
+        unit: "s",
+        doc: "Time constant of the low-pass that rest detection compares against; default 0.5 \
+              (VQF's default).",
+        default: 0.5,
+        min: 1e-3,
+        max: 100.0,
+    },
+    ParamSpec {
+        id: id::ROBUST_BIAS_TAU_REST,
+        name: "bias_tau_rest",
+        unit: "s",
+        doc: "Time constant with which the bias follows the low-passed gyroscope at rest; \
+              default 2 (orient: settles within a typical 5-10 s pause).",
+        default: 2.0,
+        min: 1e-3,
+        max: 3600.0,
+    },
+    ParamSpec {
+        id: id::ROBUST_BIAS_TAU_MOTION,
+        name: "bias_tau_motion",
+        unit: "s",
+        doc: "Time constant of the bias estimate from the accelerometer correction in motion; \
+              default 100 (orient: 40 times tau_acc, so accelerations that leak through the \
+              low-pass average out before they move the bias); 0 turns it off.",
+        default: 100.0,
+        min: 0.0,
+        max: 1e6,
+    },
+    ParamSpec {
+        id: id::ROBUST_BIAS_LIMIT,
+        name: "bias_limit",
+        unit: "rad/s",
+        doc: "Largest bias norm the motion estimate may reach; default 0.0349 (2 deg/s, the \
+              rest threshold: a larger bias would also hide rest).",
+        default: 0.03490658503988659,
+        min: 0.0,
+        max: 10.0,
+    },
+    ParamSpec {
+        id: id::ROBUST_MAG_NORM_TH,
+        name: "mag_norm_th",
+        unit: "1",
+        doc: "Magnetic disturbance when the field norm deviates from the reference by more \
+              than this fraction; default 0.1 (VQF's default).",
+        default: 0.1,
+        min: 0.0,
+        max: 10.0,
+    },
+    ParamSpec {
+        id: id::ROBUST_MAG_DIP_TH,
+        name: "mag_dip_th",
+        unit: "rad",
+        doc: "Magnetic disturbance when the dip angle deviates from the reference by more than \
+              this; default 0.1745 (10 deg, VQF's default).",
+        default: 0.17453292519943295,
+        min: 0.0,
+        max: 3.2,
+    },
+    ParamSpec {
+        id: id::ROBUST_HARD_IRON_TIME,
+        name: "hard_iron_time",
+        unit: "s",
+        doc: "A sensor-fixed disturbance (attached magnet) is compensated once its estimate has \
+              been consistent this long; default 3 (orient); 0 turns compensation off.",
+        default: 3.0,
+        min: 0.0,
+        max: 3600.0,
+    },
+];
+
+/// The low-pass gain for one step of `dt` with time constant `tau`.
+fn lp_gain(dt: f64, tau: f64) -> f64 {
+    dt / (tau + dt)
+}
+
+/// Wraps an angle into (-π, π].
+fn wrap(a: f64) -> f64 {
+    use core::f64::consts::{PI, TAU};
+    if a > PI {
+        a - TAU
+    } else if a <= -PI {
+        a + TAU
+    } else {
+        a
+    }
+}
+
+/// Dip of an earth-frame (ENU) field: positive when it points down.
+fn dip(f: Vec3) -> f64 {
+    libm::asin((-f.z / f.norm()).clamp(-1.0, 1.0))
+}
+
+/// A second-order Butterworth low-pass of a vector (direct form II transposed). Its
+/// cutoff is `√2 / (2π τ)` for time constant τ; the coefficients come from the bilinear
+/// transform with pre-warping and are recomputed only when dt or τ change.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Butterworth {
+    /// dt and τ the coefficients belong to.
+    dt: f64,
+    tau: f64,
+    b0: f64,
+    a1: f64,
+    a2: f64,
+    s1: Vec3,
+    s2: Vec3,
+}
+
+impl Butterworth {
+    fn coefficients(&mut self, dt: f64, tau: f64) {
+        if dt == self.dt && tau == self.tau {
+            return;
+        }
+        let fc = core::f64::consts::SQRT_2 / (core::f64::consts::TAU * tau);
+        let c = libm::tan(core::f64::consts::PI * fc * dt);
+        let d = c * c + core::f64::consts::SQRT_2 * c + 1.0;
+        self.b0 = c * c / d;
+        self.a1 = 2.0 * (c * c - 1.0) / d;
+        self.a2 = (1.0 - core::f64::consts::SQRT_2 * c + c * c) / d;
+        self.dt = dt;
+        self.tau = tau;
+    }
+
+    /// Sets the state to the steady state of a constant input `x`.
+    fn settle(&mut self, x: Vec3) {
+        // Steady state needs the coefficients; those of any dt give y = x (unit DC gain),
+        // but s1, s2 depend on them, so settle again on the first filter call.
+        self.dt = f64::NAN;
+        self.s1 = x;
+        self.s2 = Vec3::ZERO;
+    }
+
+    fn filter(&mut self, dt: f64, tau: f64, x: Vec3) -> Vec3 {
+        if self.dt.is_nan() {
+            let held = self.s1;
+            self.coefficients(dt, tau);
+            let (b0, a2) = (self.b0, self.a2);
+            self.s1 = held * (1.0 - b0);
+            self.s2 = held * (b0 - a2);
+        } else {
+            self.coefficients(dt, tau);
+        }
+        let (b0, a1, a2) = (self.b0, self.a1, self.a2);
+        let y = x * b0 + self.s1;
+        self.s1 = x * (2.0 * b0) - y * a1 + self.s2;
+        self.s2 = x * b0 - y * a2;
+        y
+    }
+
+    fn codec(&mut self, c: &mut dyn Codec) {
+        c.f64(&mut self.dt);
+        c.f64(&mut self.tau);
+        c.f64(&mut self.b0);
+        c.f64(&mut self.a1);
+        c.f64(&mut self.a2);
+        c.vec3(&mut self.s1);
+        c.vec3(&mut self.s2);
+    }
+}
+
+const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
+
+/// The recommended filter. See the module documentation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Robust {
+    pub settings: RobustSettings,
+    /// Strapdown orientation, sensor to quasi-inertial frame.
+    q_gyr: Quat,
+    /// Inclination correction, quasi-inertial frame to E′.
+    q_inc: Quat,
+    /// Heading correction about the vertical (rad).
+    delta: f64,
+    /// The output, `q_δ ⊗ q_inc ⊗ q_gyr`.
+    q: Quat,
+    bias: Vec3,
+    /// Second-order Butterworth low-pass of the accelerometer in the quasi-inertial frame.
+    acc_lp: Butterworth,
+    acc_seen: bool,
+    /// Rest detection: low-passed gyroscope and accelerometer, time the conditions held.
+    gyro_rest_lp: Vec3,
+    acc_rest_lp: Vec3,
+    /// The low-passed accelerometer when the current still period began.
+    rest_acc_ref: Vec3,
+    rest_clock: f64,
+    rest: bool,
+    /// Magnetic reference: norm and dip; `mag_count` undisturbed samples used so far.
+    ref_norm: f64,
+    ref_dip: f64,
+    mag_count: u32,
+    mag_disturbed: bool,
+    /// Hard iron: running estimate, its spread, how long it has been consistent, and
+    /// the offset in use (when `hard_iron_on`).
+    hi_lp: Vec3,
+    hi_spread: f64,
+    hi_clock: f64,
+    hi_started: bool,
+    hard_iron: Vec3,
+    hard_iron_on: bool,
+}
+
+impl Robust {
+    pub fn new(settings: RobustSettings) -> Robust {
+        Robust {
+            settings,
+            q_gyr: Quat::IDENTITY,
+            q_inc: Quat::IDENTITY,
+            delta: 0.0,
+            q: Quat::IDENTITY,
+            bias: Vec3::ZERO,
+            acc_lp: Butterworth::default(),
+            acc_seen: false,
+            gyro_rest_lp: Vec3::ZERO,
+            acc_rest_lp: Vec3::ZERO,
+            rest_acc_ref: Vec3::ZERO,
+            rest_clock: 0.0,
+            rest: false,
+            ref_norm: 0.0,
+            ref_dip: 0.0,
+            mag_count: 0,
+            mag_disturbed: false,
+            hi_lp: Vec3::ZERO,
+            hi_spread: 0.0,
+            hi_clock: 0.0,
+            hi_started: false,
+            hard_iron: Vec3::ZERO,
+            hard_iron_on: false,
+        }
+    }
+
+    pub fn quaternion(&self) -> Quat {
+        self.q
+    }
+
+    /// Sets the orientation; the bias, rest state and magnetic reference are kept.
+    pub fn set_quaternion(&mut self, q: Quat) {
+        self.q_gyr = q;
+        self.q_inc = Quat::IDENTITY;
+        self.delta = 0.0;
+        self.q = q;
+        self.acc_seen = false;
+    }
+
+    pub fn bias(&self) -> Vec3 {
+        self.bias
+    }
+
+    /// True when the last sample was classified as rest.
+    pub fn at_rest(&self) -> bool {
+        self.rest
+    }
+
+    /// True when the last magnetometer reading was rejected as disturbed.
+    pub fn mag_disturbed(&self) -> bool {
+        self.mag_disturbed
+    }
+
+    /// The hard-iron offset being subtracted from the magnetometer, if any.
+    pub fn hard_iron(&self) -> Option<Vec3> {
+        self.hard_iron_on.then_some(self.hard_iron)
+    }
+
+    pub(crate) fn codec(&mut self, c: &mut dyn Codec) {
+        c.quat(&mut self.q_gyr);
+        c.quat(&mut self.q_inc);
+        c.f64(&mut self.delta);
+        c.quat(&mut self.q);
+        c.vec3(&mut self.bias);
+        self.acc_lp.codec(c);
+        c.bool(&mut self.acc_seen);
+        c.vec3(&mut self.gyro_rest_lp);
+        c.vec3(&mut self.acc_rest_lp);
+        c.vec3(&mut self.rest_acc_ref);
+        c.f64(&mut self.rest_clock);
+        c.bool(&mut self.rest);
+        c.f64(&mut self.ref_norm);
+        c.f64(&mut self.ref_dip);
+        c.u32(&mut self.mag_count);
+        c.bool(&mut self.mag_disturbed);
+        c.vec3(&mut self.hi_lp);
+        c.f64(&mut self.hi_spread);
+        c.f64(&mut self.hi_clock);
+        c.bool(&mut self.hi_started);
+        c.vec3(&mut self.hard_iron);
+        c.bool(&mut self.hard_iron_on);
+    }
+
+    pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        let mut next = self.clone();
+        let step = next.step(dt, gyro, accel, mag);
+        if !(next.q.is_finite() && next.bias.is_finite() && next.delta.is_finite()) {
+            return None;
+        }
+        *self = next;
+        Some(step)
+    }
+
+    fn step(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Step {
+        let s = self.settings;
+        let mut step = Step::default();
+        match accel {
+            Some(a) => self.detect_rest(dt, gyro, a),
+            None => {
+                self.rest = false;
+                self.rest_clock = 0.0;
+            }
+        }
+        if self.rest {
+            self.bias = self.bias + (self.gyro_rest_lp - self.bias) * lp_gain(dt, s.bias_tau_rest);
+        }
+        self.q_gyr = (self.q_gyr * rotation_of(gyro - self.bias, dt)).normalized();
+        if let Some(a) = accel {
+            step.used_accel = true;
+            self.correct_inclination(dt, a);
+        }
+        if let Some(m) = mag {
+            step.used_mag = self.correct_heading(dt, m);
+        }
+        let half = 0.5 * self.delta;
+        let q_delta = Quat::new(libm::cos(half), 0.0, 0.0, libm::sin(half));
+        self.q = (q_delta * self.q_inc * self.q_gyr).normalized();
+        step
+    }
+
+    fn detect_rest(&mut self, dt: f64, gyro: Vec3, a: Vec3) {
+        let s = &self.settings;
+        if self.rest_clock == 0.0 && !self.rest && self.acc_rest_lp == Vec3::ZERO {
+            self.gyro_rest_lp = gyro;
+            self.acc_rest_lp = a;
+        }
+        let k = lp_gain(dt, s.rest_tau);
+        self.gyro_rest_lp = self.gyro_rest_lp + (gyro - self.gyro_rest_lp) * k;
+        self.acc_rest_lp = self.acc_rest_lp + (a - self.acc_rest_lp) * k;
+        let th_g = s.rest_gyro * s.rest_gyro;
+        let mut still = (gyro - self.gyro_rest_lp).norm_squared() < th_g
+            && self.gyro_rest_lp.norm_squared() < th_g
+            && (a - self.acc_rest_lp).norm_squared() < s.rest_accel * s.rest_accel;
+        if still && self.rest_clock == 0.0 {
+            self.rest_acc_ref = self.acc_rest_lp;
+        }
+        // A slow turn passes the gyro test (its rate is below a bias's size) but tilts
+        // the accelerometer: at rest gravity keeps its direction in the sensor frame.
+        let tilt = self.acc_rest_lp.cross(self.rest_acc_ref).norm()
+            / (self.acc_rest_lp.norm() * self.rest_acc_ref.norm()).max(1e-300);
+        still = still && tilt < s.rest_tilt;
+        self.rest_clock = if still { self.rest_clock + dt } else { 0.0 };
+        self.rest = still && self.rest_clock >= s.rest_time;
+    }
+
+    fn correct_inclination(&mut self, dt: f64, a: Vec3) {
+        let s = self.settings;
+        let a_i = self.q_gyr.rotate(a);
+        if !self.acc_seen {
+            self.acc_lp.settle(a_i);
+            self.acc_seen = true;
+        }
+        let a_e = self.q_inc.rotate(self.acc_lp.filter(dt, s.tau_acc, a_i));
+        if a_e.norm_squared() < 1e-12 {
+            return;
+        }
+        let c = Quat::from_two_vectors(a_e, UP);
+        if !self.rest && s.bias_tau_motion > 0.0 {
+            // The correction c undoes the drift of the last step; in the sensor frame,
+            // -2 c.xyz / dt is the rate the bias error added.
+            let drift = (self.q_inc * self.q_gyr).rotate_inverse(c.vector() * 2.0);
+            let mut b = self.bias - drift * (1.0 / s.bias_tau_motion);
+            let n = b.norm();
+            if n > s.bias_limit {
+                b = b * (s.bias_limit / n);
+            }
+            self.bias = b;
+        }
+        self.q_inc = (c * self.q_inc).normalized();
+    }
+
+    /// Corrects heading from one magnetometer reading; true when it was used.
+    fn correct_heading(&mut self, dt: f64, m: Vec3) -> bool {
+        let s = self.settings;
+        let q_e = self.q_inc * self.q_gyr;
+        if self.mag_count == 0 {
+            let f = q_e.rotate(m);
+            self.ref_norm = f.norm();
+            self.ref_dip = dip(f);
+        }
+        let field = if self.accepts(q_e.rotate(m)) {
+            self.hard_iron_on = false;
+            self.hi_started = false;
+            self.hi_clock = 0.0;
+            Some(m)
+        } else if self.hard_iron_on && self.accepts(q_e.rotate(m - self.hard_iron)) {
+            Some(m - self.hard_iron)
+        } else {
+            self.hard_iron_on = false;
+            self.estimate_hard_iron(dt, m);
+            None
+        };
+        self.mag_disturbed = field.is_none();
+        let Some(f) = field else { return false };
+        let f_e = q_e.rotate(f);
+        let target = libm::atan2(f_e.x, f_e.y);
+        self.mag_count = self.mag_count.saturating_add(1);
+        // The first samples are averaged (gain 1/n) until the exponential gain is larger.
+        let k = lp_gain(dt, s.tau_mag).max(1.0 / self.mag_count as f64);
+        self.delta = wrap(self.delta + k * wrap(target - self.delta));
+        let kr = lp_gain(dt, 10.0 * s.tau_mag).max(1.0 / self.mag_count as f64);
+        self.ref_norm += (f.norm() - self.ref_norm) * kr;
+        self.ref_dip += (dip(f_e) - self.ref_dip) * kr;
+        true
+    }
+
+    fn accepts(&self, f_e: Vec3) -> bool {
+        let s = &self.settings;
+        (f_e.norm() - self.ref_norm).abs() <= s.mag_norm_th * self.ref_norm
+            && (dip(f_e) - self.ref_dip).abs() <= s.mag_dip_th
+    }
+
+    /// One step of the hard-iron estimate: the reading minus the reference field seen at
+    /// the current orientation. Switches compensation on once consistent long enough.
+    fn estimate_hard_iron(&mut self, dt: f64, m: Vec3) {
+        let s = self.settings;
+        if s.hard_iron_time <= 0.0 {
+            return;
+        }
+        let (sd, cd) = (libm::sin(self.ref_dip), libm::cos(self.ref_dip));
+        let reference = Vec3::new(0.0, self.ref_norm * cd, -self.ref_norm * sd);
+        let inst = m - self.q.rotate_inverse(reference);
+        if !self.hi_started {
+            self.hi_lp = inst;
+            self.hi_spread = 0.0;
+            self.hi_started = true;
+        }
+        let k = lp_gain(dt, s.rest_tau.max(0.25 * s.hard_iron_time));
+        self.hi_lp = self.hi_lp + (inst - self.hi_lp) * k;
+        self.hi_spread += ((inst - self.hi_lp).norm_squared() - self.hi_spread) * k;
+        let tol = 0.5 * s.mag_norm_th * self.ref_norm;
+        let q_e = self.q_inc * self.q_gyr;
+        if self.hi_spread.sqrt() < tol && self.accepts(q_e.rotate(m - self.hi_lp)) {
+            self.hi_clock += dt;
+            if self.hi_clock >= s.hard_iron_time {
+                self.hard_iron = self.hi_lp;
+                self.hard_iron_on = true;
+            }
+        } else {
+            self.hi_clock = 0.0;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const G: Vec3 = Vec3::new(0.0, 0.0, 9.81);
+    /// An earth field in ENU (µT): north and down, dip about 63°.
+    const FIELD: Vec3 = Vec3::new(0.0, 20.0, -40.0);
+    const DT: f64 = 0.01;
+
+    fn filter(settings: RobustSettings, q: Quat) -> Robust {
+        let mut f = Robust::new(settings);
+        f.set_quaternion(q);
+        f
+    }
+
+    /// Feeds `seconds` of samples of the true orientation `q(t)` with rate `w(t)`.
+    fn run(
+        f: &mut Robust,
+        seconds: f64,
+        mut truth: impl FnMut(f64) -> (Quat, Vec3, Vec3),
+        mag: impl Fn(f64, Quat) -> Option<Vec3>,
+    ) {
+        let n = (seconds / DT).round() as usize;
+        for i in 0..n {
+            let t = i as f64 * DT;
+            let (q, w, lin) = truth(t);
+            let accel = q.rotate_inverse(G + lin);
+            f.update(DT, w, Some(accel), mag(t, q)).unwrap();
+        }
+    }
+
+    fn heading(q: Quat) -> f64 {
+        q.to_euler().yaw
+    }
+
+    fn inclination(est: Quat, truth: Quat) -> f64 {
+        let up = Vec3::new(0.0, 0.0, 1.0);
+        let a = est.rotate_inverse(up);
+        let b = truth.rotate_inverse(up);
+        libm::atan2(a.cross(b).norm(), a.dot(b))
+    }
+
+    #[test]
+    fn learns_the_bias_at_rest() {
+        let bias = Vec3::new(0.01, -0.02, 0.015);
+        let q = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.3);
+        let mut f = filter(RobustSettings::default(), q);
+        run(&mut f, 20.0, |_| (q, bias, Vec3::ZERO), |_, q| Some(q.rotate_inverse(FIELD)));
+        assert!(f.at_rest());
+        assert!((f.bias() - bias).norm() < 1e-5, "{:?}", f.bias());
+        // Heading drifted before the bias was learned; the tilt did not.
+        assert!(inclination(f.quaternion(), q) < 1e-3);
+    }
+
+    #[test]
+    fn a_slow_turn_is_not_rest() {
+        // 1 deg/s about a horizontal axis: under rest_gyro, but the accelerometer tilts.
+        let w = Vec3::new(0.0175, 0.0, 0.0);
+        let mut f = filter(RobustSettings::default(), Quat::IDENTITY);
+        let mut seen_rest = false;
+        for i in 0..3000 {
+            let q = rotation_of(w, i as f64 * DT);
+            f.update(DT, w, Some(q.rotate_inverse(G)), None).unwrap();
+            seen_rest |= f.at_rest();
+        }
+        assert!(!seen_rest);
+        assert!(f.bias().norm() < 1e-3, "{:?}", f.bias());
+    }
+
+    #[test]
+    fn rejects_zero_mean_linear_acceleration() {
+        // 4 m/s² along east at 1 Hz: an accelerometer-only tilt swings by about 22°.
+        let q = Quat::from_axis_angle(Vec3::new(0.3, 1.0, 0.2), 0.5);
+        let mut f = filter(RobustSettings::default(), q);
+        let mut worst: f64 = 0.0;
+        for i in 0..2000 {
+            let t = i as f64 * DT;
+            let lin = Vec3::new(4.0 * libm::sin(core::f64::consts::TAU * t), 0.0, 0.0);
+            f.update(DT, Vec3::ZERO, Some(q.rotate_inverse(G + lin)), None).unwrap();
+            worst = worst.max(inclination(f.quaternion(), q));
+        }
+        assert!(worst.to_degrees() < 1.5, "{}", worst.to_degrees());
+    }
+
+    #[test]
+    fn holds_heading_through_a_disturbance_and_resumes_without_a_jump() {
+        let q = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 0.7);
+        let settings = RobustSettings { hard_iron_time: 0.0, ..Default::default() };
+        let mut f = filter(settings, q);
+        let clean = |_: f64, q: Quat| Some(q.rotate_inverse(FIELD));
+        run(&mut f, 5.0, |_| (q, Vec3::ZERO, Vec3::ZERO), clean);
+        let before = heading(f.quaternion());
+        // A magnet in the room: 30 µT more along east, fixed in the earth frame.
+        let magnet = |_: f64, q: Quat| Some(q.rotate_inverse(FIELD + Vec3::new(30.0, 0.0, 0.0)));
+        run(&mut f, 10.0, |_| (q, Vec3::ZERO, Vec3::ZERO), magnet);
+        assert!(f.mag_disturbed());
+        assert!((heading(f.quaternion()) - before).abs() < 1e-9);
+        let mut steps = Vec::new();
+        for _ in 0..500 {
+            let h = heading(f.quaternion());
+            run(&mut f, DT, |_| (q, Vec3::ZERO, Vec3::ZERO), clean);
+            steps.push((heading(f.quaternion()) - h).abs());
+        }
+        assert!(!f.mag_disturbed());
+        assert!(
+            steps.iter().all(|s| *s < 1e-3),
+            "largest step {:?}",
+            steps.iter().cloned().fold(0.0, f64::max)
+        );
+        assert!((heading(f.quaternion()) - 0.7).abs() < 1e-3);
+    }
+
+    #[test]
+    fn compensates_a_magnet_attached_to_the_sensor() {
+        let hard = Vec3::new(25.0, -10.0, 15.0);
+        let w = Vec3::new(0.0, 0.0, 0.5);
+        let q0 = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.2);
+        let mut f = filter(RobustSettings::default(), q0);
+        let truth = |t: f64| {
+            let q = q0 * rotation_of(w, t);
+            (q, w, Vec3::ZERO)
+        };
+        // Clean, then the magnet: the raw field fails the norm test from then on.
+        let mag = |t: f64, q: Quat| Some(q.rotate_inverse(FIELD) + if t >= 5.0 { hard } else { Vec3::ZERO });
+        run(&mut f, 30.0, truth, mag);
+        let h = f.hard_iron().expect("compensation on");
+        assert!((h - hard).norm() < 0.5, "{h:?}");
+        assert!(!f.mag_disturbed());
+        assert!(f.quaternion().angle_to(truth(30.0).0) < 0.01);
+    }
+
+    #[test]
+    fn estimates_bias_in_motion_from_the_inclination_correction() {
+        let bias = Vec3::new(0.01, -0.008, 0.0);
+        let settings = RobustSettings { bias_tau_motion: 10.0, ..Default::default() };
+        let mut f = filter(settings, Quat::IDENTITY);
+        let mut q = Quat::IDENTITY;
+        for i in 0..60_000 {
+            let t = i as f64 * DT;
+            let w = Vec3::new(0.4 * libm::sin(0.3 * t), 0.4 * libm::cos(0.2 * t), 0.3);
+            q = q * rotation_of(w, DT);
+            f.update(DT, w + bias, Some(q.rotate_inverse(G)), None).unwrap();
+        }
+        assert!(!f.at_rest());
+        // Rotation about all axes makes every component observable from gravity.
+        assert!((f.bias() - bias).norm() < 1e-3, "{:?}", f.bias());
+    }
+
+    #[test]
+    fn butterworth_has_unit_gain_and_settles() {
+        let mut b = Butterworth::default();
+        let x = Vec3::new(1.0, -2.0, 3.0);
+        b.settle(x);
+        for _ in 0..10 {
+            assert!((b.filter(0.01, 2.5, x) - x).norm() < 1e-12);
+        }
+        // A step from zero reaches 1 - 1/e within about tau, never overshooting 5 %.
+        let mut b = Butterworth::default();
+        b.settle(Vec3::ZERO);
+        let mut y = Vec3::ZERO;
+        let mut peak: f64 = 0.0;
+        for _ in 0..2000 {
+            y = b.filter(0.01, 2.5, x);
+            peak = peak.max(y.x);
+        }
+        assert!((y - x).norm() < 2e-3 && peak < 1.05, "{y:?} {peak}");
+    }
+}
