@@ -125,10 +125,15 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_PARAM_MADGWICK_BETA_IMU 8
 
 /**
- * Parameter slot (Madgwick): beta for steps with magnetometer, rad/s, default 0.033
- * (Madgwick 2010, section V).
+ * Parameter slot (Madgwick): beta for steps with magnetometer, rad/s, default 0.041
+ * (Madgwick 2010, section V: its IMU optimum; the ahrs reference uses it for MARG too).
  */
 #define ORIENT_PARAM_MADGWICK_BETA_MARG 9
+
+/**
+ * Parameter slot (Madgwick): time constant of the gyro bias learned at rest, s, default 0 = off.
+ */
+#define ORIENT_PARAM_MADGWICK_REST_BIAS_TAU 10
 
 /**
  * Parameter slot (Mahony): proportional gain kP, 1/s, default 0.5 (GMVDK paper's comparison).
@@ -139,6 +144,11 @@ typedef struct OrientFilter OrientFilter;
  * Parameter slot (Mahony): integral gain kI for the gyro bias, 1/s^2, default 0.
  */
 #define ORIENT_PARAM_MAHONY_KI 17
+
+/**
+ * Parameter slot (Mahony): time constant of the bias learned at rest, s, default 0 = off.
+ */
+#define ORIENT_PARAM_MAHONY_REST_BIAS_TAU 18
 
 /**
  * Parameter slot (complementary): K_P at rest, 1/s, default 1.0.
@@ -219,6 +229,11 @@ typedef struct OrientFilter OrientFilter;
  * Parameter slot (EKF): correlation time of magnetic heading errors, s, default 1.
  */
 #define ORIENT_PARAM_EKF_HEADING_TAU 49
+
+/**
+ * Parameter slot (EKF): zero-rate update std at rest, rad/s, default 0 = off.
+ */
+#define ORIENT_PARAM_EKF_REST_RATE_STD 50
 
 /**
  * Parameter slot (GMVDK): SlopeAlpha, default 1.0 (paper, Appendix B.1).

@@ -83,10 +83,10 @@ const AHRS_041: [(f64, f64); 8] = [
 ];
 
 #[test]
-fn madgwick_9d_reproduces_the_published_ahrs_scores() {
+fn madgwick_9d_defaults_reproduce_the_published_ahrs_scores() {
     let Some(dir) = broad_dir() else { return };
-    let mut config = Config::new(Kind::Madgwick).unwrap();
-    config.set("beta_marg", 0.041).unwrap().unwrap();
+    // The default beta_marg is 0.041, the value behind the published column.
+    let config = Config::new(Kind::Madgwick).unwrap();
     for (prefix, (total, incl)) in TRIALS.iter().zip(AHRS_041) {
         let s = scores(&config, &trial(&dir, prefix, true), false);
         println!(
@@ -118,11 +118,11 @@ fn madgwick_defaults_stay_within_bounds_in_9d_and_6d() {
     }
     let (m9, m6, mi) = (sum9 / 8.0, sum6 / 8.0, incl / 8.0);
     println!("mean 9D {m9:.2}, 6D* {m6:.2}, inclination {mi:.2}");
-    // Measured 7.79 / 8.43 / 2.89 with the paper's betas (0.033 MARG, 0.041 IMU); the
-    // bounds leave room for rounding-level changes, not for a regression.
-    assert!(m9 < 8.0, "mean 9D total {m9:.2}");
+    // Measured 7.22 / 8.43 / 2.75 (beta 0.041); the published ahrs mean is 7.22 (2.75).
+    // The bounds leave room for rounding-level changes, not for a regression.
+    assert!(m9 < 7.25, "mean 9D total {m9:.2}");
     assert!(m6 < 8.6, "mean 6D* total {m6:.2} (BROAD's C code, beta 0.1: 8.60)");
-    assert!(mi < 3.0, "mean inclination {mi:.2}");
+    assert!(mi < 2.8, "mean inclination {mi:.2}");
 }
 
 #[test]
@@ -140,8 +140,16 @@ fn frames_give_the_same_broad_score() {
 
 /// Mean total (inclination) over the 8 trials, with defaults.
 fn means(kind: Kind, six_d: bool) -> (f64, f64) {
+    means_with(kind, six_d, &[])
+}
+
+/// [`means`] with some parameters set by name.
+fn means_with(kind: Kind, six_d: bool, set: &[(&str, f64)]) -> (f64, f64) {
     let dir = broad_dir().unwrap();
-    let config = Config::new(kind).unwrap();
+    let mut config = Config::new(kind).unwrap();
+    for (name, value) in set {
+        config.set(name, *value).unwrap().unwrap();
+    }
     let (mut t, mut i) = (0.0, 0.0);
     for prefix in TRIALS {
         let s = scores(&config, &trial(&dir, prefix, !six_d), six_d);
@@ -200,4 +208,26 @@ fn robust_beats_vqf_on_every_target() {
     let (total, incl) = means(Kind::Robust, true);
     println!("robust 6D* mean {total:.2} ({incl:.2})");
     assert!(total < 2.82 && incl < 0.82, "6D* {total:.3} ({incl:.3})");
+}
+
+#[test]
+fn rest_bias_options_improve_the_seed_filters() {
+    if broad_dir().is_none() {
+        return;
+    }
+    // (kind, option, value, 6D*, measured with it, bound) against the defaults above.
+    // Measured: Madgwick 4.34 (9D) 3.33 (6D*), Mahony 7.19 / 3.94, EKF 13.09 / 16.99.
+    let cases = [
+        (Kind::Madgwick, "rest_bias_tau", 2.0, false, 4.5),
+        (Kind::Madgwick, "rest_bias_tau", 2.0, true, 3.5),
+        (Kind::Mahony, "rest_bias_tau", 2.0, false, 7.5),
+        (Kind::Mahony, "rest_bias_tau", 2.0, true, 4.15),
+        (Kind::Ekf, "rest_rate_std", 0.01, false, 13.75),
+        (Kind::Ekf, "rest_rate_std", 0.01, true, 17.85),
+    ];
+    for (kind, name, value, six_d, bound) in cases {
+        let (total, incl) = means_with(kind, six_d, &[(name, value)]);
+        println!("{kind:?} {name}={value} {}: mean {total:.2} ({incl:.2})", if six_d { "6D*" } else { "9D" });
+        assert!(total < bound, "{kind:?} {name}={value} 6D*={six_d}: {total:.2}");
+    }
 }

@@ -81,8 +81,10 @@ namespace Orient.Native
         public const uint ParamGapDt = 3; // ORIENT_PARAM_GAP_DT
         public const uint ParamMadgwickBetaImu = 8; // ORIENT_PARAM_MADGWICK_BETA_IMU
         public const uint ParamMadgwickBetaMarg = 9; // ORIENT_PARAM_MADGWICK_BETA_MARG
+        public const uint ParamMadgwickRestBiasTau = 10; // ORIENT_PARAM_MADGWICK_REST_BIAS_TAU
         public const uint ParamMahonyKp = 16; // ORIENT_PARAM_MAHONY_KP
         public const uint ParamMahonyKi = 17; // ORIENT_PARAM_MAHONY_KI
+        public const uint ParamMahonyRestBiasTau = 18; // ORIENT_PARAM_MAHONY_REST_BIAS_TAU
         public const uint ParamComplementaryKp = 24; // ORIENT_PARAM_COMPLEMENTARY_KP
         public const uint ParamComplementaryKi = 25; // ORIENT_PARAM_COMPLEMENTARY_KI
         public const uint ParamComplementaryGyroRest = 26; // ORIENT_PARAM_COMPLEMENTARY_GYRO_REST
@@ -99,6 +101,7 @@ namespace Orient.Native
         public const uint ParamEkfHeadingStd = 47; // ORIENT_PARAM_EKF_HEADING_STD
         public const uint ParamEkfMotionTau = 48; // ORIENT_PARAM_EKF_MOTION_TAU
         public const uint ParamEkfHeadingTau = 49; // ORIENT_PARAM_EKF_HEADING_TAU
+        public const uint ParamEkfRestRateStd = 50; // ORIENT_PARAM_EKF_REST_RATE_STD
         public const uint ParamGmvdkSlopeAlpha = 56; // ORIENT_PARAM_GMVDK_SLOPE_ALPHA
         public const uint ParamGmvdkSlopeMuk = 57; // ORIENT_PARAM_GMVDK_SLOPE_MUK
         public const uint ParamGmvdkMuWindow = 58; // ORIENT_PARAM_GMVDK_MU_WINDOW

@@ -726,6 +726,8 @@ mod tests {
         let slots = [
             (ORIENT_PARAM_MAHONY_KP, params::id::MAHONY_KP),
             (ORIENT_PARAM_MAHONY_KI, params::id::MAHONY_KI),
+            (ORIENT_PARAM_MAHONY_REST_BIAS_TAU, params::id::MAHONY_REST_BIAS_TAU),
+            (ORIENT_PARAM_MADGWICK_REST_BIAS_TAU, params::id::MADGWICK_REST_BIAS_TAU),
             (ORIENT_PARAM_COMPLEMENTARY_KP, params::id::COMPLEMENTARY_KP),
             (ORIENT_PARAM_COMPLEMENTARY_KI, params::id::COMPLEMENTARY_KI),
             (ORIENT_PARAM_COMPLEMENTARY_GYRO_REST, params::id::COMPLEMENTARY_GYRO_REST),
@@ -742,6 +744,7 @@ mod tests {
             (ORIENT_PARAM_EKF_HEADING_STD, params::id::EKF_HEADING_STD),
             (ORIENT_PARAM_EKF_MOTION_TAU, params::id::EKF_MOTION_TAU),
             (ORIENT_PARAM_EKF_HEADING_TAU, params::id::EKF_HEADING_TAU),
+            (ORIENT_PARAM_EKF_REST_RATE_STD, params::id::EKF_REST_RATE_STD),
             (ORIENT_PARAM_GMVDK_SLOPE_ALPHA, params::id::GMVDK_SLOPE_ALPHA),
             (ORIENT_PARAM_GMVDK_SLOPE_MUK, params::id::GMVDK_SLOPE_MUK),
             (ORIENT_PARAM_GMVDK_MU_WINDOW, params::id::GMVDK_MU_WINDOW),
@@ -802,7 +805,7 @@ mod tests {
             let k = OrientKind::Madgwick as i32;
             let mut n = 0;
             assert_eq!(orient_param_count(k, &mut n), OrientStatus::Ok);
-            assert_eq!(n, 6);
+            assert_eq!(n, 7);
             let mut info = core::mem::MaybeUninit::<OrientParamInfo>::uninit();
             for i in 0..n {
                 assert_eq!(orient_param_info(k, i, info.as_mut_ptr()), OrientStatus::Ok);

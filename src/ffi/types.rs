@@ -46,14 +46,18 @@ pub const ORIENT_PARAM_GAP_DT: u32 = 3;
 /// (Madgwick 2010, section V). beta = sqrt(3/4) * max gyro error, eq. (33):
 /// see orient_madgwick_beta().
 pub const ORIENT_PARAM_MADGWICK_BETA_IMU: u32 = 8;
-/// Parameter slot (Madgwick): beta for steps with magnetometer, rad/s, default 0.033
-/// (Madgwick 2010, section V).
+/// Parameter slot (Madgwick): beta for steps with magnetometer, rad/s, default 0.041
+/// (Madgwick 2010, section V: its IMU optimum; the ahrs reference uses it for MARG too).
 pub const ORIENT_PARAM_MADGWICK_BETA_MARG: u32 = 9;
+/// Parameter slot (Madgwick): time constant of the gyro bias learned at rest, s, default 0 = off.
+pub const ORIENT_PARAM_MADGWICK_REST_BIAS_TAU: u32 = 10;
 
 /// Parameter slot (Mahony): proportional gain kP, 1/s, default 0.5 (GMVDK paper's comparison).
 pub const ORIENT_PARAM_MAHONY_KP: u32 = 16;
 /// Parameter slot (Mahony): integral gain kI for the gyro bias, 1/s^2, default 0.
 pub const ORIENT_PARAM_MAHONY_KI: u32 = 17;
+/// Parameter slot (Mahony): time constant of the bias learned at rest, s, default 0 = off.
+pub const ORIENT_PARAM_MAHONY_REST_BIAS_TAU: u32 = 18;
 /// Parameter slot (complementary): K_P at rest, 1/s, default 1.0.
 pub const ORIENT_PARAM_COMPLEMENTARY_KP: u32 = 24;
 /// Parameter slot (complementary): K_I at rest, 1/s^2, default 0.01.
@@ -86,6 +90,8 @@ pub const ORIENT_PARAM_EKF_HEADING_STD: u32 = 47;
 pub const ORIENT_PARAM_EKF_MOTION_TAU: u32 = 48;
 /// Parameter slot (EKF): correlation time of magnetic heading errors, s, default 1.
 pub const ORIENT_PARAM_EKF_HEADING_TAU: u32 = 49;
+/// Parameter slot (EKF): zero-rate update std at rest, rad/s, default 0 = off.
+pub const ORIENT_PARAM_EKF_REST_RATE_STD: u32 = 50;
 /// Parameter slot (GMVDK): SlopeAlpha, default 1.0 (paper, Appendix B.1).
 pub const ORIENT_PARAM_GMVDK_SLOPE_ALPHA: u32 = 56;
 /// Parameter slot (GMVDK): SlopeMuk, 1/rad, default 1.5 (paper, eq. (20)).

@@ -50,6 +50,7 @@
 //!   heading variance is scaled by `2τ_ψ/dt` in the same way.
 
 use super::params::{id, ParamSpec};
+use super::rest::{RestDetector, RestThresholds};
 use super::Step;
 use crate::math::{Quat, Vec3};
 use nalgebra::{SMatrix, SVector};
@@ -85,6 +86,9 @@ pub struct EkfSettings {
     pub heading_tau: f64,
     /// Gravity magnitude g in (13) (m/s²); taken from the common `gravity` parameter.
     pub gravity: f64,
+    /// Standard deviation (rad/s) of the zero-rate pseudo-measurement at detected rest;
+    /// 0 (default, the paper) turns it off. An orient option; see [`super::rest`].
+    pub rest_rate_std: f64,
 }
 
 impl Default for EkfSettings {
@@ -101,11 +105,12 @@ impl Default for EkfSettings {
             motion_tau: 0.5,
             heading_tau: 1.0,
             gravity: 9.80665,
+            rest_rate_std: 0.0,
         }
     }
 }
 
-pub(crate) const PARAMS: [ParamSpec; 10] = [
+pub(crate) const PARAMS: [ParamSpec; 11] = [
     ParamSpec {
         id: id::EKF_TAU_OMEGA,
         name: "tau_omega",
@@ -205,6 +210,17 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         min: 0.0,
         max: 1000.0,
     },
+    ParamSpec {
+        id: id::EKF_REST_RATE_STD,
+        name: "rest_rate_std",
+        unit: "rad/s",
+        doc: "orient option: at detected rest (2 deg/s, 0.5 m/s^2, 0.5 deg tilt for 1.5 s) add \
+              the pseudo-measurement omega = 0 with this standard deviation (zero-rate update), \
+              which pins the drift delta to the resting gyro; default 0 = off (the paper).",
+        default: 0.0,
+        min: 0.0,
+        max: 10.0,
+    },
 ];
 
 /// The EKF. State in the native North-East-Down frame.
@@ -213,6 +229,7 @@ pub struct Ekf {
     pub settings: EkfSettings,
     x: V10,
     p: M10,
+    rest: RestDetector,
 }
 
 /// `L(q)`: `q ⊗ e = L(q) e`.
@@ -278,7 +295,7 @@ pub fn gravity_model(q: Quat, g: f64) -> (Vec3, SMatrix<f64, 3, 4>) {
 
 impl Ekf {
     pub fn new(settings: EkfSettings) -> Ekf {
-        let mut f = Ekf { settings, x: V10::zeros(), p: M10::zeros() };
+        let mut f = Ekf { settings, x: V10::zeros(), p: M10::zeros(), rest: RestDetector::default() };
         f.x[0] = 1.0;
         f.reset_covariance();
         f
@@ -313,6 +330,12 @@ impl Ekf {
         for v in self.p.iter_mut() {
             c.f64(v);
         }
+        self.rest.codec(c);
+    }
+
+    /// True when the last sample counted as rest (only tracked with `rest_rate_std` set).
+    pub fn at_rest(&self) -> bool {
+        self.rest.at_rest()
     }
 
     /// The angular rate estimate ω (rad/s).
@@ -437,6 +460,21 @@ impl Ekf {
             let z3 = resid.fixed_rows::<3>(0).into_owned();
             (x, p) = Ekf::correct(x, p, &h3, &r3, &z3)?;
         }
+        let mut rest = None;
+        if s.rest_rate_std > 0.0 {
+            let mut r = self.rest.clone();
+            if r.update(dt, gyro, accel, &RestThresholds::DEFAULT) {
+                // At rest the rate is zero: the pseudo-measurement ω = 0.
+                let mut hz = SMatrix::<f64, 3, 10>::zeros();
+                for i in 0..3 {
+                    hz[(i, 4 + i)] = 1.0;
+                }
+                let rz = SMatrix::<f64, 3, 3>::identity() * (s.rest_rate_std * s.rest_rate_std);
+                let z = SVector::<f64, 3>::new(-x[4], -x[5], -x[6]);
+                (x, p) = Ekf::correct(x, p, &hz, &rz, &z)?;
+            }
+            rest = Some(r);
+        }
         let q_norm = Ekf::q_of(&x).norm();
         // An absurd reading can blow the correction up: refuse the step rather than
         // divide by an overflowed (or vanished) norm.
@@ -484,6 +522,9 @@ impl Ekf {
         }
         self.x = x;
         self.p = p;
+        if let Some(r) = rest {
+            self.rest = r;
+        }
         Some(step)
     }
 

@@ -19,6 +19,7 @@
 //! widely used implementation that produced the BROAD baseline numbers.
 
 use super::params::{id, ParamSpec};
+use super::rest::RestBias;
 use super::Step;
 use crate::math::{Quat, Vec3};
 
@@ -30,15 +31,18 @@ pub struct MahonySettings {
     pub kp: f64,
     /// Integral gain k_I (1/s²). Default 0: no bias estimation, as in that comparison.
     pub ki: f64,
+    /// Time constant (s) with which the bias b follows the gyroscope at detected rest; 0
+    /// (default, Mahony's filter) turns it off. An orient option; see [`super::rest`].
+    pub rest_bias_tau: f64,
 }
 
 impl Default for MahonySettings {
     fn default() -> Self {
-        MahonySettings { kp: 0.5, ki: 0.0 }
+        MahonySettings { kp: 0.5, ki: 0.0, rest_bias_tau: 0.0 }
     }
 }
 
-pub(crate) const PARAMS: [ParamSpec; 2] = [
+pub(crate) const PARAMS: [ParamSpec; 3] = [
     ParamSpec {
         id: id::MAHONY_KP,
         name: "kp",
@@ -59,6 +63,17 @@ pub(crate) const PARAMS: [ParamSpec; 2] = [
         min: 0.0,
         max: 1000.0,
     },
+    ParamSpec {
+        id: id::MAHONY_REST_BIAS_TAU,
+        name: "rest_bias_tau",
+        unit: "s",
+        doc: "orient option: at detected rest (2 deg/s, 0.5 m/s^2, 0.5 deg tilt for 1.5 s) the \
+              bias b follows the low-passed gyro with this time constant; default 0 = off \
+              (Mahony's filter).",
+        default: 0.0,
+        min: 0.0,
+        max: 3600.0,
+    },
 ];
 
 /// Mahony's filter: orientation (North-West-Up) and gyroscope bias.
@@ -67,11 +82,12 @@ pub struct Mahony {
     pub settings: MahonySettings,
     q: Quat,
     bias: Vec3,
+    rest: RestBias,
 }
 
 impl Mahony {
     pub fn new(settings: MahonySettings) -> Mahony {
-        Mahony { settings, q: Quat::IDENTITY, bias: Vec3::ZERO }
+        Mahony { settings, q: Quat::IDENTITY, bias: Vec3::ZERO, rest: RestBias::default() }
     }
 
     pub fn quaternion(&self) -> Quat {
@@ -85,6 +101,12 @@ impl Mahony {
     pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
         c.quat(&mut self.q);
         c.vec3(&mut self.bias);
+        self.rest.codec(c);
+    }
+
+    /// True when the last sample counted as rest (only tracked with `rest_bias_tau` set).
+    pub fn at_rest(&self) -> bool {
+        self.rest.at_rest()
     }
 
     /// The bias estimate b (rad/s), subtracted from the gyroscope.
@@ -114,8 +136,14 @@ impl Mahony {
 
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         let mut step = Step::default();
-        let mut omega = gyro - self.bias;
         let mut bias = self.bias;
+        let mut rest = None;
+        if self.settings.rest_bias_tau > 0.0 {
+            let mut r = self.rest.clone();
+            bias = r.update(dt, gyro, accel, self.settings.rest_bias_tau, bias);
+            rest = Some(r);
+        }
+        let mut omega = gyro - bias;
         if let Some(accel) = accel {
             let (e, used_mag) = Mahony::correction(self.q, accel, mag);
             step.used_accel = true;
@@ -129,6 +157,9 @@ impl Mahony {
         let q = self.q + (self.q * Quat::pure(omega)).scale(0.5 * dt);
         self.q = q.try_normalized().filter(|_| bias.is_finite())?;
         self.bias = bias;
+        if let Some(r) = rest {
+            self.rest = r;
+        }
         Some(step)
     }
 }
@@ -146,7 +177,7 @@ mod tests {
         // â × v̂ with â = (0, sin .2, cos .2) and v̂ = (0, 0, 1): (sin .2, 0, 0).
         assert!((e - Vec3::new(0.2f64.sin(), 0.0, 0.0)).norm() < 1e-12, "{e:?}");
         // A step with that correction reduces the error.
-        let mut f = Mahony::new(MahonySettings { kp: 1.0, ki: 0.0 });
+        let mut f = Mahony::new(MahonySettings { kp: 1.0, ki: 0.0, ..Default::default() });
         let before = f.quaternion().angle_to(truth);
         f.update(0.1, Vec3::ZERO, Some(accel), None).unwrap();
         assert!(f.quaternion().angle_to(truth) < before);
@@ -159,7 +190,7 @@ mod tests {
         let truth = Quat::from_axis_angle(Vec3::new(0.3, 0.5, 0.1), 0.7);
         let accel = truth.rotate_inverse(Vec3::new(0.0, 0.0, 9.81));
         let mag = truth.rotate_inverse(Vec3::new(20.0, 0.0, -40.0));
-        let mut f = Mahony::new(MahonySettings { kp: 1.0, ki: 0.3 });
+        let mut f = Mahony::new(MahonySettings { kp: 1.0, ki: 0.3, ..Default::default() });
         f.set_quaternion(truth);
         // 240 s: the PI loop is underdamped with these gains and settles in about 200 s.
         for _ in 0..24000 {

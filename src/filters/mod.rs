@@ -8,6 +8,7 @@ pub mod gmvdk;
 pub mod madgwick;
 pub mod mahony;
 pub mod params;
+mod rest;
 pub mod robust;
 mod startup;
 pub mod state;
@@ -499,11 +500,19 @@ impl Core {
 }
 
 fn madgwick_settings(c: &Config) -> MadgwickSettings {
-    MadgwickSettings { beta_imu: c.slot(id::MADGWICK_BETA_IMU), beta_marg: c.slot(id::MADGWICK_BETA_MARG) }
+    MadgwickSettings {
+        beta_imu: c.slot(id::MADGWICK_BETA_IMU),
+        beta_marg: c.slot(id::MADGWICK_BETA_MARG),
+        rest_bias_tau: c.slot(id::MADGWICK_REST_BIAS_TAU),
+    }
 }
 
 fn mahony_settings(c: &Config) -> MahonySettings {
-    MahonySettings { kp: c.slot(id::MAHONY_KP), ki: c.slot(id::MAHONY_KI) }
+    MahonySettings {
+        kp: c.slot(id::MAHONY_KP),
+        ki: c.slot(id::MAHONY_KI),
+        rest_bias_tau: c.slot(id::MAHONY_REST_BIAS_TAU),
+    }
 }
 
 fn complementary_settings(c: &Config) -> ComplementarySettings {
@@ -530,6 +539,7 @@ fn ekf_settings(c: &Config) -> EkfSettings {
         motion_tau: c.slot(id::EKF_MOTION_TAU),
         heading_tau: c.slot(id::EKF_HEADING_TAU),
         gravity: c.slot(id::GRAVITY),
+        rest_rate_std: c.slot(id::EKF_REST_RATE_STD),
     }
 }
 
@@ -944,7 +954,7 @@ mod tests {
     fn defaults_come_from_the_tables() {
         let c = Config::new(Kind::Madgwick).unwrap();
         assert_eq!(c.param(id::MADGWICK_BETA_IMU), Ok(0.041));
-        assert_eq!(c.param(id::MADGWICK_BETA_MARG), Ok(0.033));
+        assert_eq!(c.param(id::MADGWICK_BETA_MARG), Ok(0.041));
         assert_eq!(c.param(id::GRAVITY), Ok(9.80665));
         assert_eq!(c.param(40), Err(Error::UnknownParam(40)));
     }

@@ -24,9 +24,12 @@ pub mod id {
     pub const MADGWICK_BETA_IMU: u32 = 8;
     /// Madgwick β for steps with a magnetometer.
     pub const MADGWICK_BETA_MARG: u32 = 9;
+    /// Madgwick: time constant of the gyro bias learned at rest (0 = off).
+    pub const MADGWICK_REST_BIAS_TAU: u32 = 10;
 
     pub const MAHONY_KP: u32 = 16;
     pub const MAHONY_KI: u32 = 17;
+    pub const MAHONY_REST_BIAS_TAU: u32 = 18;
 
     pub const COMPLEMENTARY_KP: u32 = 24;
     pub const COMPLEMENTARY_KI: u32 = 25;
@@ -45,6 +48,7 @@ pub mod id {
     pub const EKF_HEADING_STD: u32 = 47;
     pub const EKF_MOTION_TAU: u32 = 48;
     pub const EKF_HEADING_TAU: u32 = 49;
+    pub const EKF_REST_RATE_STD: u32 = 50;
 
     pub const GMVDK_SLOPE_ALPHA: u32 = 56;
     pub const GMVDK_SLOPE_MUK: u32 = 57;

@@ -41,6 +41,7 @@
 
 use super::complementary::rotation_of;
 use super::params::{id, ParamSpec};
+use super::rest::{RestDetector, RestThresholds};
 use super::state::Codec;
 use super::Step;
 use crate::math::{Quat, Vec3};
@@ -343,13 +344,7 @@ pub struct Robust {
     /// Second-order Butterworth low-pass of the accelerometer in the quasi-inertial frame.
     acc_lp: Butterworth,
     acc_seen: bool,
-    /// Rest detection: low-passed gyroscope and accelerometer, time the conditions held.
-    gyro_rest_lp: Vec3,
-    acc_rest_lp: Vec3,
-    /// The low-passed accelerometer when the current still period began.
-    rest_acc_ref: Vec3,
-    rest_clock: f64,
-    rest: bool,
+    rest: RestDetector,
     /// Magnetic reference: norm and dip; `mag_count` undisturbed samples used so far.
     ref_norm: f64,
     ref_dip: f64,
@@ -376,11 +371,7 @@ impl Robust {
             bias: Vec3::ZERO,
             acc_lp: Butterworth::default(),
             acc_seen: false,
-            gyro_rest_lp: Vec3::ZERO,
-            acc_rest_lp: Vec3::ZERO,
-            rest_acc_ref: Vec3::ZERO,
-            rest_clock: 0.0,
-            rest: false,
+            rest: RestDetector::default(),
             ref_norm: 0.0,
             ref_dip: 0.0,
             mag_count: 0,
@@ -413,7 +404,7 @@ impl Robust {
 
     /// True when the last sample was classified as rest.
     pub fn at_rest(&self) -> bool {
-        self.rest
+        self.rest.at_rest()
     }
 
     /// True when the last magnetometer reading was rejected as disturbed.
@@ -434,11 +425,7 @@ impl Robust {
         c.vec3(&mut self.bias);
         self.acc_lp.codec(c);
         c.bool(&mut self.acc_seen);
-        c.vec3(&mut self.gyro_rest_lp);
-        c.vec3(&mut self.acc_rest_lp);
-        c.vec3(&mut self.rest_acc_ref);
-        c.f64(&mut self.rest_clock);
-        c.bool(&mut self.rest);
+        self.rest.codec(c);
         c.f64(&mut self.ref_norm);
         c.f64(&mut self.ref_dip);
         c.u32(&mut self.mag_count);
@@ -464,15 +451,15 @@ impl Robust {
     fn step(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Step {
         let s = self.settings;
         let mut step = Step::default();
-        match accel {
-            Some(a) => self.detect_rest(dt, gyro, a),
-            None => {
-                self.rest = false;
-                self.rest_clock = 0.0;
-            }
-        }
-        if self.rest {
-            self.bias = self.bias + (self.gyro_rest_lp - self.bias) * lp_gain(dt, s.bias_tau_rest);
+        let th = RestThresholds {
+            gyro: s.rest_gyro,
+            accel: s.rest_accel,
+            tilt: s.rest_tilt,
+            time: s.rest_time,
+            tau: s.rest_tau,
+        };
+        if self.rest.update(dt, gyro, accel, &th) {
+            self.bias = self.bias + (self.rest.gyro_lp() - self.bias) * lp_gain(dt, s.bias_tau_rest);
         }
         self.q_gyr = (self.q_gyr * rotation_of(gyro - self.bias, dt)).normalized();
         if let Some(a) = accel {
@@ -488,31 +475,6 @@ impl Robust {
         step
     }
 
-    fn detect_rest(&mut self, dt: f64, gyro: Vec3, a: Vec3) {
-        let s = &self.settings;
-        if self.rest_clock == 0.0 && !self.rest && self.acc_rest_lp == Vec3::ZERO {
-            self.gyro_rest_lp = gyro;
-            self.acc_rest_lp = a;
-        }
-        let k = lp_gain(dt, s.rest_tau);
-        self.gyro_rest_lp = self.gyro_rest_lp + (gyro - self.gyro_rest_lp) * k;
-        self.acc_rest_lp = self.acc_rest_lp + (a - self.acc_rest_lp) * k;
-        let th_g = s.rest_gyro * s.rest_gyro;
-        let mut still = (gyro - self.gyro_rest_lp).norm_squared() < th_g
-            && self.gyro_rest_lp.norm_squared() < th_g
-            && (a - self.acc_rest_lp).norm_squared() < s.rest_accel * s.rest_accel;
-        if still && self.rest_clock == 0.0 {
-            self.rest_acc_ref = self.acc_rest_lp;
-        }
-        // A slow turn passes the gyro test (its rate is below a bias's size) but tilts
-        // the accelerometer: at rest gravity keeps its direction in the sensor frame.
-        let tilt = self.acc_rest_lp.cross(self.rest_acc_ref).norm()
-            / (self.acc_rest_lp.norm() * self.rest_acc_ref.norm()).max(1e-300);
-        still = still && tilt < s.rest_tilt;
-        self.rest_clock = if still { self.rest_clock + dt } else { 0.0 };
-        self.rest = still && self.rest_clock >= s.rest_time;
-    }
-
     fn correct_inclination(&mut self, dt: f64, a: Vec3) {
         let s = self.settings;
         let a_i = self.q_gyr.rotate(a);
@@ -525,7 +487,7 @@ impl Robust {
             return;
         }
         let c = Quat::from_two_vectors(a_e, UP);
-        if !self.rest && s.bias_tau_motion > 0.0 {
+        if !self.rest.at_rest() && s.bias_tau_motion > 0.0 {
             // The correction c undoes the drift of the last step; in the sensor frame,
             // -2 c.xyz / dt is the rate the bias error added.
             let drift = (self.q_inc * self.q_gyr).rotate_inverse(c.vector() * 2.0);

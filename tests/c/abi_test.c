@@ -247,12 +247,12 @@ static void config_paths(void) {
     CHECK(c.struct_size == sizeof(OrientConfig));
     CHECK(c.kind == ORIENT_KIND_MADGWICK && c.frame == ORIENT_FRAME_ENU && c.init == ORIENT_INIT_ACC_MAG);
     CHECK(c.params[ORIENT_PARAM_MADGWICK_BETA_IMU] == 0.041);
-    CHECK(c.params[ORIENT_PARAM_MADGWICK_BETA_MARG] == 0.033);
+    CHECK(c.params[ORIENT_PARAM_MADGWICK_BETA_MARG] == 0.041);
     CHECK(c.params[ORIENT_PARAM_GRAVITY] == 9.80665);
 
     /* Parameters: discoverable by index and by name, range-checked. */
     CHECK_STATUS(orient_param_count(ORIENT_KIND_MADGWICK, &count), ORIENT_STATUS_OK);
-    CHECK(count == 6);
+    CHECK(count == 7);
     for (i = 0; i < count; i++) {
         CHECK_STATUS(orient_param_info(ORIENT_KIND_MADGWICK, i, &info), ORIENT_STATUS_OK);
         CHECK(info.name && info.unit && info.description && strlen(info.description) > 10);
