@@ -1,17 +1,23 @@
 //! Update cost of every filter kind, IMU and MARG: through the Rust API, through the C
 //! ABI (called through an opaque function pointer, as a host's call through the shared
-//! library is), and per sample of the batch call. Prints medians over repeated rounds
-//! and ratios to the Rust API in the same run.
+//! library is), and per sample of the batch call; beside them, in the same process and
+//! on the same samples, the fastest existing Rust implementations of the same filters
+//! (the `ahrs` crate's Madgwick and Mahony, `fusion-ahrs`, a port of x-io Fusion, and
+//! `vqf-rs`, a port of VQF). Then one frame of a 20-sensor rig through the multi-sensor
+//! call. Prints medians over interleaved rounds and ratios measured in the same run.
 //!
 //!     cargo run --release --example bench [-- --rounds N]
+//!     bench --count KIND imu|marg N [c] (N updates only, through the Rust API or with `c`
+//!                                        the C ABI: for instruction counts under callgrind,
+//!                                        see scripts/callgrind-counts.sh)
 //!
 //! Input: the real recording in examples/data (13,500 samples, cycled).
 
 use orient::eval::Recording;
 use orient::ffi::{
     orient_config_default, orient_filter_free, orient_filter_new, orient_filter_update,
-    orient_filter_update_batch, OrientConfig, OrientFilter, OrientQuaternion, OrientSample, OrientStatus,
-    OrientVec3, ORIENT_SAMPLE_ACCEL, ORIENT_SAMPLE_GYRO, ORIENT_SAMPLE_MAG,
+    orient_filter_update_batch, orient_filters_update, OrientConfig, OrientFilter, OrientQuaternion,
+    OrientSample, OrientStatus, OrientVec3, ORIENT_SAMPLE_ACCEL, ORIENT_SAMPLE_GYRO, ORIENT_SAMPLE_MAG,
 };
 use orient::filters::madgwick::{Madgwick, MadgwickSettings};
 use orient::{Config, Filter, Kind, Sample, Vec3};
@@ -19,16 +25,18 @@ use std::hint::black_box;
 use std::time::Instant;
 
 const PER_ROUND: usize = 20_000;
+/// Sensors in the rig of the multi-sensor benchmark (the bones of a hand).
+const RIG: usize = 20;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(|a, b| a.partial_cmp(b).unwrap());
     v[v.len() / 2]
 }
 
-/// Median ns per sample of each variant, each of which processes PER_ROUND samples per
+/// Median ns per unit of work of each variant, each of which does `units` units per
 /// call. Variants run interleaved, round by round, so that a slow phase of the machine
 /// (frequency, another process) hits them all alike.
-fn time_interleaved(rounds: usize, variants: &mut [Box<dyn FnMut() + '_>]) -> Vec<f64> {
+fn time_interleaved(rounds: usize, units: usize, variants: &mut [Box<dyn FnMut() + '_>]) -> Vec<f64> {
     for v in variants.iter_mut() {
         v(); // warm up
     }
@@ -37,7 +45,7 @@ fn time_interleaved(rounds: usize, variants: &mut [Box<dyn FnMut() + '_>]) -> Ve
         for (v, r) in variants.iter_mut().zip(runs.iter_mut()) {
             let t = Instant::now();
             v();
-            r.push(t.elapsed().as_secs_f64() * 1e9 / PER_ROUND as f64);
+            r.push(t.elapsed().as_secs_f64() * 1e9 / units as f64);
         }
     }
     runs.into_iter().map(median).collect()
@@ -62,10 +70,93 @@ fn new_c_filter(kind: Kind) -> *mut OrientFilter {
     h
 }
 
-struct Row {
-    label: String,
-    ns: f64,
-    baseline: f64,
+fn na(v: Vec3) -> nalgebra_ahrs::Vector3<f64> {
+    nalgebra_ahrs::Vector3::new(v.x, v.y, v.z)
+}
+
+/// One anchor: a name and a closure that runs PER_ROUND samples.
+struct Anchor<'a> {
+    name: &'static str,
+    run: Box<dyn FnMut() + 'a>,
+}
+
+fn anchors<'a>(kind: Kind, samples: &'a [Sample], mag: bool) -> Vec<Anchor<'a>> {
+    use ahrs::Ahrs;
+    let dt = samples[0].dt;
+    let mut out: Vec<Anchor<'a>> = Vec::new();
+    match kind {
+        Kind::Madgwick => {
+            let mut f = ahrs::Madgwick::new(dt, 0.041);
+            out.push(Anchor {
+                name: "ahrs Madgwick (f64)",
+                run: Box::new(move || {
+                    for s in samples {
+                        let (g, a) = (na(s.gyro.unwrap()), na(s.accel.unwrap()));
+                        let r =
+                            if mag { f.update(&g, &a, &na(s.mag.unwrap())) } else { f.update_imu(&g, &a) };
+                        let _ = black_box(r);
+                    }
+                }),
+            });
+            out.push(fusion_anchor(samples, mag));
+        }
+        Kind::Mahony => {
+            let mut f = ahrs::Mahony::new(dt, 0.5, 0.0);
+            out.push(Anchor {
+                name: "ahrs Mahony (f64)",
+                run: Box::new(move || {
+                    for s in samples {
+                        let (g, a) = (na(s.gyro.unwrap()), na(s.accel.unwrap()));
+                        let r =
+                            if mag { f.update(&g, &a, &na(s.mag.unwrap())) } else { f.update_imu(&g, &a) };
+                        let _ = black_box(r);
+                    }
+                }),
+            });
+            out.push(fusion_anchor(samples, mag));
+        }
+        Kind::Robust => {
+            let mut f = vqf_rs::VQF::new(dt, None, None, None);
+            out.push(Anchor {
+                name: "vqf-rs VQF (f64)",
+                run: Box::new(move || {
+                    for s in samples {
+                        let v = |v: Vec3| [v.x, v.y, v.z];
+                        f.update(v(s.gyro.unwrap()), v(s.accel.unwrap()), s.mag.map(v));
+                        black_box(f.quat_9d());
+                    }
+                }),
+            });
+        }
+        _ => {}
+    }
+    out
+}
+
+/// x-io Fusion through `fusion-ahrs` (f32; degrees per second and g).
+fn fusion_anchor(samples: &[Sample], mag: bool) -> Anchor<'_> {
+    let mut f = fusion_ahrs::Ahrs::new();
+    Anchor {
+        name: "fusion-ahrs Fusion (f32)",
+        run: Box::new(move || {
+            for s in samples {
+                let deg = |v: Vec3| fusion_ahrs::Vector::new(v.x as f32, v.y as f32, v.z as f32) * 57.29578;
+                let g = |v: Vec3| fusion_ahrs::Vector::new(v.x as f32, v.y as f32, v.z as f32) * 0.10197162;
+                f.set_sample_period(s.dt as f32);
+                if mag {
+                    let m = s.mag.unwrap();
+                    f.update(
+                        deg(s.gyro.unwrap()),
+                        g(s.accel.unwrap()),
+                        fusion_ahrs::Vector::new(m.x as f32, m.y as f32, m.z as f32),
+                    );
+                } else {
+                    f.update_no_magnetometer(deg(s.gyro.unwrap()), g(s.accel.unwrap()));
+                }
+                black_box(f.quaternion());
+            }
+        }),
+    }
 }
 
 fn main() {
@@ -76,7 +167,41 @@ fn main() {
     }
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/data/broad_01_excerpt.csv");
     let marg_rec = Recording::read(path.as_ref(), true).expect("demo recording");
-    let mut rows: Vec<Row> = Vec::new();
+    if let Some(i) = args.iter().position(|a| a == "--count") {
+        let kind = Kind::from_name(&args[i + 1]).expect("--count KIND imu|marg N");
+        let with_mag = args[i + 2] == "marg";
+        let n: usize = args[i + 3].parse().expect("N");
+        let mut samples = marg_rec.samples();
+        if !with_mag {
+            samples.iter_mut().for_each(|s| s.mag = None);
+        }
+        if args.get(i + 4).is_some_and(|a| a == "c") {
+            // The same through the C ABI.
+            let c: Vec<OrientSample> = samples.iter().map(c_sample).collect();
+            let h = new_c_filter(kind);
+            let update: unsafe extern "C" fn(*mut OrientFilter, *const OrientSample) -> OrientStatus =
+                black_box(orient_filter_update);
+            for j in 0..n {
+                black_box(unsafe { update(h, &c[j % c.len()]) });
+            }
+            unsafe { orient_filter_free(h) };
+            return;
+        }
+        let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
+        for j in 0..n {
+            let _ = black_box(f.update(black_box(&samples[j % samples.len()])));
+        }
+        println!("{:?}", f.quaternion());
+        return;
+    }
+    println!(
+        "orient {} bench: median ns per update over {rounds} rounds x {PER_ROUND} samples (BROAD excerpt)",
+        env!("CARGO_PKG_VERSION")
+    );
+    println!(
+        "{:<20} {:>7} {:>7} {:>9} {:>7} {:>8} {:>9}   anchors (ns, orient Rust / anchor)",
+        "kind", "Rust", "C", "C-Rust", "batch", "batch/R", "batch+q"
+    );
 
     for kind in Kind::ALL {
         for (mode, with_mag) in [("IMU", false), ("MARG", true)] {
@@ -106,6 +231,8 @@ fn main() {
             let batch_fn = black_box(orient_filter_update_batch);
             let mut out = vec![OrientQuaternion::default(); PER_ROUND];
             let mut processed = 0usize;
+            let mut anchor_list = anchors(kind, &samples, with_mag);
+            let names: Vec<&str> = anchor_list.iter().map(|a| a.name).collect();
             let medians = {
                 let mut variants: Vec<Box<dyn FnMut() + '_>> = vec![
                     Box::new(|| {
@@ -139,6 +266,9 @@ fn main() {
                         ));
                     }),
                 ];
+                for a in anchor_list.iter_mut() {
+                    variants.push(Box::new(|| (a.run)()));
+                }
                 if kind == Kind::Madgwick {
                     // The bare Madgwick core: no checks, no frame handling.
                     variants.push(Box::new(|| {
@@ -147,34 +277,84 @@ fn main() {
                         }
                     }));
                 }
-                time_interleaved(rounds, &mut variants)
+                time_interleaved(rounds, PER_ROUND, &mut variants)
             };
             for h in handles {
                 unsafe { orient_filter_free(h) };
             }
-            let labels = [
-                "Rust Filter::update",
-                "C orient_filter_update",
-                "C update_batch",
-                "C update_batch, quaternions out",
-                "bare Madgwick core (no checks)",
-            ];
-            for (label, ns) in labels.iter().zip(&medians) {
-                rows.push(Row {
-                    label: format!("{:<13} {mode:<4} {label}", kind.name()),
-                    ns: *ns,
-                    baseline: medians[0],
-                });
+            let (rust, c, batch, batch_q) = (medians[0], medians[1], medians[2], medians[3]);
+            print!(
+                "{:<20} {rust:>7.1} {c:>7.1} {:>+9.1} {batch:>7.1} {:>8.3} {batch_q:>9.1}  ",
+                format!("{} {mode}", kind.name()),
+                c - rust,
+                batch / rust
+            );
+            for (name, ns) in names.iter().zip(&medians[4..]) {
+                print!(" {name} {ns:.1} ({:.2}x)", rust / ns);
             }
+            if kind == Kind::Madgwick {
+                print!(" | bare core {:.1}", medians[medians.len() - 1]);
+            }
+            println!();
         }
     }
+    multi_sensor(rounds, &marg_rec);
+}
 
-    println!(
-        "orient {} bench: median of {rounds} rounds x {PER_ROUND} samples (BROAD excerpt)",
-        env!("CARGO_PKG_VERSION")
-    );
-    println!("{:<52} {:>10} {:>14}", "path", "ns/update", "vs Rust API");
-    for r in &rows {
-        println!("{:<52} {:>10.1} {:>13.2}x", r.label, r.ns, r.ns / r.baseline);
+/// One frame of RIG Madgwick MARG filters: one multi-sensor call against one C call
+/// per sensor and the Rust API.
+fn multi_sensor(rounds: usize, rec: &Recording) {
+    const FRAMES: usize = 1000;
+    let samples: Vec<OrientSample> = rec.samples().iter().take(FRAMES + RIG).map(c_sample).collect();
+    // Sensor i of frame f reads recording sample f + i, so the sensors differ.
+    let frames: Vec<[OrientSample; RIG]> =
+        (0..FRAMES).map(|f| core::array::from_fn(|i| samples[f + i])).collect();
+    let rig_a: Vec<*mut OrientFilter> = (0..RIG).map(|_| new_c_filter(Kind::Madgwick)).collect();
+    let rig_b: Vec<*mut OrientFilter> = (0..RIG).map(|_| new_c_filter(Kind::Madgwick)).collect();
+    let mut rig_r: Vec<Filter> =
+        (0..RIG).map(|_| Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap()).collect();
+    let rust_frames: Vec<[Sample; RIG]> =
+        (0..FRAMES).map(|f| core::array::from_fn(|i| rec.samples()[f + i])).collect();
+    let multi = black_box(orient_filters_update);
+    let single: unsafe extern "C" fn(*mut OrientFilter, *const OrientSample) -> OrientStatus =
+        black_box(orient_filter_update);
+    let mut out = [OrientQuaternion::default(); RIG];
+    let m = {
+        let mut variants: Vec<Box<dyn FnMut() + '_>> = vec![
+            Box::new(|| {
+                for fr in &frames {
+                    black_box(unsafe {
+                        multi(rig_a.as_ptr(), fr.as_ptr(), RIG, out.as_mut_ptr(), std::ptr::null_mut())
+                    });
+                }
+            }),
+            Box::new(|| {
+                for fr in &frames {
+                    for (h, s) in rig_b.iter().zip(fr) {
+                        black_box(unsafe { single(*h, s) });
+                    }
+                }
+            }),
+            Box::new(|| {
+                for fr in &rust_frames {
+                    for (f, s) in rig_r.iter_mut().zip(fr) {
+                        let _ = black_box(f.update(s));
+                    }
+                }
+            }),
+        ];
+        time_interleaved(rounds, FRAMES, &mut variants)
+    };
+    for h in rig_a.into_iter().chain(rig_b) {
+        unsafe { orient_filter_free(h) };
     }
+    println!(
+        "\n{RIG}-sensor Madgwick MARG frame (ns per frame): orient_filters_update {:.0} (with quaternions out), \
+         {RIG} x orient_filter_update {:.0} ({:.2}x), Rust loop {:.0} ({:.2}x)",
+        m[0],
+        m[1],
+        m[0] / m[1],
+        m[2],
+        m[0] / m[2]
+    );
 }

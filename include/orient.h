@@ -918,6 +918,22 @@ OrientStatus orient_filter_update_batch(OrientFilter *filter,
                                         size_t *processed);
 
 /**
+ * One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
+ * for i < n (say the 16-20 bones of a hand). The filters may be of any kinds; each
+ * behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
+ * receives each filter's orientation after its sample (room for `n`). Every handle is
+ * checked before any filter changes, so a NULL or foreign handle changes nothing. A bad
+ * sample stops the call: the filters before it stay updated, its filter and those
+ * after it are unchanged, and `*processed` (when not NULL) is its index; on success it
+ * is `n`. `filters` and `samples` may be NULL only when `n` is 0.
+ */
+OrientStatus orient_filters_update(OrientFilter *const *filters,
+                                   const struct OrientSample *samples,
+                                   size_t n,
+                                   struct OrientQuaternion *quaternions,
+                                   size_t *processed);
+
+/**
  * The orientation (sensor to earth, configured frame). Identity before initialisation.
  */
 OrientStatus orient_filter_quaternion(const OrientFilter *filter, struct OrientQuaternion *q);

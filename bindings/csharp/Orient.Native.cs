@@ -276,6 +276,12 @@ namespace Orient.Native
         public static extern unsafe Status orient_filter_update_batch(
             IntPtr filter, Sample* samples, UIntPtr n, Quaternion* quaternions, UIntPtr* processed);
 
+        /// <summary>One frame of a multi-sensor rig: filters[i] takes samples[i].</summary>
+        /// <param name="quaternions">null, or room for n quaternions.</param>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern unsafe Status orient_filters_update(
+            IntPtr* filters, Sample* samples, UIntPtr n, Quaternion* quaternions, UIntPtr* processed);
+
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern Status orient_filter_quaternion(IntPtr filter, out Quaternion q);
 

@@ -508,6 +508,71 @@ pub unsafe extern "C" fn orient_filter_update_batch(
     })
 }
 
+/// One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
+/// for i < n (say the 16-20 bones of a hand). The filters may be of any kinds; each
+/// behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
+/// receives each filter's orientation after its sample (room for `n`). Every handle is
+/// checked before any filter changes, so a NULL or foreign handle changes nothing. A bad
+/// sample stops the call: the filters before it stay updated, its filter and those
+/// after it are unchanged, and `*processed` (when not NULL) is its index; on success it
+/// is `n`. `filters` and `samples` may be NULL only when `n` is 0.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filters_update(
+    filters: *const *mut OrientFilter,
+    samples: *const OrientSample,
+    n: usize,
+    quaternions: *mut OrientQuaternion,
+    processed: *mut usize,
+) -> OrientStatus {
+    guard(|| {
+        if !processed.is_null() {
+            processed.write(0);
+        }
+        if n == 0 {
+            return Ok(());
+        }
+        if filters.is_null() || samples.is_null() {
+            return Err(null());
+        }
+        if n > isize::MAX as usize / core::mem::size_of::<OrientSample>() {
+            return Err(fail(
+                OrientStatus::CountTooLarge,
+                format_args!("n = {n} filters cannot fit in memory"),
+            ));
+        }
+        let handles = core::slice::from_raw_parts(filters, n);
+        for (i, h) in handles.iter().enumerate() {
+            if let Err(status) = handle(*h) {
+                return Err(fail(status, format_args!("filter {i}: not a live OrientFilter handle")));
+            }
+        }
+        let samples = core::slice::from_raw_parts(samples, n);
+        for (i, (h, s)) in handles.iter().zip(samples).enumerate() {
+            // Checked above; one mutable borrow at a time, so a handle listed twice is
+            // simply updated twice, in order.
+            let f = &mut (**h).filter;
+            if let Err(status) = sample_from(s).and_then(|s| f.update(&s).map_err(from_core)) {
+                if !processed.is_null() {
+                    processed.write(i);
+                }
+                let detail = CStr::from_ptr(detail_ptr()).to_bytes();
+                let mut copy = [0u8; 200];
+                let len = detail.len().min(copy.len());
+                copy[..len].copy_from_slice(&detail[..len]);
+                let detail = core::str::from_utf8(&copy[..len]).unwrap_or("");
+                return Err(fail(status, format_args!("filter {i}: {detail}")));
+            }
+            if !quaternions.is_null() {
+                quaternions.add(i).write(quat_to(f.quaternion()));
+            }
+        }
+        if !processed.is_null() {
+            processed.write(n);
+        }
+        Ok(())
+    })
+}
+
 /// The orientation (sensor to earth, configured frame). Identity before initialisation.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_quaternion(

@@ -155,6 +155,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn the_seed_options_stop_heading_drift_at_rest() {
         for (kind, slot, value) in [
             (Kind::Madgwick, id::MADGWICK_REST_BIAS_TAU, 2.0),
@@ -170,6 +171,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn no_rest_while_moving_or_without_an_accelerometer() {
         let th = RestThresholds::DEFAULT;
         let mut d = RestDetector::default();

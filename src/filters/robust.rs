@@ -617,6 +617,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn learns_the_bias_at_rest() {
         let bias = Vec3::new(0.01, -0.02, 0.015);
         let q = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.3);
@@ -629,6 +630,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn a_slow_turn_is_not_rest() {
         // 1 deg/s about a horizontal axis: under rest_gyro, but the accelerometer tilts.
         let w = Vec3::new(0.0175, 0.0, 0.0);
@@ -644,6 +646,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn rejects_zero_mean_linear_acceleration() {
         // 4 m/s² along east at 1 Hz: an accelerometer-only tilt swings by about 22°.
         let q = Quat::from_axis_angle(Vec3::new(0.3, 1.0, 0.2), 0.5);
@@ -659,6 +662,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn holds_heading_through_a_disturbance_and_resumes_without_a_jump() {
         let q = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 0.7);
         let settings = RobustSettings { hard_iron_time: 0.0, ..Default::default() };
@@ -687,6 +691,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn compensates_a_magnet_attached_to_the_sensor() {
         let hard = Vec3::new(25.0, -10.0, 15.0);
         let w = Vec3::new(0.0, 0.0, 0.5);
@@ -706,6 +711,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn estimates_bias_in_motion_from_the_inclination_correction() {
         let bias = Vec3::new(0.01, -0.008, 0.0);
         let settings = RobustSettings { bias_tau_motion: 10.0, ..Default::default() };
@@ -723,6 +729,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn butterworth_has_unit_gain_and_settles() {
         let mut b = Butterworth::default();
         let x = Vec3::new(1.0, -2.0, 3.0);

@@ -574,6 +574,69 @@ static void diagnostics(int32_t kind) {
     CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
 }
 
+/* One call for a rig: every kind in one frame, bit-identical to separate updates. */
+static void multi_sensor(void) {
+    OrientFilter *rig[6], *twins[6];
+    OrientFilter *kept;
+    OrientSample frame[6];
+    OrientQuaternion out[6], q;
+    size_t processed = 99;
+    int i, k;
+    for (k = 0; k < 6; k++) {
+        rig[k] = new_filter(ORIENT_KIND_MADGWICK + k);
+        twins[k] = new_filter(ORIENT_KIND_MADGWICK + k);
+        frame[k] = good_sample();
+        frame[k].gyro.z = 0.1 * k;
+    }
+    for (i = 0; i < 300; i++) {
+        CHECK_STATUS(orient_filters_update(rig, frame, 6, out, &processed), ORIENT_STATUS_OK);
+        CHECK(processed == 6);
+        for (k = 0; k < 6; k++) {
+            CHECK_STATUS(orient_filter_update(twins[k], &frame[k]), ORIENT_STATUS_OK);
+            CHECK_STATUS(orient_filter_quaternion(twins[k], &q), ORIENT_STATUS_OK);
+            if (!same_quaternion(out[k], q)) {
+                fprintf(stderr, "FAIL multi-sensor kind %d sample %d\n", ORIENT_KIND_MADGWICK + k, i);
+                failed++;
+                break;
+            }
+        }
+    }
+    passed++;
+    /* A bad sample stops the frame at its index; the filters after it are untouched. */
+    frame[3].mag.x = NAN;
+    frame[3].flags |= ORIENT_SAMPLE_MAG;
+    CHECK_STATUS(orient_filters_update(rig, frame, 6, NULL, &processed), ORIENT_STATUS_NON_FINITE);
+    CHECK(processed == 3);
+    CHECK(strstr(orient_last_error(), "filter 3") != NULL);
+    CHECK_STATUS(orient_filters_update(twins, frame, 3, NULL, NULL), ORIENT_STATUS_OK);
+    for (k = 0; k < 6; k++) {
+        OrientQuaternion a;
+        CHECK_STATUS(orient_filter_quaternion(rig[k], &a), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_quaternion(twins[k], &q), ORIENT_STATUS_OK);
+        CHECK(same_quaternion(a, q));
+    }
+    /* A NULL handle anywhere changes nothing, not even the filters before it. */
+    frame[3] = good_sample();
+    kept = twins[4];
+    twins[4] = NULL;
+    CHECK_STATUS(orient_filters_update(twins, frame, 6, NULL, &processed), ORIENT_STATUS_NULL_POINTER);
+    CHECK(processed == 0);
+    CHECK_STATUS(orient_filter_quaternion(twins[0], &q), ORIENT_STATUS_OK);
+    {
+        OrientQuaternion a;
+        CHECK_STATUS(orient_filter_quaternion(rig[0], &a), ORIENT_STATUS_OK);
+        CHECK(same_quaternion(a, q));
+    }
+    CHECK_STATUS(orient_filters_update(NULL, NULL, 0, NULL, &processed), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filters_update(rig, NULL, 2, NULL, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filters_update(rig, frame, SIZE_MAX, NULL, NULL), ORIENT_STATUS_COUNT_TOO_LARGE);
+    for (k = 0; k < 6; k++) {
+        CHECK_STATUS(orient_filter_free(rig[k]), ORIENT_STATUS_OK);
+        if (k != 4) CHECK_STATUS(orient_filter_free(twins[k]), ORIENT_STATUS_OK);
+    }
+    CHECK_STATUS(orient_filter_free(kept), ORIENT_STATUS_OK);
+}
+
 int main(int argc, char **argv) {
     int k;
     if (argc != 2) {
@@ -588,6 +651,7 @@ int main(int argc, char **argv) {
         bad_input(k);
         diagnostics(k);
     }
+    multi_sensor();
     golden(argv[1]);
     printf("%d passed, %d failed\n", passed, failed);
     return failed == 0 ? 0 : 1;
