@@ -236,6 +236,16 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_PARAM_EKF_REST_RATE_STD 50
 
 /**
+ * Parameter slot (EKF): time constant of the adaptive accelerometer noise, s, default 2; 0 = off.
+ */
+#define ORIENT_PARAM_EKF_ACCEL_ADAPT_TAU 51
+
+/**
+ * Parameter slot (EKF): time constant of the adaptive heading noise, s, default 2; 0 = off.
+ */
+#define ORIENT_PARAM_EKF_HEADING_ADAPT_TAU 52
+
+/**
  * Parameter slot (GMVDK): SlopeAlpha, default 1.0 (paper, Appendix B.1).
  */
 #define ORIENT_PARAM_GMVDK_SLOPE_ALPHA 56

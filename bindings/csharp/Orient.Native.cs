@@ -102,6 +102,8 @@ namespace Orient.Native
         public const uint ParamEkfMotionTau = 48; // ORIENT_PARAM_EKF_MOTION_TAU
         public const uint ParamEkfHeadingTau = 49; // ORIENT_PARAM_EKF_HEADING_TAU
         public const uint ParamEkfRestRateStd = 50; // ORIENT_PARAM_EKF_REST_RATE_STD
+        public const uint ParamEkfAccelAdaptTau = 51; // ORIENT_PARAM_EKF_ACCEL_ADAPT_TAU
+        public const uint ParamEkfHeadingAdaptTau = 52; // ORIENT_PARAM_EKF_HEADING_ADAPT_TAU
         public const uint ParamGmvdkSlopeAlpha = 56; // ORIENT_PARAM_GMVDK_SLOPE_ALPHA
         public const uint ParamGmvdkSlopeMuk = 57; // ORIENT_PARAM_GMVDK_SLOPE_MUK
         public const uint ParamGmvdkMuWindow = 58; // ORIENT_PARAM_GMVDK_MU_WINDOW

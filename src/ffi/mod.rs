@@ -810,6 +810,8 @@ mod tests {
             (ORIENT_PARAM_EKF_MOTION_TAU, params::id::EKF_MOTION_TAU),
             (ORIENT_PARAM_EKF_HEADING_TAU, params::id::EKF_HEADING_TAU),
             (ORIENT_PARAM_EKF_REST_RATE_STD, params::id::EKF_REST_RATE_STD),
+            (ORIENT_PARAM_EKF_ACCEL_ADAPT_TAU, params::id::EKF_ACCEL_ADAPT_TAU),
+            (ORIENT_PARAM_EKF_HEADING_ADAPT_TAU, params::id::EKF_HEADING_ADAPT_TAU),
             (ORIENT_PARAM_GMVDK_SLOPE_ALPHA, params::id::GMVDK_SLOPE_ALPHA),
             (ORIENT_PARAM_GMVDK_SLOPE_MUK, params::id::GMVDK_SLOPE_MUK),
             (ORIENT_PARAM_GMVDK_MU_WINDOW, params::id::GMVDK_MU_WINDOW),

@@ -92,6 +92,10 @@ pub const ORIENT_PARAM_EKF_MOTION_TAU: u32 = 48;
 pub const ORIENT_PARAM_EKF_HEADING_TAU: u32 = 49;
 /// Parameter slot (EKF): zero-rate update std at rest, rad/s, default 0 = off.
 pub const ORIENT_PARAM_EKF_REST_RATE_STD: u32 = 50;
+/// Parameter slot (EKF): time constant of the adaptive accelerometer noise, s, default 2; 0 = off.
+pub const ORIENT_PARAM_EKF_ACCEL_ADAPT_TAU: u32 = 51;
+/// Parameter slot (EKF): time constant of the adaptive heading noise, s, default 2; 0 = off.
+pub const ORIENT_PARAM_EKF_HEADING_ADAPT_TAU: u32 = 52;
 /// Parameter slot (GMVDK): SlopeAlpha, default 1.0 (paper, Appendix B.1).
 pub const ORIENT_PARAM_GMVDK_SLOPE_ALPHA: u32 = 56;
 /// Parameter slot (GMVDK): SlopeMuk, 1/rad, default 1.5 (paper, eq. (20)).

@@ -540,6 +540,8 @@ fn ekf_settings(c: &Config) -> EkfSettings {
         heading_tau: c.slot(id::EKF_HEADING_TAU),
         gravity: c.slot(id::GRAVITY),
         rest_rate_std: c.slot(id::EKF_REST_RATE_STD),
+        accel_adapt_tau: c.slot(id::EKF_ACCEL_ADAPT_TAU),
+        heading_adapt_tau: c.slot(id::EKF_HEADING_ADAPT_TAU),
     }
 }
 

@@ -49,6 +49,8 @@ pub mod id {
     pub const EKF_MOTION_TAU: u32 = 48;
     pub const EKF_HEADING_TAU: u32 = 49;
     pub const EKF_REST_RATE_STD: u32 = 50;
+    pub const EKF_ACCEL_ADAPT_TAU: u32 = 51;
+    pub const EKF_HEADING_ADAPT_TAU: u32 = 52;
 
     pub const GMVDK_SLOPE_ALPHA: u32 = 56;
     pub const GMVDK_SLOPE_MUK: u32 = 57;
