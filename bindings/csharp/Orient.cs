@@ -212,6 +212,12 @@ namespace Orient
             handle.Dispose();
         }
 
+        /// <summary>The native handle (throws ObjectDisposedException once disposed).</summary>
+        internal IntPtr NativeHandle
+        {
+            get { return H; }
+        }
+
         public bool IsDisposed
         {
             get { return handle.IsClosed; }
@@ -550,6 +556,71 @@ namespace Orient
                 a.W * b.X + a.X * b.W + a.Y * b.Z - a.Z * b.Y,
                 a.W * b.Y - a.X * b.Z + a.Y * b.W + a.Z * b.X,
                 a.W * b.Z + a.X * b.Y - a.Y * b.X + a.Z * b.W);
+        }
+    }
+
+    /// <summary>
+    /// Filters updated together, one sample each, in one native call per frame: the bones
+    /// of a hand, the segments of a body. The filters may be of any kinds; the rig does not
+    /// own them (dispose them yourself). Update allocates nothing.
+    /// </summary>
+    public sealed class OrientRig
+    {
+        private readonly OrientFilter[] filters;
+        private readonly IntPtr[] handles;
+
+        public OrientRig(params OrientFilter[] filters)
+        {
+            if (filters == null) throw new ArgumentNullException("filters");
+            foreach (var f in filters)
+            {
+                if (f == null) throw new ArgumentNullException("filters", "a filter is null");
+            }
+            this.filters = (OrientFilter[])filters.Clone();
+            handles = new IntPtr[filters.Length];
+        }
+
+        public int Count
+        {
+            get { return filters.Length; }
+        }
+
+        /// <summary>
+        /// Updates filter i with samples[i]; when quaternions is not null it receives each
+        /// filter's orientation afterwards. Throws OrientException at the first bad sample
+        /// (the filters before it stay updated, it and those after are unchanged; its index
+        /// is in the message).
+        /// </summary>
+        public unsafe void Update(Sample[] samples, Native.Quaternion[] quaternions)
+        {
+            if (samples == null) throw new ArgumentNullException("samples");
+            if (samples.Length < filters.Length)
+                throw new ArgumentException("fewer samples than filters", "samples");
+            if (quaternions != null && quaternions.Length < filters.Length)
+                throw new ArgumentException("quaternions is shorter than the rig", "quaternions");
+            if (filters.Length == 0) return;
+            for (int i = 0; i < filters.Length; i++)
+            {
+                handles[i] = filters[i].NativeHandle;
+            }
+            Status s;
+            fixed (IntPtr* ph = handles)
+            fixed (Sample* ps = samples)
+            {
+                if (quaternions != null)
+                {
+                    fixed (Native.Quaternion* pq = quaternions)
+                    {
+                        s = NativeMethods.orient_filters_update(ph, ps, (UIntPtr)filters.Length, pq, null);
+                    }
+                }
+                else
+                {
+                    s = NativeMethods.orient_filters_update(ph, ps, (UIntPtr)filters.Length, null, null);
+                }
+            }
+            GC.KeepAlive(filters);
+            OrientException.Check(s);
         }
     }
 }

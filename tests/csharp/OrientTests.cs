@@ -192,6 +192,52 @@ public static class OrientTests
             Throws(Status.NoData, () => new OrientFilter(Kind.Ekf).LinearAcceleration.ToString(), "no data yet");
         }
 
+        // A rig: one native call per frame, the same bits as separate updates.
+        {
+            var kinds = new[] { Kind.Madgwick, Kind.Mahony, Kind.Ekf, Kind.Robust };
+            var rigFilters = new OrientFilter[kinds.Length];
+            var twins = new OrientFilter[kinds.Length];
+            for (int k = 0; k < kinds.Length; k++)
+            {
+                rigFilters[k] = new OrientFilter(kinds[k]);
+                twins[k] = new OrientFilter(kinds[k]);
+            }
+            var rig = new OrientRig(rigFilters);
+            var frame = new Sample[kinds.Length];
+            var outQ = new Orient.Native.Quaternion[kinds.Length];
+            for (int i = 0; i < 100; i++)
+            {
+                for (int k = 0; k < kinds.Length; k++) { frame[k] = Good(); frame[k].Gyro.Z = 0.1 * k; }
+                rig.Update(frame, outQ);
+                for (int k = 0; k < kinds.Length; k++) twins[k].Update(frame[k]);
+            }
+            bool same = true;
+            for (int k = 0; k < kinds.Length; k++) same &= Same(outQ[k], twins[k].Quaternion);
+            Check(same && rig.Count == kinds.Length, "rig matches separate updates");
+            frame[2].Accel.X = double.NaN;
+            try
+            {
+                rig.Update(frame, null);
+                Check(false, "rig should throw");
+            }
+            catch (OrientException e)
+            {
+                Check(e.Status == Status.NonFinite && e.Message.Contains("filter 2"), "rig error: " + e.Message);
+            }
+            Check(Same(rigFilters[3].Quaternion, twins[3].Quaternion), "rig leaves the filters after a bad sample");
+            foreach (var f in rigFilters) f.Dispose();
+            foreach (var f in twins) f.Dispose();
+            try
+            {
+                rig.Update(frame, null);
+                Check(false, "rig with disposed filters should throw");
+            }
+            catch (ObjectDisposedException)
+            {
+                Check(true, "rig refuses disposed filters");
+            }
+        }
+
         // Snapshots: a split run equals an unbroken one; damaged blobs are refused.
         using (var whole = new OrientFilter(Kind.Ekf))
         using (var first = new OrientFilter(Kind.Ekf))
