@@ -235,14 +235,14 @@ pub extern "C" fn orient_abi_version() -> u32 {
 /// A fixed English message for a status code (static, NUL-terminated; never NULL).
 #[no_mangle]
 pub extern "C" fn orient_status_message(status: i32) -> *const c_char {
-    guard_value(b"\0".as_ptr() as *const c_char, || status_message(status).as_ptr() as *const c_char)
+    guard_value(c"".as_ptr(), || status_message(status).as_ptr() as *const c_char)
 }
 
 /// Detail of the last failed call on this thread (NUL-terminated, "" if none). Valid
 /// until the next failing orient call on the same thread; never NULL.
 #[no_mangle]
 pub extern "C" fn orient_last_error() -> *const c_char {
-    guard_value(b"\0".as_ptr() as *const c_char, detail_ptr)
+    guard_value(c"".as_ptr(), detail_ptr)
 }
 
 /// beta from the maximum gyroscope error of each axis, Madgwick 2010 eq. (33):
@@ -515,7 +515,9 @@ pub unsafe extern "C" fn orient_filter_update_batch(
 /// checked before any filter changes, so a NULL or foreign handle changes nothing. A bad
 /// sample stops the call: the filters before it stay updated, its filter and those
 /// after it are unchanged, and `*processed` (when not NULL) is its index; on success it
-/// is `n`. `filters` and `samples` may be NULL only when `n` is 0.
+/// is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
+/// distinct Madgwick filters with the same sensors present are updated side by side
+/// (about half the time of separate calls), with the same bits as separate calls.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filters_update(
     filters: *const *mut OrientFilter,
@@ -547,24 +549,62 @@ pub unsafe extern "C" fn orient_filters_update(
             }
         }
         let samples = core::slice::from_raw_parts(samples, n);
-        for (i, (h, s)) in handles.iter().zip(samples).enumerate() {
-            // Checked above; one mutable borrow at a time, so a handle listed twice is
-            // simply updated twice, in order.
-            let f = &mut (**h).filter;
-            if let Err(status) = sample_from(s).and_then(|s| f.update(&s).map_err(from_core)) {
-                if !processed.is_null() {
-                    processed.write(i);
-                }
-                let detail = CStr::from_ptr(detail_ptr()).to_bytes();
-                let mut copy = [0u8; 200];
-                let len = detail.len().min(copy.len());
-                copy[..len].copy_from_slice(&detail[..len]);
-                let detail = core::str::from_utf8(&copy[..len]).unwrap_or("");
-                return Err(fail(status, format_args!("filter {i}: {detail}")));
+        // Reports a bad sample at `i`: its index in `*processed`, the detail prefixed.
+        let failed = |i: usize, status: OrientStatus| {
+            if !processed.is_null() {
+                processed.write(i);
             }
+            let detail = CStr::from_ptr(detail_ptr()).to_bytes();
+            let mut copy = [0u8; 200];
+            let len = detail.len().min(copy.len());
+            copy[..len].copy_from_slice(&detail[..len]);
+            let detail = core::str::from_utf8(&copy[..len]).unwrap_or("");
+            fail(status, format_args!("filter {i}: {detail}"))
+        };
+        const LANES: usize = 4;
+        let mut i = 0;
+        while i < n {
+            let group = &handles[i..n.min(i + LANES)];
+            let distinct =
+                group.len() == LANES && (0..LANES).all(|a| (a + 1..LANES).all(|b| group[a] != group[b]));
+            if distinct {
+                // Four different filters: their steps may run side by side.
+                let mut converted = [Sample::default(); LANES];
+                for (k, c) in converted.iter_mut().enumerate() {
+                    match sample_from(&samples[i + k]) {
+                        Ok(s) => *c = s,
+                        Err(status) => {
+                            // The ones before the bad sample still get their update.
+                            for j in 0..k {
+                                let f = &mut (*group[j]).filter;
+                                f.update(&converted[j]).map_err(|e| failed(i + j, from_core(e)))?;
+                            }
+                            return Err(failed(i + k, status));
+                        }
+                    }
+                }
+                let ptrs: [*mut OrientFilter; LANES] = [group[0], group[1], group[2], group[3]];
+                let mut fs = ptrs.map(|p| &mut (*p).filter);
+                let refs = [0, 1, 2, 3].map(|k| &converted[k]);
+                Filter::update_group(&mut fs, refs).map_err(|(k, e)| failed(i + k, from_core(e)))?;
+                if !quaternions.is_null() {
+                    for (k, f) in fs.iter().enumerate() {
+                        quaternions.add(i + k).write(quat_to(f.quaternion()));
+                    }
+                }
+                i += LANES;
+                continue;
+            }
+            // One mutable borrow at a time, so a handle listed twice is simply updated
+            // twice, in order.
+            let f = &mut (*handles[i]).filter;
+            sample_from(&samples[i])
+                .and_then(|s| f.update(&s).map_err(from_core))
+                .map_err(|status| failed(i, status))?;
             if !quaternions.is_null() {
                 quaternions.add(i).write(quat_to(f.quaternion()));
             }
+            i += 1;
         }
         if !processed.is_null() {
             processed.write(n);
@@ -844,6 +884,65 @@ mod tests {
         let all: std::collections::BTreeSet<u32> =
             Kind::ALL.iter().flat_map(|k| k.params().map(|p| p.id)).collect();
         assert_eq!(all.len(), slots.len() + 6);
+    }
+
+    #[test]
+    fn a_rig_call_updates_distinct_and_repeated_handles() {
+        unsafe {
+            let mut c = core::mem::MaybeUninit::<OrientConfig>::uninit();
+            assert_eq!(orient_config_default(OrientKind::Madgwick as i32, c.as_mut_ptr()), OrientStatus::Ok);
+            let new = || {
+                let mut h = core::ptr::null_mut();
+                assert_eq!(orient_filter_new(c.as_ptr(), &mut h), OrientStatus::Ok);
+                h
+            };
+            let hs: Vec<*mut OrientFilter> = (0..5).map(|_| new()).collect();
+            let twin = new();
+            let s = OrientSample {
+                dt: 0.01,
+                gyro: OrientVec3 { x: 0.1, y: -0.2, z: 0.3 },
+                accel: OrientVec3 { x: 0.5, y: 0.2, z: 9.7 },
+                mag: OrientVec3 { x: 10.0, y: 20.0, z: -40.0 },
+                flags: ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL | ORIENT_SAMPLE_MAG,
+                reserved: 0,
+            };
+            let frame = [s; 5];
+            let mut out = [OrientQuaternion::default(); 5];
+            let mut n = 0;
+            for _ in 0..3 {
+                // Four distinct handles (a lane group), then one more.
+                assert_eq!(
+                    orient_filters_update(hs.as_ptr(), frame.as_ptr(), 5, out.as_mut_ptr(), &mut n),
+                    OrientStatus::Ok
+                );
+                assert_eq!(n, 5);
+                assert_eq!(orient_filter_update(twin, &s), OrientStatus::Ok);
+            }
+            let mut q = OrientQuaternion::default();
+            assert_eq!(orient_filter_quaternion(twin, &mut q), OrientStatus::Ok);
+            for o in out {
+                assert_eq!(
+                    (o.w.to_bits(), o.x.to_bits(), o.y.to_bits(), o.z.to_bits()),
+                    (q.w.to_bits(), q.x.to_bits(), q.y.to_bits(), q.z.to_bits())
+                );
+            }
+            // The same handle four times is updated four times, in order.
+            let same = [hs[0]; 4];
+            assert_eq!(
+                orient_filters_update(same.as_ptr(), frame.as_ptr(), 4, core::ptr::null_mut(), &mut n),
+                OrientStatus::Ok
+            );
+            for _ in 0..4 {
+                assert_eq!(orient_filter_update(twin, &s), OrientStatus::Ok);
+            }
+            let mut a = OrientQuaternion::default();
+            assert_eq!(orient_filter_quaternion(hs[0], &mut a), OrientStatus::Ok);
+            assert_eq!(orient_filter_quaternion(twin, &mut q), OrientStatus::Ok);
+            assert_eq!(a.w.to_bits(), q.w.to_bits());
+            for h in hs.into_iter().chain([twin]) {
+                assert_eq!(orient_filter_free(h), OrientStatus::Ok);
+            }
+        }
     }
 
     #[test]

@@ -167,6 +167,132 @@ pub fn gradient_marg(q: Quat, a: Vec3, bx: f64, bz: f64, m: Vec3) -> Quat {
     jt_f(&jacobian_g(q), &objective_g(q, a)) + jt_f(&jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m))
 }
 
+/// `N` f64 lanes: the arithmetic of one Madgwick update applied to `N` filters at once.
+/// Each operation is the IEEE operation of the scalar code, lane by lane, in the same
+/// order, so every lane's result is bit-identical to [`Madgwick::update`]; laid out this
+/// way the compiler runs the lanes in SIMD registers and overlaps their latency chains.
+#[derive(Clone, Copy)]
+struct L<const N: usize>([f64; N]);
+
+impl<const N: usize> L<N> {
+    #[inline(always)]
+    fn splat(v: f64) -> Self {
+        L([v; N])
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        L(core::array::from_fn(|i| self.0[i].sqrt()))
+    }
+    #[inline(always)]
+    fn all(self, f: impl Fn(f64) -> bool) -> bool {
+        self.0.iter().all(|v| f(*v))
+    }
+}
+
+macro_rules! lane_op {
+    ($tr:ident, $f:ident, $op:tt) => {
+        impl<const N: usize> core::ops::$tr for L<N> {
+            type Output = L<N>;
+            #[inline(always)]
+            fn $f(self, o: L<N>) -> L<N> {
+                L(core::array::from_fn(|i| self.0[i] $op o.0[i]))
+            }
+        }
+    };
+}
+lane_op!(Add, add, +);
+lane_op!(Sub, sub, -);
+lane_op!(Mul, mul, *);
+lane_op!(Div, div, /);
+
+impl<const N: usize> core::ops::Neg for L<N> {
+    type Output = L<N>;
+    #[inline(always)]
+    fn neg(self) -> L<N> {
+        L(core::array::from_fn(|i| -self.0[i]))
+    }
+}
+
+/// A quaternion of lanes (w, x, y, z).
+type Lq<const N: usize> = [L<N>; 4];
+
+/// `a ⊗ b` as [`Quat`]'s `Mul`.
+#[inline(always)]
+fn lmul<const N: usize>(a: Lq<N>, b: Lq<N>) -> Lq<N> {
+    let [aw, ax, ay, az] = a;
+    let [bw, bx, by, bz] = b;
+    [
+        aw * bw - ax * bx - ay * by - az * bz,
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+    ]
+}
+
+/// `v · (1 / |v|)` as [`Vec3::normalized`].
+#[inline(always)]
+fn lnormalized<const N: usize>(v: [L<N>; 3]) -> [L<N>; 3] {
+    let r = L::splat(1.0) / (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    [v[0] * r, v[1] * r, v[2] * r]
+}
+
+/// `Jᵀ f` as [`jt_f`].
+#[inline(always)]
+fn ljt_f<const N: usize>(j: &[[L<N>; 4]; 3], f: &[L<N>; 3]) -> Lq<N> {
+    core::array::from_fn(|c| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2])
+}
+
+/// [`jacobian_g`] and [`objective_g`].
+#[inline(always)]
+fn lgravity<const N: usize>(q: Lq<N>, a: [L<N>; 3]) -> ([[L<N>; 4]; 3], [L<N>; 3]) {
+    let [q1, q2, q3, q4] = q;
+    let k = L::splat;
+    let f = [
+        k(2.0) * (q2 * q4 - q1 * q3) - a[0],
+        k(2.0) * (q1 * q2 + q3 * q4) - a[1],
+        k(2.0) * (k(0.5) - q2 * q2 - q3 * q3) - a[2],
+    ];
+    let j = [
+        [k(-2.0) * q3, k(2.0) * q4, k(-2.0) * q1, k(2.0) * q2],
+        [k(2.0) * q2, k(2.0) * q1, k(2.0) * q4, k(2.0) * q3],
+        [k(0.0), k(-4.0) * q2, k(-4.0) * q3, k(0.0)],
+    ];
+    (j, f)
+}
+
+/// [`jacobian_b`] and [`objective_b`].
+#[inline(always)]
+fn lfield<const N: usize>(q: Lq<N>, bx: L<N>, bz: L<N>, m: [L<N>; 3]) -> ([[L<N>; 4]; 3], [L<N>; 3]) {
+    let [q1, q2, q3, q4] = q;
+    let k = L::splat;
+    let f = [
+        k(2.0) * bx * (k(0.5) - q3 * q3 - q4 * q4) + k(2.0) * bz * (q2 * q4 - q1 * q3) - m[0],
+        k(2.0) * bx * (q2 * q3 - q1 * q4) + k(2.0) * bz * (q1 * q2 + q3 * q4) - m[1],
+        k(2.0) * bx * (q1 * q3 + q2 * q4) + k(2.0) * bz * (k(0.5) - q2 * q2 - q3 * q3) - m[2],
+    ];
+    let j = [
+        [
+            k(-2.0) * bz * q3,
+            k(2.0) * bz * q4,
+            k(-4.0) * bx * q3 - k(2.0) * bz * q1,
+            k(-4.0) * bx * q4 + k(2.0) * bz * q2,
+        ],
+        [
+            k(-2.0) * bx * q4 + k(2.0) * bz * q2,
+            k(2.0) * bx * q3 + k(2.0) * bz * q1,
+            k(2.0) * bx * q2 + k(2.0) * bz * q4,
+            k(-2.0) * bx * q1 + k(2.0) * bz * q3,
+        ],
+        [
+            k(2.0) * bx * q3,
+            k(2.0) * bx * q4 - k(4.0) * bz * q2,
+            k(2.0) * bx * q1 - k(4.0) * bz * q3,
+            k(2.0) * bx * q2,
+        ],
+    ];
+    (j, f)
+}
+
 /// Madgwick's filter. Its state is the orientation alone, in its native North-West-Up frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Madgwick {
@@ -206,6 +332,75 @@ impl Madgwick {
     /// Sets the estimate; `q` must be a unit quaternion.
     pub fn set_quaternion(&mut self, q: Quat) {
         self.q = q;
+    }
+
+    /// `N` filters' steps at once, each with an accelerometer reading and all with or all
+    /// without a magnetometer reading; bit-identical to calling [`Madgwick::update`] on
+    /// each. `None`, with nothing changed, when a filter needs the scalar path: the
+    /// rest-bias option is on, or a lane meets an edge case (no horizontal field, zero
+    /// gradient, a non-finite result).
+    pub(crate) fn update_lanes<const N: usize>(
+        fs: &mut [&mut Madgwick; N],
+        dt: [f64; N],
+        gyro: [Vec3; N],
+        accel: [Vec3; N],
+        mag: Option<[Vec3; N]>,
+    ) -> Option<Step> {
+        if fs.iter().any(|f| f.settings.rest_bias_tau > 0.0) {
+            return None;
+        }
+        let lane = |g: &dyn Fn(usize) -> f64| L::<N>(core::array::from_fn(g));
+        let q: Lq<N> =
+            [lane(&|i| fs[i].q.w), lane(&|i| fs[i].q.x), lane(&|i| fs[i].q.y), lane(&|i| fs[i].q.z)];
+        let g = [
+            lane(&|i| gyro[i].x - fs[i].bias.x),
+            lane(&|i| gyro[i].y - fs[i].bias.y),
+            lane(&|i| gyro[i].z - fs[i].bias.z),
+        ];
+        let zero = L::splat(0.0);
+        let half = L::splat(0.5);
+        let qdo = lmul(q, [zero, g[0], g[1], g[2]]).map(|c| c * half);
+        let a = lnormalized([lane(&|i| accel[i].x), lane(&|i| accel[i].y), lane(&|i| accel[i].z)]);
+        let (jg, fg) = lgravity(q, a);
+        let mut gradient = ljt_f(&jg, &fg);
+        let beta = match mag {
+            Some(mag) => {
+                let m = lnormalized([lane(&|i| mag[i].x), lane(&|i| mag[i].y), lane(&|i| mag[i].z)]);
+                let t = lmul(q, [zero, m[0], m[1], m[2]]);
+                let h = lmul(t, [q[0], -q[1], -q[2], -q[3]]);
+                let bx = (h[1] * h[1] + h[2] * h[2]).sqrt();
+                if !bx.all(|v| v > 0.0) {
+                    return None;
+                }
+                let (jb, fb) = lfield(q, bx, h[3], m);
+                let gb = ljt_f(&jb, &fb);
+                gradient = core::array::from_fn(|c| gradient[c] + gb[c]);
+                lane(&|i| fs[i].settings.beta_marg)
+            }
+            None => lane(&|i| fs[i].settings.beta_imu),
+        };
+        let [gw, gx, gy, gz] = gradient;
+        let n = (gw * gw + gx * gx + gy * gy + gz * gz).sqrt();
+        if !n.all(|v| v > 0.0) {
+            return None;
+        }
+        let s = beta / n;
+        let dt = L(dt);
+        let next: Lq<N> = core::array::from_fn(|c| q[c] + (qdo[c] - s * gradient[c]) * dt);
+        let [w, x, y, z] = next;
+        let n2 = w * w + x * x + y * y + z * z;
+        if !n2.all(|v| v.is_finite() && v > 0.0) {
+            return None;
+        }
+        let r = L::splat(1.0) / n2.sqrt();
+        let out: Lq<N> = next.map(|c| c * r);
+        if !out.iter().all(|c| c.all(f64::is_finite)) {
+            return None;
+        }
+        for (i, f) in fs.iter_mut().enumerate() {
+            f.q = Quat::new(out[0].0[i], out[1].0[i], out[2].0[i], out[3].0[i]);
+        }
+        Some(Step { used_accel: true, used_mag: mag.is_some(), initializing: false })
     }
 
     /// One filter step, eqs. (29)-(30). `gyro` in rad/s, `accel` and `mag` in any unit

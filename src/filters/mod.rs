@@ -745,6 +745,85 @@ impl Filter {
         }
     }
 
+    /// Updates `N` distinct filters, `filters[i]` with `samples[i]`, in order: the result
+    /// is exactly that of calling [`Filter::update`] on each (same bits, same errors),
+    /// stopping at the first error, whose index is returned with it. When all are
+    /// Madgwick filters past initialisation with the same sensors present, their steps run
+    /// side by side in lanes (see the Madgwick module), which overlaps their work.
+    pub fn update_group<const N: usize>(
+        filters: &mut [&mut Filter; N],
+        samples: [&Sample; N],
+    ) -> Result<(), (usize, Error)> {
+        if let Some(result) = Filter::try_lanes(filters, samples) {
+            return result;
+        }
+        for (i, (f, s)) in filters.iter_mut().zip(samples).enumerate() {
+            f.update(s).map_err(|e| (i, e))?;
+        }
+        Ok(())
+    }
+
+    /// The lane path of [`Filter::update_group`]; `None` when it does not apply (nothing
+    /// changed then).
+    fn try_lanes<const N: usize>(
+        filters: &mut [&mut Filter; N],
+        samples: [&Sample; N],
+    ) -> Option<Result<(), (usize, Error)>> {
+        let with_mag = samples[0].mag.is_some();
+        for (f, s) in filters.iter().zip(samples) {
+            let eligible = matches!(f.core, Core::Madgwick(_))
+                && f.flags & flags::INITIALIZED != 0
+                && s.accel.is_some()
+                && s.mag.is_some() == with_mag;
+            if !eligible {
+                return None;
+            }
+        }
+        // A rejected sample: the filters before it are updated (one by one, which gives
+        // the same bits), and its index is reported.
+        for (i, s) in samples.iter().enumerate() {
+            if let Err(e) = filters[i].check(s) {
+                for j in 0..i {
+                    if let Err(e) = filters[j].update(samples[j]) {
+                        return Some(Err((j, e)));
+                    }
+                }
+                return Some(Err((i, e)));
+            }
+        }
+        let mut dt = [0.0; N];
+        let mut gap = [false; N];
+        for i in 0..N {
+            let gap_dt = filters[i].config.slot(id::GAP_DT);
+            gap[i] = gap_dt > 0.0 && samples[i].dt > gap_dt;
+            dt[i] = if gap[i] { gap_dt } else { samples[i].dt };
+        }
+        // check() guarantees the readings are present.
+        let gyro = samples.map(|s| s.gyro.unwrap_or_default());
+        let accel = samples.map(|s| s.accel.unwrap_or_default());
+        let mag = with_mag.then(|| samples.map(|s| s.mag.unwrap_or_default()));
+        let step = {
+            let mut cores = filters.each_mut().map(|f| match &mut f.core {
+                Core::Madgwick(m) => Some(m),
+                _ => None,
+            });
+            if cores.iter().any(Option::is_none) {
+                return None;
+            }
+            let mut cores = cores.each_mut().map(|c| c.take().expect("checked above"));
+            Madgwick::update_lanes(&mut cores, dt, gyro, accel, mag)?
+        };
+        for i in 0..N {
+            let f = &mut filters[i];
+            f.flags = flags::INITIALIZED
+                | if step.used_accel { flags::ACCEL_USED } else { 0 }
+                | if step.used_mag { flags::MAG_USED } else { 0 }
+                | if gap[i] { flags::GAP } else { 0 };
+            f.last_accel = samples[i].accel;
+        }
+        Some(Ok(()))
+    }
+
     /// Internal states for display: bias, trust values, rest flag, covariance (see
     /// [`Diagnostics`]; fields that do not apply are absent and NaN).
     pub fn diagnostics(&self) -> Diagnostics {
@@ -925,6 +1004,92 @@ fn check_quaternion(q: Quat) -> Result<(), Error> {
 
 #[cfg(test)]
 mod tests {
+    /// Deterministic test motion for filter `k` at step `i`.
+    fn rig_sample(k: usize, i: usize, mag: bool) -> Sample {
+        let t = i as f64 * 0.01 + k as f64;
+        Sample {
+            dt: 0.01 + 0.001 * (k as f64),
+            gyro: Some(Vec3::new(0.5 * t.sin(), 0.3 * (1.3 * t).cos(), 0.2 + 0.1 * k as f64)),
+            accel: Some(Vec3::new(0.3 * t.cos(), 0.2 * t.sin() + 0.1, 9.8)),
+            mag: mag.then(|| Vec3::new(20.0 + t.sin(), 3.0 * k as f64, -40.0)),
+        }
+    }
+
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn a_group_update_is_bit_identical_to_single_updates() {
+        for mag in [false, true] {
+            let config = Config::new(Kind::Madgwick).unwrap();
+            let mut group: Vec<Filter> = (0..4).map(|_| Filter::new(&config).unwrap()).collect();
+            let mut single = group.clone();
+            for i in 0..500 {
+                let samples: Vec<Sample> = (0..4).map(|k| rig_sample(k, i, mag)).collect();
+                {
+                    let [a, b, c, d] = &mut group[..] else { unreachable!() };
+                    let refs = [&samples[0], &samples[1], &samples[2], &samples[3]];
+                    if i == 0 {
+                        // Initialisation takes the scalar path.
+                        Filter::update_group(&mut [a, b, c, d], refs).unwrap();
+                    } else {
+                        // Afterwards the lanes must take every step.
+                        assert_eq!(Filter::try_lanes(&mut [a, b, c, d], refs), Some(Ok(())), "step {i}");
+                    }
+                }
+                for (f, s) in single.iter_mut().zip(&samples) {
+                    f.update(s).unwrap();
+                }
+                for (g, s) in group.iter().zip(&single) {
+                    let (a, b) = (g.quaternion(), s.quaternion());
+                    assert!(
+                        a.w.to_bits() == b.w.to_bits()
+                            && a.x.to_bits() == b.x.to_bits()
+                            && a.y.to_bits() == b.y.to_bits()
+                            && a.z.to_bits() == b.z.to_bits()
+                            && g.flags() == s.flags(),
+                        "mag {mag} step {i}: {a:?} vs {b:?}"
+                    );
+                }
+            }
+            assert_eq!(group, single);
+        }
+    }
+
+    #[test]
+    fn a_group_stops_at_a_bad_sample_like_single_updates() {
+        let config = Config::new(Kind::Madgwick).unwrap();
+        let mut group: Vec<Filter> = (0..4).map(|_| Filter::new(&config).unwrap()).collect();
+        let mut single = group.clone();
+        let mut samples: Vec<Sample> = (0..4).map(|k| rig_sample(k, 0, true)).collect();
+        for (f, s) in group.iter_mut().zip(&samples) {
+            f.update(s).unwrap();
+        }
+        for (f, s) in single.iter_mut().zip(&samples) {
+            f.update(s).unwrap();
+        }
+        samples[2].mag = Some(Vec3::new(f64::NAN, 0.0, 0.0));
+        let result = {
+            let [a, b, c, d] = &mut group[..] else { unreachable!() };
+            Filter::update_group(&mut [a, b, c, d], [&samples[0], &samples[1], &samples[2], &samples[3]])
+        };
+        assert_eq!(result, Err((2, Error::NonFinite(Field::Mag))));
+        single[0].update(&samples[0]).unwrap();
+        single[1].update(&samples[1]).unwrap();
+        assert_eq!(group, single);
+        // A gap (dt above gap_dt) takes the same path as alone, flag included.
+        samples[2] = rig_sample(2, 1, true);
+        samples[1].dt = 5.0;
+        {
+            let [a, b, c, d] = &mut group[..] else { unreachable!() };
+            Filter::update_group(&mut [a, b, c, d], [&samples[0], &samples[1], &samples[2], &samples[3]])
+                .unwrap();
+        }
+        for (f, s) in single.iter_mut().zip(&samples) {
+            f.update(s).unwrap();
+        }
+        assert_eq!(group, single);
+        assert!(group[1].flags() & flags::GAP != 0);
+    }
+
     use super::*;
 
     fn madgwick() -> Filter {
