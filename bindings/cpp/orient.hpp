@@ -275,6 +275,16 @@ private:
     OrientFilter* h_ = nullptr;
 };
 
+/// One frame of a rig in one call: `handles[i]` (from Filter::native()) takes
+/// `samples[i]`, and `out[i]` (when given) receives its orientation. Four distinct
+/// Madgwick filters in a row run side by side; the results equal separate updates bit
+/// for bit. Stops at the first bad sample, its index in *processed. Keep the handles in
+/// an array you reuse across frames: the call allocates nothing.
+inline OrientStatus update_rig(OrientFilter* const* handles, const OrientSample* samples, std::size_t n,
+                               OrientQuaternion* out = nullptr, std::size_t* processed = nullptr) noexcept {
+    return orient_filters_update(handles, samples, n, out, processed);
+}
+
 }  // namespace orient
 
 #endif  // ORIENT_HPP
