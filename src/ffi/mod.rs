@@ -451,6 +451,21 @@ pub unsafe extern "C" fn orient_filter_update(
     })
 }
 
+/// A multi-item call's failure at item `i`: `*processed = i` (when not NULL) and the
+/// current detail prefixed with `what i: `.
+unsafe fn fail_item(processed: *mut usize, what: &str, i: usize, status: OrientStatus) -> OrientStatus {
+    if !processed.is_null() {
+        processed.write(i);
+    }
+    // Copy the detail out first: fail() rewrites its buffer.
+    let detail = CStr::from_ptr(detail_ptr()).to_bytes();
+    let mut copy = [0u8; 200];
+    let len = detail.len().min(copy.len());
+    copy[..len].copy_from_slice(&detail[..len]);
+    let detail = core::str::from_utf8(&copy[..len]).unwrap_or("");
+    fail(status, format_args!("{what} {i}: {detail}"))
+}
+
 /// Updates with `n` samples in order. When `quaternions` is not NULL it receives the
 /// orientation after each sample (room for `n`). Stops at the first bad sample: the
 /// samples before it stay applied, the bad one changes nothing, and `*processed` (when
@@ -482,18 +497,7 @@ pub unsafe extern "C" fn orient_filter_update_batch(
             ));
         }
         let samples = core::slice::from_raw_parts(samples, n);
-        let failed = |i: usize, status: OrientStatus| {
-            if !processed.is_null() {
-                processed.write(i);
-            }
-            // Copy the detail out first: fail() rewrites its buffer.
-            let detail = CStr::from_ptr(detail_ptr()).to_bytes();
-            let mut copy = [0u8; 200];
-            let len = detail.len().min(copy.len());
-            copy[..len].copy_from_slice(&detail[..len]);
-            let detail = core::str::from_utf8(&copy[..len]).unwrap_or("");
-            fail(status, format_args!("sample {i}: {detail}"))
-        };
+        let failed = |i: usize, status: OrientStatus| fail_item(processed, "sample", i, status);
         // Samples are converted a chunk ahead of their updates: an update that reads a
         // Sample stored a moment before stalls on store-to-load forwarding (about 20 ns
         // per MARG update on x86-64), one that reads it a few updates later does not.
@@ -572,17 +576,7 @@ pub unsafe extern "C" fn orient_filters_update(
         }
         let samples = core::slice::from_raw_parts(samples, n);
         // Reports a bad sample at `i`: its index in `*processed`, the detail prefixed.
-        let failed = |i: usize, status: OrientStatus| {
-            if !processed.is_null() {
-                processed.write(i);
-            }
-            let detail = CStr::from_ptr(detail_ptr()).to_bytes();
-            let mut copy = [0u8; 200];
-            let len = detail.len().min(copy.len());
-            copy[..len].copy_from_slice(&detail[..len]);
-            let detail = core::str::from_utf8(&copy[..len]).unwrap_or("");
-            fail(status, format_args!("filter {i}: {detail}"))
-        };
+        let failed = |i: usize, status: OrientStatus| fail_item(processed, "filter", i, status);
         const LANES: usize = 4;
         let mut i = 0;
         while i < n {
