@@ -451,6 +451,21 @@ pub unsafe extern "C" fn orient_filter_update(
     })
 }
 
+/// The `n` items at `ptr` of a multi-item call: NULL only when `n` is 0, and `n` small
+/// enough for the items to fit in memory.
+unsafe fn items<'a, T>(ptr: *const T, n: usize, what: &str) -> Result<&'a [T], OrientStatus> {
+    if n == 0 {
+        return Ok(&[]);
+    }
+    if ptr.is_null() {
+        return Err(null());
+    }
+    if n > isize::MAX as usize / core::mem::size_of::<T>().max(1) {
+        return Err(fail(OrientStatus::CountTooLarge, format_args!("n = {n} {what} cannot fit in memory")));
+    }
+    Ok(core::slice::from_raw_parts(ptr, n))
+}
+
 /// A multi-item call's failure at item `i`: `*processed = i` (when not NULL) and the
 /// current detail prefixed with `what i: `.
 unsafe fn fail_item(processed: *mut usize, what: &str, i: usize, status: OrientStatus) -> OrientStatus {
@@ -487,16 +502,7 @@ pub unsafe extern "C" fn orient_filter_update_batch(
         if n == 0 {
             return Ok(());
         }
-        if samples.is_null() {
-            return Err(null());
-        }
-        if n > isize::MAX as usize / core::mem::size_of::<OrientSample>() {
-            return Err(fail(
-                OrientStatus::CountTooLarge,
-                format_args!("n = {n} samples cannot fit in memory"),
-            ));
-        }
-        let samples = core::slice::from_raw_parts(samples, n);
+        let samples = items(samples, n, "samples")?;
         let failed = |i: usize, status: OrientStatus| fail_item(processed, "sample", i, status);
         // Samples are converted a chunk ahead of their updates: an update that reads a
         // Sample stored a moment before stalls on store-to-load forwarding (about 20 ns
@@ -559,22 +565,13 @@ pub unsafe extern "C" fn orient_filters_update(
         if n == 0 {
             return Ok(());
         }
-        if filters.is_null() || samples.is_null() {
-            return Err(null());
-        }
-        if n > isize::MAX as usize / core::mem::size_of::<OrientSample>() {
-            return Err(fail(
-                OrientStatus::CountTooLarge,
-                format_args!("n = {n} filters cannot fit in memory"),
-            ));
-        }
-        let handles = core::slice::from_raw_parts(filters, n);
+        let samples = items(samples, n, "samples")?;
+        let handles = items(filters, n, "filters")?;
         for (i, h) in handles.iter().enumerate() {
             if let Err(status) = handle(*h) {
                 return Err(fail(status, format_args!("filter {i}: not a live OrientFilter handle")));
             }
         }
-        let samples = core::slice::from_raw_parts(samples, n);
         // Reports a bad sample at `i`: its index in `*processed`, the detail prefixed.
         let failed = |i: usize, status: OrientStatus| fail_item(processed, "filter", i, status);
         const LANES: usize = 4;

@@ -56,7 +56,7 @@
 //!   innovation grows and the field is trusted less (trial 32: 25.3° to 2.8°).
 
 use super::params::{id, ParamSpec};
-use super::rest::{RestDetector, RestThresholds};
+use super::rest::{lp_gain, RestDetector, RestThresholds};
 use super::Step;
 use crate::math::{Quat, Vec3};
 use nalgebra::{SMatrix, SVector};
@@ -486,7 +486,7 @@ impl Ekf {
             if s.accel_adapt_tau > 0.0 {
                 // The innovation's recent power per axis: linear acceleration the standing
                 // allowance does not cover (sustained translation) shows up there first.
-                adapt += (nu.norm_squared() / 3.0 - adapt) * (dt / (s.accel_adapt_tau + dt));
+                adapt += (nu.norm_squared() / 3.0 - adapt) * lp_gain(dt, s.accel_adapt_tau);
                 ra = ra.max(adapt * colour);
             }
             h.fixed_view_mut::<3, 4>(0, 0).copy_from(&hf);
@@ -564,7 +564,7 @@ impl Ekf {
                 if s.heading_adapt_tau > 0.0 {
                     // Likewise for heading: a magnetic disturbance raises the innovation's
                     // recent power, and with it the variance, so the field is trusted less.
-                    adapt_h += (innovation * innovation - adapt_h) * (dt / (s.heading_adapt_tau + dt));
+                    adapt_h += (innovation * innovation - adapt_h) * lp_gain(dt, s.heading_adapt_tau);
                     r_psi = r_psi.max(adapt_h * colour_psi);
                 }
                 let k_psi = p_psi / (p_psi + r_psi);

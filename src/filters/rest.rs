@@ -10,6 +10,13 @@
 use super::state::Codec;
 use crate::math::Vec3;
 
+/// The gain of a first-order low-pass for one step of `dt` with time constant `tau`:
+/// `dt / (tau + dt)` (backward Euler, stable for any dt, no transcendental).
+#[inline]
+pub(crate) fn lp_gain(dt: f64, tau: f64) -> f64 {
+    dt / (tau + dt)
+}
+
 /// The thresholds of [`RestDetector`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RestThresholds {
@@ -51,7 +58,7 @@ impl RestDetector {
             self.acc_lp = a;
             self.primed = true;
         }
-        let k = dt / (th.tau + dt);
+        let k = lp_gain(dt, th.tau);
         self.gyro_lp = self.gyro_lp + (gyro - self.gyro_lp) * k;
         self.acc_lp = self.acc_lp + (a - self.acc_lp) * k;
         let th_g = th.gyro * th.gyro;
@@ -112,7 +119,7 @@ impl RestBias {
     /// time constant `tau` (s); otherwise it is returned unchanged.
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, tau: f64, bias: Vec3) -> Vec3 {
         if self.detector.update(dt, gyro, accel, &RestThresholds::DEFAULT) {
-            bias + (self.detector.gyro_lp() - bias) * (dt / (tau + dt))
+            bias + (self.detector.gyro_lp() - bias) * lp_gain(dt, tau)
         } else {
             bias
         }

@@ -41,7 +41,7 @@
 
 use super::complementary::rotation_of;
 use super::params::{id, ParamSpec};
-use super::rest::{RestDetector, RestThresholds};
+use super::rest::{lp_gain, RestDetector, RestThresholds};
 use super::state::Codec;
 use super::Step;
 use crate::math::{Quat, Vec3};
@@ -236,11 +236,6 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         max: 3600.0,
     },
 ];
-
-/// The low-pass gain for one step of `dt` with time constant `tau`.
-fn lp_gain(dt: f64, tau: f64) -> f64 {
-    dt / (tau + dt)
-}
 
 /// Wraps an angle into (-π, π].
 fn wrap(a: f64) -> f64 {
