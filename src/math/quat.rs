@@ -98,15 +98,22 @@ impl Quat {
     }
 
     /// `q ⊗ [0, v] ⊗ q*` for a unit quaternion: body to earth when `q` is an orientation.
+    ///
+    /// Computed as `v + w t + u × t` with `u` the vector part and `t = 2 u × v` (the same
+    /// rotation for unit `q`): 18 multiplications instead of two Hamilton products' 28,
+    /// and a dependency chain of five operations instead of eight, which matters because
+    /// every filter's update is one chain from the old estimate to the new.
     #[inline]
     pub fn rotate(self, v: Vec3) -> Vec3 {
-        (self * Quat::pure(v) * self.conj()).vector()
+        let u = self.vector();
+        let t = u.cross(v) * 2.0;
+        v + t * self.w + u.cross(t)
     }
 
     /// `q* ⊗ [0, v] ⊗ q` for a unit quaternion: earth to body when `q` is an orientation.
     #[inline]
     pub fn rotate_inverse(self, v: Vec3) -> Vec3 {
-        (self.conj() * Quat::pure(v) * self).vector()
+        self.conj().rotate(v)
     }
 
     /// The rotation matrix `R(q)` (row-major) with `v_earth = R · v_body`, for a unit `q`.
