@@ -261,17 +261,24 @@ impl Complementary {
         if self.g0 == 0.0 {
             self.g0 = a.norm();
         }
-        let g_a = a.normalized(); // (6)
-        let omega_tilde = gyro - self.bias; // (7)
-        let q_tilde = self.q * rotation_of(omega_tilde, dt);
-        let g_omega = q_tilde.rotate_inverse(Vec3::new(0.0, 0.0, 1.0)); // (8)
-        let theta_e = g_a.cross(g_omega); // (9)
-                                          // Rest: |ω_m| and |a_m| near their stationary values (the start-up means).
+        // Rest: |ω_m| and |a_m| near their stationary values (the start-up means). It
+        // depends on the readings alone, not on the estimate.
         let rest = (gyro - self.b0).norm() < self.settings.gyro_rest
             && (a.norm() - self.g0).abs() < self.settings.accel_rest;
-        let (kp, ki) = if rest { (self.settings.kp, self.settings.ki) } else { (0.0, 0.0) };
-        let bias = self.bias - theta_e * (ki * dt); // (10)
-        let q = self.q * rotation_of(gyro - bias + theta_e * kp, dt); // (4)
+        let omega_tilde = gyro - self.bias; // (7)
+        let q_tilde = self.q * rotation_of(omega_tilde, dt);
+        let (q, bias) = if rest {
+            let g_a = a.normalized(); // (6)
+            let g_omega = q_tilde.rotate_inverse(Vec3::new(0.0, 0.0, 1.0)); // (8)
+            let theta_e = g_a.cross(g_omega); // (9)
+            let bias = self.bias - theta_e * (self.settings.ki * dt); // (10)
+            (self.q * rotation_of(gyro - bias + theta_e * self.settings.kp, dt), bias)
+        // (4)
+        } else {
+            // In motion K_p = K_I = 0: (10) keeps the bias and (4) integrates ω̃, which
+            // is the prediction q̃ itself; θ_e has no effect and is not computed.
+            (q_tilde, self.bias)
+        };
         let committed = self.commit(q, bias, step);
         if committed.is_some() {
             self.rest = rest;
