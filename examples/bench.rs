@@ -20,6 +20,7 @@ use orient::ffi::{
     OrientSample, OrientStatus, OrientVec3, ORIENT_SAMPLE_ACCEL, ORIENT_SAMPLE_GYRO, ORIENT_SAMPLE_MAG,
 };
 use orient::filters::madgwick::{Madgwick, MadgwickSettings};
+use orient::filters::mahony::{Mahony, MahonySettings};
 use orient::{Config, Filter, Kind, Sample, Vec3};
 use std::hint::black_box;
 use std::time::Instant;
@@ -214,6 +215,7 @@ fn main() {
 
             // Every variant starts from the same state: past start-up, on the recording.
             let mut core = Madgwick::new(MadgwickSettings::default());
+            let mut mahony_core = Mahony::new(MahonySettings::default());
             let mut filter = Filter::new(&Config::new(kind).unwrap()).unwrap();
             let handles = [new_c_filter(kind), new_c_filter(kind), new_c_filter(kind)];
             for s in &samples[..1000] {
@@ -269,6 +271,15 @@ fn main() {
                 for a in anchor_list.iter_mut() {
                     variants.push(Box::new(|| (a.run)()));
                 }
+                if kind == Kind::Mahony {
+                    // The bare Mahony core, its state behind a pointer as in a host's.
+                    variants.push(Box::new(|| {
+                        for s in &samples {
+                            let f = black_box(&mut mahony_core);
+                            black_box(f.update(s.dt, s.gyro.unwrap(), s.accel, s.mag));
+                        }
+                    }));
+                }
                 if kind == Kind::Madgwick {
                     // The bare Madgwick core: no checks, no frame handling.
                     variants.push(Box::new(|| {
@@ -292,7 +303,7 @@ fn main() {
             for (name, ns) in names.iter().zip(&medians[4..]) {
                 print!(" {name} {ns:.1} ({:.2}x)", rust / ns);
             }
-            if kind == Kind::Madgwick {
+            if matches!(kind, Kind::Madgwick | Kind::Mahony) {
                 print!(" | bare core {:.1}", medians[medians.len() - 1]);
             }
             println!();

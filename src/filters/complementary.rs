@@ -269,7 +269,7 @@ impl Complementary {
         let q_tilde = self.q * rotation_of(omega_tilde, dt);
         let (q, bias) = if rest {
             let g_a = a.normalized(); // (6)
-            let g_omega = q_tilde.rotate_inverse(Vec3::new(0.0, 0.0, 1.0)); // (8)
+            let g_omega = q_tilde.z_axis_in_body(); // (8)
             let theta_e = g_a.cross(g_omega); // (9)
             let bias = self.bias - theta_e * (self.settings.ki * dt); // (10)
             (self.q * rotation_of(gyro - bias + theta_e * self.settings.kp, dt), bias)

@@ -118,7 +118,7 @@ impl Mahony {
     /// the magnetometer contributed.
     pub fn correction(q: Quat, accel: Vec3, mag: Option<Vec3>) -> (Vec3, bool) {
         let a = accel.normalized();
-        let up = q.rotate_inverse(Vec3::new(0.0, 0.0, 1.0));
+        let up = q.z_axis_in_body();
         let mut e = a.cross(up);
         let mut used_mag = false;
         if let Some(mag) = mag {
@@ -135,14 +135,46 @@ impl Mahony {
     }
 
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        let mut step = Step::default();
-        let mut bias = self.bias;
-        let mut rest = None;
         if self.settings.rest_bias_tau > 0.0 {
-            let mut r = self.rest.clone();
-            bias = r.update(dt, gyro, accel, self.settings.rest_bias_tau, bias);
-            rest = Some(r);
+            return self.update_with_rest_bias(dt, gyro, accel, mag);
         }
+        let (q, bias, step) = self.step(self.bias, dt, gyro, accel, mag)?;
+        self.q = q;
+        self.bias = bias;
+        Some(step)
+    }
+
+    /// [`Mahony::update`] with the rest-bias option: the rest detector's state changes
+    /// only when the step succeeds. Kept apart so the plain update copies no detector.
+    #[inline(never)]
+    fn update_with_rest_bias(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+    ) -> Option<Step> {
+        let mut rest = self.rest.clone();
+        let bias = rest.update(dt, gyro, accel, self.settings.rest_bias_tau, self.bias);
+        let (q, bias, step) = self.step(bias, dt, gyro, accel, mag)?;
+        self.q = q;
+        self.bias = bias;
+        self.rest = rest;
+        Some(step)
+    }
+
+    /// One step from the current estimate with gyro bias `bias`: the new estimate and
+    /// bias, or `None` when either is not finite.
+    #[inline(always)]
+    fn step(
+        &self,
+        mut bias: Vec3,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+    ) -> Option<(Quat, Vec3, Step)> {
+        let mut step = Step::default();
         let mut omega = gyro - bias;
         if let Some(accel) = accel {
             let (e, used_mag) = Mahony::correction(self.q, accel, mag);
@@ -155,12 +187,8 @@ impl Mahony {
             omega = omega + e * self.settings.kp;
         }
         let q = self.q + (self.q * Quat::pure(omega)).scale(0.5 * dt);
-        self.q = q.try_normalized().filter(|_| bias.is_finite())?;
-        self.bias = bias;
-        if let Some(r) = rest {
-            self.rest = r;
-        }
-        Some(step)
+        let q = q.try_normalized().filter(|_| bias.is_finite())?;
+        Some((q, bias, step))
     }
 }
 

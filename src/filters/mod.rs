@@ -664,7 +664,47 @@ impl Filter {
     }
 
     /// Checks a sample against every rule without touching the state.
+    #[inline]
     pub fn check(&self, s: &Sample) -> Result<(), Error> {
+        if self.plainly_valid(s) {
+            Ok(())
+        } else {
+            self.check_exactly(s)
+        }
+    }
+
+    /// A conservative test that `check_exactly` would accept the sample, with one branch:
+    /// each present vector's squared norm lies in [MIN_POSITIVE, MAX] (so its components
+    /// are finite and it is not zero), no range is set, dt is in range, and a sample
+    /// without an accelerometer reading comes after initialisation. A sample it turns
+    /// down goes through the exact rules, which tell the reason (or accept it: a finite
+    /// vector whose squared norm overflows, say).
+    #[inline(always)]
+    fn plainly_valid(&self, s: &Sample) -> bool {
+        let fine = |v: Option<Vec3>| match v {
+            Some(v) => {
+                let n2 = v.norm_squared();
+                (f64::MIN_POSITIVE..=f64::MAX).contains(&n2)
+            }
+            None => true,
+        };
+        let no_ranges =
+            (self.config.slot(id::GYRO_RANGE) <= 0.0) & (self.config.slot(id::ACCEL_RANGE) <= 0.0);
+        let initialised = (self.flags & flags::INITIALIZED != 0) | s.accel.is_some();
+        (s.dt >= MIN_DT)
+            & (s.dt <= f64::MAX)
+            & s.gyro.is_some()
+            & fine(s.gyro)
+            & fine(s.accel)
+            & fine(s.mag)
+            & no_ranges
+            & initialised
+    }
+
+    /// The rules one by one, in the order that picks the reported error.
+    #[cold]
+    #[inline(never)]
+    fn check_exactly(&self, s: &Sample) -> Result<(), Error> {
         // No sensor samples faster than 1 GHz: a smaller dt (a subnormal one, say) is a
         // host bug, and would overflow noise variances that scale with 1/dt.
         if !(s.dt.is_finite() && s.dt >= MIN_DT) {
@@ -1013,6 +1053,58 @@ mod tests {
             accel: Some(Vec3::new(0.3 * t.cos(), 0.2 * t.sin() + 0.1, 9.8)),
             mag: mag.then(|| Vec3::new(20.0 + t.sin(), 3.0 * k as f64, -40.0)),
         }
+    }
+
+    #[test]
+    fn the_quick_check_accepts_only_what_the_exact_rules_accept() {
+        let values = [
+            0.0,
+            -0.0,
+            1e-200,
+            -1e-170,
+            f64::MIN_POSITIVE,
+            5e-324,
+            1e-9,
+            0.01,
+            -3.0,
+            9.81,
+            1e154,
+            -1e160,
+            1e300,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ];
+        let pick = |i: usize| values[i % values.len()];
+        let vector = |i: usize| match i % 7 {
+            0 => None,
+            _ => Some(Vec3::new(pick(i), pick(i / 3 + 1), pick(i / 5 + 2))),
+        };
+        let mut accepted = 0;
+        for (range, initialised) in [(0.0, false), (0.0, true), (20.0, true)] {
+            let mut f = Filter::new(&Config::new(Kind::Mahony).unwrap()).unwrap();
+            f.set_param(id::GYRO_RANGE, range).unwrap();
+            if initialised {
+                f.set_quaternion(Quat::IDENTITY).unwrap();
+            }
+            for i in 0..20_000 {
+                let s = Sample {
+                    dt: pick(i / 11),
+                    gyro: vector(i),
+                    accel: vector(i / 2 + 3),
+                    mag: vector(i / 4 + 5),
+                };
+                let quick = f.plainly_valid(&s);
+                assert!(!quick || f.check_exactly(&s).is_ok(), "{s:?}");
+                accepted += quick as usize;
+            }
+        }
+        // Not a vacuous check: ordinary samples take the quick path.
+        assert!(accepted > 100, "{accepted}");
+        assert!(Filter::new(&Config::new(Kind::Mahony).unwrap())
+            .unwrap()
+            .plainly_valid(&rig_sample(0, 0, true)));
     }
 
     #[test]

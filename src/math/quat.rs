@@ -116,6 +116,15 @@ impl Quat {
         self.conj().rotate(v)
     }
 
+    /// `rotate_inverse((0, 0, 1))`, the earth's z axis in the sensor frame (the third row
+    /// of `R(q)`), from the direct formula: the generic rotation would multiply by the
+    /// zero components, which IEEE arithmetic may not fold away.
+    #[inline]
+    pub fn z_axis_in_body(self) -> Vec3 {
+        let Quat { w, x, y, z } = self;
+        Vec3::new(2.0 * (x * z - w * y), 2.0 * (y * z + w * x), w * w - x * x - y * y + z * z)
+    }
+
     /// The rotation matrix `R(q)` (row-major) with `v_earth = R · v_body`, for a unit `q`.
     pub fn to_matrix(self) -> [[f64; 3]; 3] {
         let Quat { w, x, y, z } = self;
@@ -231,6 +240,15 @@ mod tests {
 
     fn close(a: f64, b: f64) -> bool {
         (a - b).abs() < 1e-12
+    }
+
+    #[test]
+    fn z_axis_in_body_is_the_inverse_rotation_of_z() {
+        let q = Quat::new(0.7, -0.2, 0.5, 0.3).normalized();
+        let direct = q.z_axis_in_body();
+        let general = q.rotate_inverse(Vec3::new(0.0, 0.0, 1.0));
+        let hamilton = (q.conj() * Quat::pure(Vec3::new(0.0, 0.0, 1.0)) * q).vector();
+        assert!((direct - general).norm() < 1e-15 && (direct - hamilton).norm() < 1e-15);
     }
 
     #[test]

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Runs examples/bench RUNS times (default 7), each in a fresh process, and prints per row
+# the median and the range over the runs of the Rust, C and batch times, and of the
+# first anchor's ratio. One process's times are bimodal for the small filters (the same
+# binary gives Madgwick IMU 38-40 ns in most processes and 60-65 ns in some, while the
+# anchors in that process stay put; docs/PERFORMANCE.md), so a single run can mislead.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+RUNS=${RUNS:-7}
+cargo build --release --quiet --example bench
+out=$(mktemp)
+trap 'rm -f "$out"' EXIT
+for _ in $(seq "$RUNS"); do
+  target/release/examples/bench | awk 'NF >= 8 && $3 ~ /^[0-9.]+$/ {
+    ratio = "-"; for (i = 9; i <= NF; i++) if ($i ~ /^\([0-9.]+x\)$/) { ratio = substr($i, 2, length($i) - 3); break }
+    print $1 " " $2, $3, $4, $6, ratio }' >> "$out"
+done
+printf '%-20s %22s %22s %22s %22s\n' "" "Rust ns" "C ns" "batch ns" "Rust/anchor"
+printf '%-20s %22s %22s %22s %22s\n' "kind" "median [min-max]" "median [min-max]" "median [min-max]" "median [min-max]"
+awk -v runs="$RUNS" '
+  function stat(list,   n, a, i, j, t) {
+    n = split(list, a, " ")
+    if (a[1] == "-") return "-"
+    for (i = 2; i <= n; i++) { t = a[i]; for (j = i - 1; j >= 1 && a[j] + 0 > t + 0; j--) a[j + 1] = a[j]; a[j + 1] = t }
+    return sprintf("%.2f [%.2f-%.2f]", a[int((n + 1) / 2)], a[1], a[n])
+  }
+  { key = $1 " " $2; if (!(key in seen)) { seen[key] = 1; order[++k] = key }
+    r[key] = r[key] " " $3; c[key] = c[key] " " $4; b[key] = b[key] " " $5; x[key] = x[key] " " $6 }
+  END { for (i = 1; i <= k; i++) { key = order[i]
+    printf "%-20s %22s %22s %22s %22s\n", key, stat(r[key]), stat(c[key]), stat(b[key]), stat(x[key]) }
+    printf "(%d runs)\n", runs }' "$out"
