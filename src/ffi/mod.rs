@@ -447,7 +447,7 @@ pub unsafe extern "C" fn orient_filter_update(
             return Err(null());
         }
         let s = sample_from(&*sample)?;
-        h.filter.update(&s).map_err(from_core)
+        h.filter.update_inline(&s).map_err(from_core)
     })
 }
 

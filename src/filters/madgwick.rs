@@ -423,13 +423,46 @@ impl Madgwick {
     /// The state changes only when the new estimate is finite; otherwise it stays as it
     /// was and `None` is returned.
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        let q = self.q;
-        let (mut rest, mut bias) = (None, self.bias);
         if self.settings.rest_bias_tau > 0.0 {
-            let mut r = self.rest.clone();
-            bias = r.update(dt, gyro, accel, self.settings.rest_bias_tau, bias);
-            rest = Some(r);
+            return self.update_with_rest_bias(dt, gyro, accel, mag);
         }
+        let (q, step) = self.step(self.bias, dt, gyro, accel, mag)?;
+        self.q = q;
+        Some(step)
+    }
+
+    /// [`Madgwick::update`] with the rest-bias option: the detector's state and the bias
+    /// change only when the step succeeds. Kept apart so the plain update copies no
+    /// detector.
+    #[inline(never)]
+    fn update_with_rest_bias(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+    ) -> Option<Step> {
+        let mut rest = self.rest.clone();
+        let bias = rest.update(dt, gyro, accel, self.settings.rest_bias_tau, self.bias);
+        let (q, step) = self.step(bias, dt, gyro, accel, mag)?;
+        self.q = q;
+        self.bias = bias;
+        self.rest = rest;
+        Some(step)
+    }
+
+    /// Eqs. (29)-(30) from the current estimate with gyro bias `bias`: the new estimate,
+    /// or `None` when it is not finite.
+    #[inline(always)]
+    fn step(
+        &self,
+        bias: Vec3,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+    ) -> Option<(Quat, Step)> {
+        let q = self.q;
         let gyro = gyro - bias;
         // (3): rate of change of orientation measured by the gyroscope.
         let q_dot_omega = (q * Quat::pure(gyro)).scale(0.5);
@@ -465,12 +498,7 @@ impl Madgwick {
             }
         };
         // (29): integrate, then keep the estimate on the unit sphere.
-        self.q = (q + q_dot.scale(dt)).try_normalized()?;
-        if let Some(r) = rest {
-            self.rest = r;
-            self.bias = bias;
-        }
-        Some(step)
+        Some(((q + q_dot.scale(dt)).try_normalized()?, step))
     }
 }
 

@@ -736,6 +736,15 @@ impl Filter {
 
     /// One step. On error nothing changes: the state is bit-identical to before.
     pub fn update(&mut self, s: &Sample) -> Result<(), Error> {
+        self.update_inline(s)
+    }
+
+    /// [`Filter::update`] inlined into its caller, for a caller that has just built the
+    /// sample: the values then go straight from the conversion to the filter instead of
+    /// through memory, where reading them back right after they were written stalls
+    /// (store-to-load forwarding), about 10-20 ns per update measured through the C call.
+    #[inline(always)]
+    pub(crate) fn update_inline(&mut self, s: &Sample) -> Result<(), Error> {
         self.check(s)?;
         // check() guarantees a gyro reading.
         let gyro = s.gyro.unwrap_or_default();
