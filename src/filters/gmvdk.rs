@@ -208,9 +208,11 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
     if cos > 1.0 - 1e-12 {
         return (q1.scale(1.0 - h) + q2.scale(h)).normalized();
     }
-    let omega = libm::acos(cos.min(1.0));
-    let s = libm::sin(omega);
-    (q1.scale(libm::sin((1.0 - h) * omega) / s) + q2.scale(libm::sin(h * omega) / s)).normalized()
+    let omega = libm::acos(cos);
+    // sin ω from cos ω (ω in [0, π/2] after the flip): one square root instead of a
+    // sine, and accurate near ω = 0 where it is formed as (1 − cos)(1 + cos).
+    let r = 1.0 / ((1.0 - cos) * (1.0 + cos)).sqrt();
+    (q1.scale(libm::sin((1.0 - h) * omega) * r) + q2.scale(libm::sin(h * omega) * r)).normalized()
 }
 
 const WINDOW_SLOTS: usize = 1024;
@@ -518,16 +520,13 @@ impl Gmvdk {
 
         // [3]-[6]: accelerometer pipeline.
         let mut a_init = self.a_init;
-        let q_sa = match accel {
-            Some(a0) => {
-                step.used_accel = true;
-                let a_ref = *a_init.get_or_insert(Vec3::new(0.0, 0.0, a0.norm()));
-                let a_pred = q_g.rotate_inverse(a_ref); // (9)
-                let q_ga = q_g * Quat::from_two_vectors(a0, a_pred); // (10)-(13)
-                slerp(q_g, q_ga, alpha) // (14)
-            }
-            None => q_g,
-        };
+        // (14), q_sa = SLERP(q_g, q_ga, α), is formed below with (17).
+        let q_ga = accel.map(|a0| {
+            step.used_accel = true;
+            let a_ref = *a_init.get_or_insert(Vec3::new(0.0, 0.0, a0.norm()));
+            let a_pred = q_g.rotate_inverse(a_ref); // (9)
+            q_g * Quat::from_two_vectors(a0, a_pred) // (10)-(13)
+        });
 
         // [3']-[6']: magnetometer pipeline with μ_K (Appendix B.2).
         let mut m_init = self.m_init;
@@ -548,13 +547,20 @@ impl Gmvdk {
                 mu1 = Some(m1);
                 let m_pred = q_g.rotate_inverse(m_ref);
                 let q_gm = q_g * Quat::from_two_vectors(m0, m_pred);
-                slerp(q_g, q_gm, mu_k)
+                Some(slerp(q_g, q_gm, mu_k))
             }
-            _ => q_g,
+            _ => None,
         };
 
-        // [7]: second-tier SLERP (17).
-        let q_out = slerp(q_sm, q_sa, 0.5);
+        // [7]: second-tier SLERP (17), q_out = SLERP(q_sm, q_sa, ½).
+        let q_out = match (q_ga, q_sm) {
+            (Some(q_ga), Some(q_sm)) => slerp(q_sm, slerp(q_g, q_ga, alpha), 0.5),
+            // No magnetometer: q_sm = q_g, so q_sa and q_out lie on one arc from q_g and
+            // SLERP(q_g, SLERP(q_g, q_ga, α), ½) = SLERP(q_g, q_ga, α/2): one SLERP.
+            (Some(q_ga), None) => slerp(q_g, q_ga, 0.5 * alpha),
+            // No accelerometer: q_sa = q_sm = q_g.
+            (None, _) => q_g,
+        };
         if !q_out.is_finite() {
             return None;
         }
@@ -613,6 +619,23 @@ mod tests {
         assert!((m.angle_to(a) - m.angle_to(b)).abs() < 1e-12);
         // Shorter arc for sign-flipped inputs.
         assert!(slerp(a, b.scale(-1.0), 0.3).angle_to(hand) < 1e-12);
+    }
+
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn without_a_magnetometer_the_two_slerps_are_one() {
+        // (14) then (17) with q_sm = q_g, against the single SLERP the update uses.
+        let q_g = Quat::from_axis_angle(Vec3::new(0.3, 1.0, 0.2), 0.5);
+        for (axis, angle) in [(Vec3::new(1.0, -0.4, 0.2), 0.03), (Vec3::new(0.0, 0.3, 1.0), 1.2)] {
+            let q_ga = q_g * Quat::from_axis_angle(axis, angle);
+            for q_ga in [q_ga, q_ga.scale(-1.0)] {
+                for alpha in [0.0, 0.2, 0.7, 1.0] {
+                    let two = slerp(q_g, slerp(q_g, q_ga, alpha), 0.5);
+                    let one = slerp(q_g, q_ga, 0.5 * alpha);
+                    assert!(two.angle_to(one) < 1e-12, "{alpha} {angle}");
+                }
+            }
+        }
     }
 
     #[test]
