@@ -272,8 +272,8 @@ impl Complementary {
             let g_omega = q_tilde.z_axis_in_body(); // (8)
             let theta_e = g_a.cross(g_omega); // (9)
             let bias = self.bias - theta_e * (self.settings.ki * dt); // (10)
-            (self.q * rotation_of(gyro - bias + theta_e * self.settings.kp, dt), bias)
-        // (4)
+            let q = self.q * rotation_of(gyro - bias + theta_e * self.settings.kp, dt); // (4)
+            (q, bias)
         } else {
             // In motion K_p = K_I = 0: (10) keeps the bias and (4) integrates ω̃, which
             // is the prediction q̃ itself; θ_e has no effect and is not computed.

@@ -675,29 +675,27 @@ impl Filter {
 
     /// A conservative test that `check_exactly` would accept the sample, with one branch:
     /// each present vector's squared norm lies in [MIN_POSITIVE, MAX] (so its components
-    /// are finite and it is not zero), no range is set, dt is in range, and a sample
-    /// without an accelerometer reading comes after initialisation. A sample it turns
-    /// down goes through the exact rules, which tell the reason (or accept it: a finite
-    /// vector whose squared norm overflows, say).
+    /// are finite and it is not zero) and its components are under the sensor's range
+    /// when one is set, dt is in range, and a sample without an accelerometer reading
+    /// comes after initialisation. A sample it turns down goes through the exact rules,
+    /// which tell the reason (or accept it: a finite vector whose squared norm
+    /// overflows, say).
     #[inline(always)]
     fn plainly_valid(&self, s: &Sample) -> bool {
-        let fine = |v: Option<Vec3>| match v {
+        let fine = |v: Option<Vec3>, range: f64| match v {
             Some(v) => {
                 let n2 = v.norm_squared();
-                (f64::MIN_POSITIVE..=f64::MAX).contains(&n2)
+                (f64::MIN_POSITIVE..=f64::MAX).contains(&n2) & ((range <= 0.0) | (v.max_abs() < range))
             }
             None => true,
         };
-        let no_ranges =
-            (self.config.slot(id::GYRO_RANGE) <= 0.0) & (self.config.slot(id::ACCEL_RANGE) <= 0.0);
         let initialised = (self.flags & flags::INITIALIZED != 0) | s.accel.is_some();
         (s.dt >= MIN_DT)
             & (s.dt <= f64::MAX)
             & s.gyro.is_some()
-            & fine(s.gyro)
-            & fine(s.accel)
-            & fine(s.mag)
-            & no_ranges
+            & fine(s.gyro, self.config.slot(id::GYRO_RANGE))
+            & fine(s.accel, self.config.slot(id::ACCEL_RANGE))
+            & fine(s.mag, 0.0)
             & initialised
     }
 
@@ -1115,9 +1113,10 @@ mod tests {
             _ => Some(Vec3::new(pick(i), pick(i / 3 + 1), pick(i / 5 + 2))),
         };
         let mut accepted = 0;
-        for (range, initialised) in [(0.0, false), (0.0, true), (20.0, true)] {
+        for (range, initialised) in [(0.0, false), (0.0, true), (20.0, true), (1e6, true)] {
             let mut f = Filter::new(&Config::new(Kind::Mahony).unwrap()).unwrap();
             f.set_param(id::GYRO_RANGE, range).unwrap();
+            f.set_param(id::ACCEL_RANGE, 0.5 * range).unwrap();
             if initialised {
                 f.set_quaternion(Quat::IDENTITY).unwrap();
             }
@@ -1133,11 +1132,14 @@ mod tests {
                 accepted += quick as usize;
             }
         }
-        // Not a vacuous check: ordinary samples take the quick path.
+        // Not a vacuous check: ordinary samples take the quick path, with or without
+        // sensor ranges set.
         assert!(accepted > 100, "{accepted}");
-        assert!(Filter::new(&Config::new(Kind::Mahony).unwrap())
-            .unwrap()
-            .plainly_valid(&rig_sample(0, 0, true)));
+        let mut f = Filter::new(&Config::new(Kind::Mahony).unwrap()).unwrap();
+        assert!(f.plainly_valid(&rig_sample(0, 0, true)));
+        f.set_param(id::GYRO_RANGE, 35.0).unwrap();
+        f.set_param(id::ACCEL_RANGE, 160.0).unwrap();
+        assert!(f.plainly_valid(&rig_sample(0, 0, true)));
     }
 
     #[test]
