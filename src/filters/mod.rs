@@ -1084,6 +1084,23 @@ mod tests {
             };
             assert_eq!(f.update(&absurd), Err(Error::Numeric), "{kind:?}");
             assert_eq!(f, before, "{kind:?}");
+            // Gyroscope only, finite but absurd (found by the C-ABI fuzzer: GMVDK once
+            // answered Ok with a zero quaternion): refused whole, or a unit quaternion.
+            for rate in [1e300, 3.6e306, f64::MAX] {
+                let gyro_only =
+                    Sample { gyro: Some(Vec3::new(0.0, -rate, -2.25)), accel: None, mag: None, dt: 0.0011 };
+                let before = f.clone();
+                match f.update(&gyro_only) {
+                    Ok(()) => {
+                        let q = f.quaternion();
+                        assert!(q.is_finite() && (q.norm() - 1.0).abs() < 1e-9, "{kind:?} {rate}: {q:?}")
+                    }
+                    Err(e) => {
+                        assert_eq!(e, Error::Numeric, "{kind:?} {rate}");
+                        assert_eq!(f, before, "{kind:?} {rate}");
+                    }
+                }
+            }
         }
     }
 
