@@ -81,39 +81,35 @@ struct Anchor<'a> {
     run: Box<dyn FnMut() + 'a>,
 }
 
+/// One of the `ahrs` crate's filters (f64) over the samples.
+fn ahrs_anchor<'a, F: ahrs::Ahrs<f64> + 'a>(
+    name: &'static str,
+    mut f: F,
+    samples: &'a [Sample],
+    mag: bool,
+) -> Anchor<'a> {
+    Anchor {
+        name,
+        run: Box::new(move || {
+            for s in samples {
+                let (g, a) = (na(s.gyro.unwrap()), na(s.accel.unwrap()));
+                let r = if mag { f.update(&g, &a, &na(s.mag.unwrap())) } else { f.update_imu(&g, &a) };
+                let _ = black_box(r);
+            }
+        }),
+    }
+}
+
 fn anchors<'a>(kind: Kind, samples: &'a [Sample], mag: bool) -> Vec<Anchor<'a>> {
-    use ahrs::Ahrs;
     let dt = samples[0].dt;
     let mut out: Vec<Anchor<'a>> = Vec::new();
     match kind {
         Kind::Madgwick => {
-            let mut f = ahrs::Madgwick::new(dt, 0.041);
-            out.push(Anchor {
-                name: "ahrs Madgwick (f64)",
-                run: Box::new(move || {
-                    for s in samples {
-                        let (g, a) = (na(s.gyro.unwrap()), na(s.accel.unwrap()));
-                        let r =
-                            if mag { f.update(&g, &a, &na(s.mag.unwrap())) } else { f.update_imu(&g, &a) };
-                        let _ = black_box(r);
-                    }
-                }),
-            });
+            out.push(ahrs_anchor("ahrs Madgwick (f64)", ahrs::Madgwick::new(dt, 0.041), samples, mag));
             out.push(fusion_anchor(samples, mag));
         }
         Kind::Mahony => {
-            let mut f = ahrs::Mahony::new(dt, 0.5, 0.0);
-            out.push(Anchor {
-                name: "ahrs Mahony (f64)",
-                run: Box::new(move || {
-                    for s in samples {
-                        let (g, a) = (na(s.gyro.unwrap()), na(s.accel.unwrap()));
-                        let r =
-                            if mag { f.update(&g, &a, &na(s.mag.unwrap())) } else { f.update_imu(&g, &a) };
-                        let _ = black_box(r);
-                    }
-                }),
-            });
+            out.push(ahrs_anchor("ahrs Mahony (f64)", ahrs::Mahony::new(dt, 0.5, 0.0), samples, mag));
             out.push(fusion_anchor(samples, mag));
         }
         Kind::Robust => {

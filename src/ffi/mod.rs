@@ -816,6 +816,15 @@ mod tests {
     use super::*;
     use crate::filters::params;
 
+    /// A new Madgwick filter with the default configuration.
+    unsafe fn new_madgwick() -> *mut OrientFilter {
+        let mut c = core::mem::MaybeUninit::<OrientConfig>::uninit();
+        assert_eq!(orient_config_default(OrientKind::Madgwick as i32, c.as_mut_ptr()), OrientStatus::Ok);
+        let mut h = core::ptr::null_mut();
+        assert_eq!(orient_filter_new(c.as_ptr(), &mut h), OrientStatus::Ok);
+        h
+    }
+
     #[test]
     fn header_constants_match_the_core() {
         assert_eq!(ORIENT_MAX_PARAMS, params::MAX_PARAMS);
@@ -902,11 +911,7 @@ mod tests {
     #[test]
     fn a_batch_stops_at_a_bad_sample_past_the_first_chunk() {
         unsafe {
-            let mut c = core::mem::MaybeUninit::<OrientConfig>::uninit();
-            assert_eq!(orient_config_default(OrientKind::Madgwick as i32, c.as_mut_ptr()), OrientStatus::Ok);
-            let (mut f, mut twin) = (core::ptr::null_mut(), core::ptr::null_mut());
-            assert_eq!(orient_filter_new(c.as_ptr(), &mut f), OrientStatus::Ok);
-            assert_eq!(orient_filter_new(c.as_ptr(), &mut twin), OrientStatus::Ok);
+            let (f, twin) = (new_madgwick(), new_madgwick());
             let mut batch: Vec<OrientSample> = (0..40)
                 .map(|i| OrientSample {
                     dt: 0.01,
@@ -941,15 +946,8 @@ mod tests {
     #[test]
     fn a_rig_call_updates_distinct_and_repeated_handles() {
         unsafe {
-            let mut c = core::mem::MaybeUninit::<OrientConfig>::uninit();
-            assert_eq!(orient_config_default(OrientKind::Madgwick as i32, c.as_mut_ptr()), OrientStatus::Ok);
-            let new = || {
-                let mut h = core::ptr::null_mut();
-                assert_eq!(orient_filter_new(c.as_ptr(), &mut h), OrientStatus::Ok);
-                h
-            };
-            let hs: Vec<*mut OrientFilter> = (0..5).map(|_| new()).collect();
-            let twin = new();
+            let hs: Vec<*mut OrientFilter> = (0..5).map(|_| new_madgwick()).collect();
+            let twin = new_madgwick();
             let s = OrientSample {
                 dt: 0.01,
                 gyro: OrientVec3 { x: 0.1, y: -0.2, z: 0.3 },
@@ -1000,10 +998,7 @@ mod tests {
     #[test]
     fn double_free_and_null_are_reported_not_crashes() {
         unsafe {
-            let mut c = core::mem::MaybeUninit::<OrientConfig>::uninit();
-            assert_eq!(orient_config_default(OrientKind::Madgwick as i32, c.as_mut_ptr()), OrientStatus::Ok);
-            let mut h = core::ptr::null_mut();
-            assert_eq!(orient_filter_new(c.as_ptr(), &mut h), OrientStatus::Ok);
+            let h = new_madgwick();
             assert_eq!(orient_filter_free(core::ptr::null_mut()), OrientStatus::Ok);
             let mut q = OrientQuaternion::default();
             assert_eq!(orient_filter_quaternion(h, core::ptr::null_mut()), OrientStatus::NullPointer);

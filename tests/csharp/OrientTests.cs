@@ -19,7 +19,9 @@ public static class OrientTests
         else { failed++; Console.WriteLine("FAIL " + what); }
     }
 
-    static void Throws(Status expected, Action action, string what)
+    /// The action throws an OrientException with this status (and, when given, a message
+    /// that contains `detail`).
+    static void Throws(Status expected, Action action, string what, string detail = null)
     {
         try
         {
@@ -28,7 +30,8 @@ public static class OrientTests
         }
         catch (OrientException e)
         {
-            Check(e.Status == expected, what + ": got " + e.Status + " (" + e.Message + ")");
+            Check(e.Status == expected && (detail == null || e.Message.Contains(detail)),
+                what + ": got " + e.Status + " (" + e.Message + ")");
         }
     }
 
@@ -178,15 +181,7 @@ public static class OrientTests
         {
             var batch = new[] { Good(), Good(), Good(), Good() };
             batch[2].Accel.X = double.NaN;
-            try
-            {
-                f.UpdateBatch(batch, null);
-                Check(false, "batch should throw");
-            }
-            catch (OrientException e)
-            {
-                Check(e.Status == Status.NonFinite && e.Message.Contains("sample 2"), "batch error: " + e.Message);
-            }
+            Throws(Status.NonFinite, () => f.UpdateBatch(batch, null), "batch error", "sample 2");
             twin.UpdateBatch(batch, 0, 2, null);
             Check(Same(f.Quaternion, twin.Quaternion), "batch keeps the samples before the bad one");
             Throws(Status.NoData, () => new OrientFilter(Kind.Ekf).LinearAcceleration.ToString(), "no data yet");
@@ -215,15 +210,7 @@ public static class OrientTests
             for (int k = 0; k < kinds.Length; k++) same &= Same(outQ[k], twins[k].Quaternion);
             Check(same && rig.Count == kinds.Length, "rig matches separate updates");
             frame[2].Accel.X = double.NaN;
-            try
-            {
-                rig.Update(frame, null);
-                Check(false, "rig should throw");
-            }
-            catch (OrientException e)
-            {
-                Check(e.Status == Status.NonFinite && e.Message.Contains("filter 2"), "rig error: " + e.Message);
-            }
+            Throws(Status.NonFinite, () => rig.Update(frame, null), "rig error", "filter 2");
             Check(Same(rigFilters[3].Quaternion, twins[3].Quaternion), "rig leaves the filters after a bad sample");
             foreach (var f in rigFilters) f.Dispose();
             foreach (var f in twins) f.Dispose();
