@@ -52,7 +52,7 @@
 use super::params::{id, ParamSpec};
 use super::startup::StartupMeans;
 use super::Step;
-use crate::math::{Frame, Quat, Vec3};
+use crate::math::{inv_sqrt, Frame, Quat, Vec3};
 
 /// GMVDK's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -211,7 +211,7 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
     let omega = libm::acos(cos);
     // sin ω from cos ω (ω in [0, π/2] after the flip): one square root instead of a
     // sine, and accurate near ω = 0 where it is formed as (1 − cos)(1 + cos).
-    let r = 1.0 / ((1.0 - cos) * (1.0 + cos)).sqrt();
+    let r = inv_sqrt((1.0 - cos) * (1.0 + cos));
     (q1.scale(libm::sin((1.0 - h) * omega) * r) + q2.scale(libm::sin(h * omega) * r)).normalized()
 }
 

@@ -14,3 +14,28 @@ mod vec3;
 pub use frame::Frame;
 pub use quat::{Euler, Quat};
 pub use vec3::Vec3;
+
+/// `1/√x`, computed as `√x · (1/x)`.
+///
+/// The root and the reciprocal do not wait for each other, so the processor runs them side
+/// by side: on the development machine a chain of these takes 9.0 ns a link against 11.8
+/// for `1.0 / x.sqrt()`, and every filter's update has one or two on its critical path.
+/// Three correctly rounded operations: within 1.5 ulp of `1/√x`, against 1 ulp for the
+/// root then the division. Outside `[1e-300, 1e300]`, where `1/x` would be subnormal or
+/// infinite, it is `1.0 / x.sqrt()`.
+#[inline]
+pub fn inv_sqrt(x: f64) -> f64 {
+    if x > 1e-300 && x < 1e300 {
+        x.sqrt() * (1.0 / x)
+    } else {
+        inv_sqrt_outside(x)
+    }
+}
+
+/// Out of line, so the compiler does not compute it for every call and select (which put
+/// a third operation on the divider, shared by the root and the division).
+#[cold]
+#[inline(never)]
+fn inv_sqrt_outside(x: f64) -> f64 {
+    1.0 / x.sqrt()
+}

@@ -1,5 +1,5 @@
 use super::Vec3;
-use core::ops::{Add, Mul};
+use core::ops::{Add, Mul, Sub};
 
 /// A Hamilton quaternion, scalar first.
 ///
@@ -58,7 +58,7 @@ impl Quat {
 
     #[inline]
     pub fn dot(self, o: Quat) -> f64 {
-        self.w * o.w + self.x * o.x + self.y * o.y + self.z * o.z
+        (self.w * o.w + self.x * o.x) + (self.y * o.y + self.z * o.z)
     }
 
     #[inline]
@@ -79,18 +79,24 @@ impl Quat {
     /// The quaternion divided by its norm. The caller makes sure the norm is not zero.
     #[inline]
     pub fn normalized(self) -> Quat {
-        self.scale(1.0 / self.norm())
+        self.scale(super::inv_sqrt(self.norm_squared()))
     }
 
     /// The quaternion divided by its norm, or `None` when the norm is zero, overflows or
     /// the result is not finite (the check every filter's update makes before it commits).
     #[inline]
     pub fn try_normalized(self) -> Option<Quat> {
-        let n2 = self.norm_squared();
+        self.normalized_with(self.norm_squared())
+    }
+
+    /// [`Quat::try_normalized`] with the squared norm `n2` computed by the caller, for an
+    /// update that knows it before the quaternion's last components are ready.
+    #[inline]
+    pub fn normalized_with(self, n2: f64) -> Option<Quat> {
         if !(n2.is_finite() && n2 > 0.0) {
             return None;
         }
-        Some(self.scale(1.0 / n2.sqrt())).filter(|q| q.is_finite())
+        Some(self.scale(super::inv_sqrt(n2))).filter(|q| q.is_finite())
     }
 
     pub fn is_finite(self) -> bool {
@@ -214,15 +220,24 @@ impl Quat {
 
 impl Mul for Quat {
     type Output = Quat;
-    /// The Hamilton product `self ⊗ o`.
+    /// The Hamilton product `self ⊗ o`, each component summed as two pairs (three
+    /// levels of operations instead of four).
     #[inline]
     fn mul(self, o: Quat) -> Quat {
         Quat::new(
-            self.w * o.w - self.x * o.x - self.y * o.y - self.z * o.z,
-            self.w * o.x + self.x * o.w + self.y * o.z - self.z * o.y,
-            self.w * o.y - self.x * o.z + self.y * o.w + self.z * o.x,
-            self.w * o.z + self.x * o.y - self.y * o.x + self.z * o.w,
+            (self.w * o.w - self.x * o.x) - (self.y * o.y + self.z * o.z),
+            (self.w * o.x + self.x * o.w) + (self.y * o.z - self.z * o.y),
+            (self.w * o.y - self.x * o.z) + (self.y * o.w + self.z * o.x),
+            (self.w * o.z + self.x * o.y) - (self.y * o.x - self.z * o.w),
         )
+    }
+}
+
+impl Sub for Quat {
+    type Output = Quat;
+    #[inline]
+    fn sub(self, o: Quat) -> Quat {
+        Quat::new(self.w - o.w, self.x - o.x, self.y - o.y, self.z - o.z)
     }
 }
 

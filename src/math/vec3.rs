@@ -39,7 +39,7 @@ impl Vec3 {
     /// The vector divided by its norm. The caller makes sure the norm is not zero.
     #[inline]
     pub fn normalized(self) -> Vec3 {
-        self * (1.0 / self.norm())
+        self * super::inv_sqrt(self.norm_squared())
     }
 
     /// True when all three components are finite (not NaN, not ±Inf).
