@@ -18,7 +18,7 @@ mod types;
 
 pub use types::*;
 
-use crate::filters::{Config, Filter, Init, Kind, Sample};
+use crate::filters::{Config, Filter, Init, Kind, Sample, SampleView};
 use crate::math::{Frame, Quat, Vec3};
 use core::ffi::{c_char, CStr};
 use error::{detail_ptr, fail, from_core, from_state, guard, guard_value, status_message};
@@ -138,20 +138,49 @@ fn quat_to(q: Quat) -> OrientQuaternion {
 
 const SAMPLE_ALL: u32 = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL | ORIENT_SAMPLE_MAG;
 
-fn sample_from(s: &OrientSample) -> Result<Sample, OrientStatus> {
+/// A host's sample whose flags and reserved field have been checked, read in place.
+struct HostSample<'a>(&'a OrientSample);
+
+impl HostSample<'_> {
+    #[inline(always)]
+    fn has(&self, bit: u32, v: &OrientVec3) -> Option<Vec3> {
+        (self.0.flags & bit != 0).then(|| vec_from(*v))
+    }
+}
+
+impl SampleView for HostSample<'_> {
+    #[inline(always)]
+    fn dt(&self) -> f64 {
+        self.0.dt
+    }
+    #[inline(always)]
+    fn gyro(&self) -> Option<Vec3> {
+        self.has(ORIENT_SAMPLE_GYRO, &self.0.gyro)
+    }
+    #[inline(always)]
+    fn accel(&self) -> Option<Vec3> {
+        self.has(ORIENT_SAMPLE_ACCEL, &self.0.accel)
+    }
+    #[inline(always)]
+    fn mag(&self) -> Option<Vec3> {
+        self.has(ORIENT_SAMPLE_MAG, &self.0.mag)
+    }
+}
+
+/// Checks a host's sample's flags and reserved field.
+#[inline(always)]
+fn host_sample(s: &OrientSample) -> Result<HostSample<'_>, OrientStatus> {
     if s.flags & !SAMPLE_ALL != 0 || s.reserved != 0 {
         return Err(fail(
             OrientStatus::InvalidArgument,
             format_args!("unknown sample flag bits {:#x} or non-zero reserved field", s.flags & !SAMPLE_ALL),
         ));
     }
-    let has = |bit: u32, v: OrientVec3| (s.flags & bit != 0).then(|| vec_from(v));
-    Ok(Sample {
-        dt: s.dt,
-        gyro: has(ORIENT_SAMPLE_GYRO, s.gyro),
-        accel: has(ORIENT_SAMPLE_ACCEL, s.accel),
-        mag: has(ORIENT_SAMPLE_MAG, s.mag),
-    })
+    Ok(HostSample(s))
+}
+
+fn sample_from(s: &OrientSample) -> Result<Sample, OrientStatus> {
+    host_sample(s).map(|h| h.to_sample())
 }
 
 fn config_to(c: &Config) -> OrientConfig {
@@ -446,7 +475,7 @@ pub unsafe extern "C" fn orient_filter_update(
         if sample.is_null() {
             return Err(null());
         }
-        let s = sample_from(&*sample)?;
+        let s = host_sample(&*sample)?;
         h.filter.update_inline(&s).map_err(from_core)
     })
 }

@@ -201,6 +201,41 @@ pub struct Sample {
     pub mag: Option<Vec3>,
 }
 
+/// Read access to a sample where it lies: a [`Sample`], or a host's own struct (the C
+/// API's), so that an update reads the host's memory in place rather than a copy just
+/// written, which the processor reads back only after a stall (store-to-load
+/// forwarding fails when the copy was written in narrower pieces than it is read).
+pub(crate) trait SampleView {
+    fn dt(&self) -> f64;
+    fn gyro(&self) -> Option<Vec3>;
+    fn accel(&self) -> Option<Vec3>;
+    fn mag(&self) -> Option<Vec3>;
+    /// The sample as a [`Sample`].
+    #[inline]
+    fn to_sample(&self) -> Sample {
+        Sample { dt: self.dt(), gyro: self.gyro(), accel: self.accel(), mag: self.mag() }
+    }
+}
+
+impl SampleView for Sample {
+    #[inline(always)]
+    fn dt(&self) -> f64 {
+        self.dt
+    }
+    #[inline(always)]
+    fn gyro(&self) -> Option<Vec3> {
+        self.gyro
+    }
+    #[inline(always)]
+    fn accel(&self) -> Option<Vec3> {
+        self.accel
+    }
+    #[inline(always)]
+    fn mag(&self) -> Option<Vec3> {
+        self.mag
+    }
+}
+
 /// A filter's configuration: kind, frame, initial orientation and parameter slots.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Config {
@@ -681,7 +716,7 @@ impl Filter {
     /// which tell the reason (or accept it: a finite vector whose squared norm
     /// overflows, say).
     #[inline(always)]
-    fn plainly_valid(&self, s: &Sample) -> bool {
+    fn plainly_valid<S: SampleView>(&self, s: &S) -> bool {
         let fine = |v: Option<Vec3>, range: f64| match v {
             Some(v) => {
                 let n2 = v.norm_squared();
@@ -689,13 +724,13 @@ impl Filter {
             }
             None => true,
         };
-        let initialised = (self.flags & flags::INITIALIZED != 0) | s.accel.is_some();
-        (s.dt >= MIN_DT)
-            & (s.dt <= f64::MAX)
-            & s.gyro.is_some()
-            & fine(s.gyro, self.config.slot(id::GYRO_RANGE))
-            & fine(s.accel, self.config.slot(id::ACCEL_RANGE))
-            & fine(s.mag, 0.0)
+        let initialised = (self.flags & flags::INITIALIZED != 0) | s.accel().is_some();
+        (s.dt() >= MIN_DT)
+            & (s.dt() <= f64::MAX)
+            & s.gyro().is_some()
+            & fine(s.gyro(), self.config.slot(id::GYRO_RANGE))
+            & fine(s.accel(), self.config.slot(id::ACCEL_RANGE))
+            & fine(s.mag(), 0.0)
             & initialised
     }
 
@@ -742,16 +777,18 @@ impl Filter {
     /// through memory, where reading them back right after they were written stalls
     /// (store-to-load forwarding), about 10-20 ns per update measured through the C call.
     #[inline(always)]
-    pub(crate) fn update_inline(&mut self, s: &Sample) -> Result<(), Error> {
-        self.check(s)?;
+    pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        if !self.plainly_valid(s) {
+            self.check_exactly(&s.to_sample())?;
+        }
         // check() guarantees a gyro reading.
-        let gyro = s.gyro.unwrap_or_default();
+        let gyro = s.gyro().unwrap_or_default();
         let initial = if self.flags & flags::INITIALIZED == 0 && !self.core.own_startup() {
             // check() guarantees an accelerometer reading here.
-            let accel = s.accel.unwrap_or_default();
+            let accel = s.accel().unwrap_or_default();
             let frame = self.config.frame;
             let q = frame
-                .attitude_from(accel, s.mag)
+                .attitude_from(accel, s.mag())
                 .or_else(|| frame.attitude_from(accel, None))
                 .ok_or(Error::Numeric)?;
             Some(q)
@@ -765,16 +802,16 @@ impl Filter {
             saved
         });
         let gap_dt = self.config.slot(id::GAP_DT);
-        let gap = gap_dt > 0.0 && s.dt > gap_dt;
-        let dt = if gap { gap_dt } else { s.dt };
+        let gap = gap_dt > 0.0 && s.dt() > gap_dt;
+        let dt = if gap { gap_dt } else { s.dt() };
         // Recorded before the core's update and put back if it fails: stored after the
         // core's own state, these 32 bytes cost Mahony's IMU update 17 ns (54 -> 37 ns,
         // measured; the time goes with the store's position, not its size).
         let prev_accel = self.last_accel;
-        if s.accel.is_some() {
-            self.last_accel = s.accel;
+        if s.accel().is_some() {
+            self.last_accel = s.accel();
         }
-        match self.core.update(dt, gyro, s.accel, s.mag) {
+        match self.core.update(dt, gyro, s.accel(), s.mag()) {
             Some(step) => {
                 self.flags = if step.initializing {
                     0
