@@ -29,6 +29,7 @@ use super::params::{id, ParamSpec};
 use super::rest::RestBias;
 use super::Step;
 use crate::math::{inv_sqrt, Quat, Vec3};
+use wide::f64x4;
 
 /// Madgwick's settings, in user units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -167,35 +168,49 @@ pub fn gradient_marg(q: Quat, a: Vec3, bx: f64, bz: f64, m: Vec3) -> Quat {
     jt_f(&jacobian_g(q), &objective_g(q, a)) + jt_f(&jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m))
 }
 
-/// `N` f64 lanes: the arithmetic of one Madgwick update applied to `N` filters at once.
-/// Each operation is the IEEE operation of the scalar code, lane by lane, in the same
-/// order, so every lane's result is bit-identical to [`Madgwick::update`]; laid out this
-/// way the compiler runs the lanes in SIMD registers and overlaps their latency chains.
-#[derive(Clone, Copy)]
-struct L<const N: usize>([f64; N]);
+/// The number of filters [`Madgwick::update_lanes`] steps at once.
+pub(crate) const LANES: usize = 4;
 
-impl<const N: usize> L<N> {
+/// Four f64 lanes: the arithmetic of one Madgwick update applied to four filters at
+/// once, in the `wide` crate's `f64x4` (two SSE2 registers on x86-64's baseline, NEON on
+/// aarch64, plain arrays elsewhere). Each operation is the IEEE operation of the scalar
+/// code, lane by lane, in the same order, so every lane's result is bit-identical to
+/// [`Madgwick::update`], while the four latency chains overlap. Explicit rather than
+/// left to LLVM's SLP vectoriser, which this crate's build turns off
+/// (`.cargo/config.toml`).
+#[derive(Clone, Copy)]
+struct L(f64x4);
+
+impl L {
     #[inline(always)]
     fn splat(v: f64) -> Self {
-        L([v; N])
+        L(f64x4::splat(v))
+    }
+    #[inline(always)]
+    fn new(v: [f64; LANES]) -> Self {
+        L(f64x4::new(v))
+    }
+    #[inline(always)]
+    fn lanes(self) -> [f64; LANES] {
+        self.0.to_array()
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
-        L(core::array::from_fn(|i| self.0[i].sqrt()))
+        L(self.0.sqrt())
     }
     #[inline(always)]
     fn all(self, f: impl Fn(f64) -> bool) -> bool {
-        self.0.iter().all(|v| f(*v))
+        self.lanes().iter().all(|v| f(*v))
     }
 }
 
 macro_rules! lane_op {
     ($tr:ident, $f:ident, $op:tt) => {
-        impl<const N: usize> core::ops::$tr for L<N> {
-            type Output = L<N>;
+        impl core::ops::$tr for L {
+            type Output = L;
             #[inline(always)]
-            fn $f(self, o: L<N>) -> L<N> {
-                L(core::array::from_fn(|i| self.0[i] $op o.0[i]))
+            fn $f(self, o: L) -> L {
+                L(self.0 $op o.0)
             }
         }
     };
@@ -205,20 +220,12 @@ lane_op!(Sub, sub, -);
 lane_op!(Mul, mul, *);
 lane_op!(Div, div, /);
 
-impl<const N: usize> core::ops::Neg for L<N> {
-    type Output = L<N>;
-    #[inline(always)]
-    fn neg(self) -> L<N> {
-        L(core::array::from_fn(|i| -self.0[i]))
-    }
-}
-
 /// A quaternion of lanes (w, x, y, z).
-type Lq<const N: usize> = [L<N>; 4];
+type Lq = [L; 4];
 
 /// `a ⊗ b` as [`Quat`]'s `Mul`.
 #[inline(always)]
-fn lmul<const N: usize>(a: Lq<N>, b: Lq<N>) -> Lq<N> {
+fn lmul(a: Lq, b: Lq) -> Lq {
     let [aw, ax, ay, az] = a;
     let [bw, bx, by, bz] = b;
     [
@@ -231,13 +238,13 @@ fn lmul<const N: usize>(a: Lq<N>, b: Lq<N>) -> Lq<N> {
 
 /// `u × v` as [`Vec3::cross`].
 #[inline(always)]
-fn lcross<const N: usize>(u: [L<N>; 3], v: [L<N>; 3]) -> [L<N>; 3] {
+fn lcross(u: [L; 3], v: [L; 3]) -> [L; 3] {
     [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
 }
 
 /// `q ⊗ [0, v] ⊗ q*` as [`Quat::rotate`]: `v + w t + u × t`, `t = 2 u × v`.
 #[inline(always)]
-fn lrotate<const N: usize>(q: Lq<N>, v: [L<N>; 3]) -> [L<N>; 3] {
+fn lrotate(q: Lq, v: [L; 3]) -> [L; 3] {
     let u = [q[1], q[2], q[3]];
     let t = lcross(u, v).map(|c| c * L::splat(2.0));
     let ut = lcross(u, t);
@@ -247,32 +254,32 @@ fn lrotate<const N: usize>(q: Lq<N>, v: [L<N>; 3]) -> [L<N>; 3] {
 /// [`inv_sqrt`] on every lane, or `None` when a lane is outside the range where it is
 /// `√x · (1/x)`.
 #[inline(always)]
-fn linv_sqrt<const N: usize>(x: L<N>) -> Option<L<N>> {
+fn linv_sqrt(x: L) -> Option<L> {
     x.all(|v| v > 1e-300 && v < 1e300).then(|| x.sqrt() * (L::splat(1.0) / x))
 }
 
 /// `(a·a)` of two lane quaternions as [`Quat::dot`].
 #[inline(always)]
-fn ldot<const N: usize>(a: Lq<N>, b: Lq<N>) -> L<N> {
+fn ldot(a: Lq, b: Lq) -> L {
     (a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + a[3] * b[3])
 }
 
 /// [`Vec3::normalized`], or `None` as [`linv_sqrt`].
 #[inline(always)]
-fn lnormalized<const N: usize>(v: [L<N>; 3]) -> Option<[L<N>; 3]> {
+fn lnormalized(v: [L; 3]) -> Option<[L; 3]> {
     let r = linv_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])?;
     Some([v[0] * r, v[1] * r, v[2] * r])
 }
 
 /// `Jᵀ f` as [`jt_f`].
 #[inline(always)]
-fn ljt_f<const N: usize>(j: &[[L<N>; 4]; 3], f: &[L<N>; 3]) -> Lq<N> {
+fn ljt_f(j: &[[L; 4]; 3], f: &[L; 3]) -> Lq {
     core::array::from_fn(|c| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2])
 }
 
 /// [`jacobian_g`] and [`objective_g`].
 #[inline(always)]
-fn lgravity<const N: usize>(q: Lq<N>, a: [L<N>; 3]) -> ([[L<N>; 4]; 3], [L<N>; 3]) {
+fn lgravity(q: Lq, a: [L; 3]) -> ([[L; 4]; 3], [L; 3]) {
     let [q1, q2, q3, q4] = q;
     let k = L::splat;
     let f = [
@@ -290,7 +297,7 @@ fn lgravity<const N: usize>(q: Lq<N>, a: [L<N>; 3]) -> ([[L<N>; 4]; 3], [L<N>; 3
 
 /// [`jacobian_b`] and [`objective_b`].
 #[inline(always)]
-fn lfield<const N: usize>(q: Lq<N>, bx: L<N>, bz: L<N>, m: [L<N>; 3]) -> ([[L<N>; 4]; 3], [L<N>; 3]) {
+fn lfield(q: Lq, bx: L, bz: L, m: [L; 3]) -> ([[L; 4]; 3], [L; 3]) {
     let [q1, q2, q3, q4] = q;
     let k = L::splat;
     let f = [
@@ -362,24 +369,23 @@ impl Madgwick {
         self.q = q;
     }
 
-    /// `N` filters' steps at once, each with an accelerometer reading and all with or all
+    /// [`LANES`] filters' steps at once, each with an accelerometer reading and all with or all
     /// without a magnetometer reading; bit-identical to calling [`Madgwick::update`] on
     /// each. `None`, with nothing changed, when a filter needs the scalar path: the
     /// rest-bias option is on, or a lane meets an edge case (no horizontal field, zero
     /// gradient, a non-finite result).
-    pub(crate) fn update_lanes<const N: usize>(
-        fs: &mut [&mut Madgwick; N],
-        dt: [f64; N],
-        gyro: [Vec3; N],
-        accel: [Vec3; N],
-        mag: Option<[Vec3; N]>,
+    pub(crate) fn update_lanes(
+        fs: &mut [&mut Madgwick; LANES],
+        dt: [f64; LANES],
+        gyro: [Vec3; LANES],
+        accel: [Vec3; LANES],
+        mag: Option<[Vec3; LANES]>,
     ) -> Option<Step> {
         if fs.iter().any(|f| f.settings.rest_bias_tau > 0.0) {
             return None;
         }
-        let lane = |g: &dyn Fn(usize) -> f64| L::<N>(core::array::from_fn(g));
-        let q: Lq<N> =
-            [lane(&|i| fs[i].q.w), lane(&|i| fs[i].q.x), lane(&|i| fs[i].q.y), lane(&|i| fs[i].q.z)];
+        let lane = |g: &dyn Fn(usize) -> f64| L::new(core::array::from_fn(g));
+        let q: Lq = [lane(&|i| fs[i].q.w), lane(&|i| fs[i].q.x), lane(&|i| fs[i].q.y), lane(&|i| fs[i].q.z)];
         let g = [
             lane(&|i| gyro[i].x - fs[i].bias.x),
             lane(&|i| gyro[i].y - fs[i].bias.y),
@@ -387,9 +393,9 @@ impl Madgwick {
         ];
         let zero = L::splat(0.0);
         let half = L::splat(0.5);
-        let dt = L(dt);
+        let dt = L::new(dt);
         let qdo = lmul(q, [zero, g[0], g[1], g[2]]).map(|c| c * half);
-        let p: Lq<N> = core::array::from_fn(|c| q[c] + qdo[c] * dt);
+        let p: Lq = core::array::from_fn(|c| q[c] + qdo[c] * dt);
         let a = lnormalized([lane(&|i| accel[i].x), lane(&|i| accel[i].y), lane(&|i| accel[i].z)])?;
         let (jg, fg) = lgravity(q, a);
         let mut gradient = ljt_f(&jg, &fg);
@@ -411,19 +417,20 @@ impl Madgwick {
         let gg = ldot(gradient, gradient);
         let k = beta * dt;
         let c = k * linv_sqrt(gg)?;
-        let next: Lq<N> = core::array::from_fn(|i| p[i] - gradient[i] * c);
+        let next: Lq = core::array::from_fn(|i| p[i] - gradient[i] * c);
         let base = ldot(p, p) + k * k;
         let n2 = base - L::splat(2.0) * ldot(p, gradient) * c;
-        if !(0..N).all(|i| n2.0[i] > 0.5 * base.0[i]) {
+        let (n2s, bases) = (n2.lanes(), base.lanes());
+        if !(0..LANES).all(|i| n2s[i] > 0.5 * bases[i]) {
             return None;
         }
         let r = linv_sqrt(n2)?;
-        let out: Lq<N> = next.map(|c| c * r);
+        let out: Lq = next.map(|c| c * r);
         if !out.iter().all(|c| c.all(f64::is_finite)) {
             return None;
         }
         for (i, f) in fs.iter_mut().enumerate() {
-            f.q = Quat::new(out[0].0[i], out[1].0[i], out[2].0[i], out[3].0[i]);
+            f.q = Quat::new(out[0].lanes()[i], out[1].lanes()[i], out[2].lanes()[i], out[3].lanes()[i]);
         }
         Some(Step { used_accel: true, used_mag: mag.is_some(), initializing: false })
     }

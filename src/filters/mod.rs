@@ -18,7 +18,7 @@ use complementary::{Complementary, ComplementarySettings};
 use core::fmt;
 use ekf::{Ekf, EkfSettings};
 use gmvdk::{Gmvdk, GmvdkSettings};
-use madgwick::{Madgwick, MadgwickSettings};
+use madgwick::{Madgwick, MadgwickSettings, LANES};
 use mahony::{Mahony, MahonySettings};
 use params::{id, ParamSpec, COMMON, MAX_PARAMS};
 use robust::{Robust, RobustSettings};
@@ -843,8 +843,14 @@ impl Filter {
         filters: &mut [&mut Filter; N],
         samples: [&Sample; N],
     ) -> Result<(), (usize, Error)> {
-        if let Some(result) = Filter::try_lanes(filters, samples) {
-            return result;
+        let lanes = (
+            <&mut [&mut Filter; LANES]>::try_from(&mut filters[..]),
+            <[&Sample; LANES]>::try_from(&samples[..]),
+        );
+        if let (Ok(fs), Ok(ss)) = lanes {
+            if let Some(result) = Filter::try_lanes(fs, ss) {
+                return result;
+            }
         }
         for (i, (f, s)) in filters.iter_mut().zip(samples).enumerate() {
             f.update(s).map_err(|e| (i, e))?;
@@ -854,9 +860,9 @@ impl Filter {
 
     /// The lane path of [`Filter::update_group`]; `None` when it does not apply (nothing
     /// changed then).
-    fn try_lanes<const N: usize>(
-        filters: &mut [&mut Filter; N],
-        samples: [&Sample; N],
+    fn try_lanes(
+        filters: &mut [&mut Filter; LANES],
+        samples: [&Sample; LANES],
     ) -> Option<Result<(), (usize, Error)>> {
         let with_mag = samples[0].mag.is_some();
         for (f, s) in filters.iter().zip(samples) {
@@ -880,9 +886,9 @@ impl Filter {
                 return Some(Err((i, e)));
             }
         }
-        let mut dt = [0.0; N];
-        let mut gap = [false; N];
-        for i in 0..N {
+        let mut dt = [0.0; LANES];
+        let mut gap = [false; LANES];
+        for i in 0..LANES {
             let gap_dt = filters[i].config.slot(id::GAP_DT);
             gap[i] = gap_dt > 0.0 && samples[i].dt > gap_dt;
             dt[i] = if gap[i] { gap_dt } else { samples[i].dt };
@@ -902,7 +908,7 @@ impl Filter {
             let mut cores = cores.each_mut().map(|c| c.take().expect("checked above"));
             Madgwick::update_lanes(&mut cores, dt, gyro, accel, mag)?
         };
-        for i in 0..N {
+        for i in 0..LANES {
             let f = &mut filters[i];
             f.flags = flags::INITIALIZED
                 | if step.used_accel { flags::ACCEL_USED } else { 0 }
