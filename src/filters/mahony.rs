@@ -118,16 +118,20 @@ impl Mahony {
     /// the magnetometer contributed.
     pub fn correction(q: Quat, accel: Vec3, mag: Option<Vec3>) -> (Vec3, bool) {
         let a = accel.normalized();
-        let up = q.z_axis_in_body();
+        // The rows of R(q): v̂ is the third, the earth's z axis in the sensor frame.
+        let [r0, r1, up] = q.rows();
         let mut e = a.cross(up);
         let mut used_mag = false;
         if let Some(mag) = mag {
             let m = mag.normalized();
-            let h = q.rotate(m);
+            // h = q ⊗ m̂ ⊗ q* = R m̂; b = [√(h_x² + h_y²), 0, h_z] keeps the field's dip
+            // and drops its heading; ŵ = q* ⊗ b ⊗ q = Rᵀ b = b_x r0 + b_z r2.
+            let h = Vec3::new(r0.dot(m), r1.dot(m), up.dot(m));
             let bx = (h.x * h.x + h.y * h.y).sqrt();
             if bx > 0.0 {
-                let w = q.rotate_inverse(Vec3::new(bx, 0.0, h.z));
-                e = e + m.cross(w);
+                // m̂ × ŵ = b_x (m̂ × r0) + b_z (m̂ × r2): the two cross products do not
+                // wait for the square root.
+                e = e + (m.cross(r0) * bx + m.cross(up) * h.z);
                 used_mag = true;
             }
         }

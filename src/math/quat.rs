@@ -131,6 +131,20 @@ impl Quat {
         Vec3::new(2.0 * (x * z - w * y), 2.0 * (y * z + w * x), w * w - x * x - y * y + z * z)
     }
 
+    /// The rows of `R(q)` for a unit `q`, in the homogeneous form (`w² + x² − y² − z²` on
+    /// the diagonal): `rotate(v)` is `(r0·v, r1·v, r2·v)` and `rotate_inverse(v)` is
+    /// `v_x r0 + v_y r1 + v_z r2`. The third row is [`Quat::z_axis_in_body`]'s value,
+    /// bit for bit.
+    #[inline]
+    pub fn rows(self) -> [Vec3; 3] {
+        let Quat { w, x, y, z } = self;
+        [
+            Vec3::new(w * w + x * x - y * y - z * z, 2.0 * (x * y - w * z), 2.0 * (x * z + w * y)),
+            Vec3::new(2.0 * (x * y + w * z), w * w - x * x + y * y - z * z, 2.0 * (y * z - w * x)),
+            self.z_axis_in_body(),
+        ]
+    }
+
     /// The rotation matrix `R(q)` (row-major) with `v_earth = R · v_body`, for a unit `q`.
     pub fn to_matrix(self) -> [[f64; 3]; 3] {
         let Quat { w, x, y, z } = self;
@@ -255,6 +269,20 @@ mod tests {
 
     fn close(a: f64, b: f64) -> bool {
         (a - b).abs() < 1e-12
+    }
+
+    #[test]
+    fn rows_rotate_both_ways() {
+        let q = Quat::new(0.7, -0.2, 0.5, 0.3).normalized();
+        let [r0, r1, r2] = q.rows();
+        let v = Vec3::new(0.3, -1.2, 0.8);
+        let forward = Vec3::new(r0.dot(v), r1.dot(v), r2.dot(v));
+        let inverse = r0 * v.x + r1 * v.y + r2 * v.z;
+        assert!((forward - q.rotate(v)).norm() < 1e-15 && (inverse - q.rotate_inverse(v)).norm() < 1e-15);
+        let m = q.to_matrix();
+        for (i, r) in [r0, r1, r2].into_iter().enumerate() {
+            assert!((r - Vec3::new(m[i][0], m[i][1], m[i][2])).norm() < 1e-15, "row {i}");
+        }
     }
 
     #[test]
