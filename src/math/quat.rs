@@ -89,6 +89,20 @@ impl Quat {
         self.normalized_with(self.norm_squared())
     }
 
+    /// [`Quat::try_normalized`] for a quaternion known to be unit up to rounding (a
+    /// product of unit quaternions, say): when `|q|² = 1 + ε` with `|ε| < 1e-8`, one
+    /// Newton step for `1/√(1 + ε)`, `q (3 − |q|²)/2`, whose error `3ε²/8` is below
+    /// half an ulp, so the result is as unit as the division would make it without a
+    /// root or a division on the update's chain; otherwise `try_normalized`.
+    #[inline]
+    pub fn renormalized(self) -> Option<Quat> {
+        let n2 = self.norm_squared();
+        if (n2 - 1.0).abs() < 1e-8 {
+            return Some(self.scale(0.5 * (3.0 - n2)));
+        }
+        self.normalized_with(n2)
+    }
+
     /// [`Quat::try_normalized`] with the squared norm `n2` computed by the caller, for an
     /// update that knows it before the quaternion's last components are ready.
     #[inline]
