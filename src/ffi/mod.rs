@@ -533,33 +533,13 @@ pub unsafe extern "C" fn orient_filter_update_batch(
         }
         let samples = items(samples, n, "samples")?;
         let failed = |i: usize, status: OrientStatus| fail_item(processed, "sample", i, status);
-        // Samples are converted a chunk ahead of their updates: an update that reads a
-        // Sample stored a moment before stalls on store-to-load forwarding (about 20 ns
-        // per MARG update on x86-64), one that reads it a few updates later does not.
-        const CHUNK: usize = 16;
-        let mut converted = [Sample::default(); CHUNK];
-        for (c, chunk) in samples.chunks(CHUNK).enumerate() {
-            let base = c * CHUNK;
-            let mut good = chunk.len();
-            let mut bad = None;
-            for (k, s) in chunk.iter().enumerate() {
-                match sample_from(s) {
-                    Ok(s) => converted[k] = s,
-                    Err(status) => {
-                        good = k;
-                        bad = Some(status);
-                        break;
-                    }
-                }
-            }
-            for (k, s) in converted[..good].iter().enumerate() {
-                h.filter.update(s).map_err(|e| failed(base + k, from_core(e)))?;
-                if !quaternions.is_null() {
-                    quaternions.add(base + k).write(quat_to(h.filter.quaternion()));
-                }
-            }
-            if let Some(status) = bad {
-                return Err(failed(base + good, status));
+        // Each update reads the host's sample in place (see SampleView): nothing is
+        // copied, so nothing is read back right after it was written.
+        for (i, s) in samples.iter().enumerate() {
+            let s = host_sample(s).map_err(|status| failed(i, status))?;
+            h.filter.update_inline(&s).map_err(|e| failed(i, from_core(e)))?;
+            if !quaternions.is_null() {
+                quaternions.add(i).write(quat_to(h.filter.quaternion()));
             }
         }
         if !processed.is_null() {
