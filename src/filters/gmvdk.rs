@@ -215,6 +215,14 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
     (q1.scale(libm::sin((1.0 - h) * omega) * r) + q2.scale(libm::sin(h * omega) * r)).normalized()
 }
 
+/// `SLERP(q1, q2, ½)`: the normalised sum along the shorter arc. Equal to [`slerp`] with
+/// `h = ½`, whose two weights are then both `sin(ω/2)/sin ω`, without its arccosine and
+/// sines.
+pub fn slerp_half(q1: Quat, q2: Quat) -> Quat {
+    let q2 = if q1.dot(q2) < 0.0 { q2.scale(-1.0) } else { q2 };
+    (q1 + q2).normalized()
+}
+
 const WINDOW_SLOTS: usize = 1024;
 
 /// Running minimum over a time window: a monotonic queue in a fixed ring buffer.
@@ -556,7 +564,7 @@ impl Gmvdk {
 
         // [7]: second-tier SLERP (17), q_out = SLERP(q_sm, q_sa, ½).
         let q_out = match (q_ga, q_sm) {
-            (Some(q_ga), Some(q_sm)) => slerp(q_sm, slerp(q_g, q_ga, alpha), 0.5),
+            (Some(q_ga), Some(q_sm)) => slerp_half(q_sm, slerp(q_g, q_ga, alpha)),
             // No magnetometer: q_sm = q_g, so q_sa and q_out lie on one arc from q_g and
             // SLERP(q_g, SLERP(q_g, q_ga, α), ½) = SLERP(q_g, q_ga, α/2): one SLERP.
             (Some(q_ga), None) => slerp(q_g, q_ga, 0.5 * alpha),
@@ -599,6 +607,22 @@ impl Gmvdk {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn slerp_half_is_slerp_at_one_half() {
+        let a = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.2);
+        for (axis, angle) in [
+            (Vec3::new(0.0, 1.0, 1.0), 1.0),
+            (Vec3::new(0.3, -1.0, 0.2), 2.9),
+            (Vec3::new(0.0, 0.0, 1.0), 1e-7),
+        ] {
+            let b = Quat::from_axis_angle(axis, angle) * a;
+            for b in [b, b.scale(-1.0)] {
+                let (half, general) = (slerp_half(a, b), slerp(a, b, 0.5));
+                assert!(half.dot(general) > 1.0 - 1e-15, "{half:?} {general:?}");
+            }
+        }
+    }
     use crate::filters::complementary::rotation_of;
 
     fn exact(q: Quat, w: Vec3, dt: f64) -> Quat {
