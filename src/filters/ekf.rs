@@ -296,8 +296,7 @@ impl Blocks {
     }
 
     fn is_finite(&self) -> bool {
-        let (q, w, d) = (self.q.to_array(), self.w.to_array(), self.d.to_array());
-        q.iter().chain(&w[..3]).chain(&d[..3]).all(|v| v.is_finite())
+        all_finite([&self.q, &self.w, &self.d])
     }
 
     /// The state's ten values in order [q, ω, δ], for reading and writing in place.
@@ -381,14 +380,35 @@ fn add_cols<const C: usize>(x: Cols<C>, y: Cols<C>) -> Cols<C> {
     core::array::from_fn(|j| x[j] + y[j])
 }
 
-/// `M ← M − (u vᵀ) c`, entry by entry `m_ij − (u_i v_j) c`, so a symmetric P stays
-/// exactly symmetric.
+/// `M ← M − (u uᵀ) c` for a block on P's diagonal: entry `(i, j)` is `m_ij − (u_i u_j) c`,
+/// the very operations of entry `(j, i)`, so the block stays exactly symmetric.
 #[inline(always)]
-fn sub_outer<const C: usize>(m: &mut Cols<C>, u: f64x4, v: f64x4, c: f64x4) {
-    let v = v.to_array();
+fn sub_outer_sym<const C: usize>(m: &mut Cols<C>, u: f64x4, c: f64x4) {
+    let v = u.to_array();
     for (j, col) in m.iter_mut().enumerate() {
         *col -= (u * f64x4::splat(v[j])) * c;
     }
+}
+
+/// `M ← M − u wᵀ` for a block off P's diagonal, with `w` already scaled: such a block is
+/// stored once, so no twin entry has to come out the same, and each column takes one
+/// multiplication fewer than [`sub_outer_sym`]'s.
+#[inline(always)]
+fn sub_outer<const C: usize>(m: &mut Cols<C>, u: f64x4, w: f64x4) {
+    let w = w.to_array();
+    for (j, col) in m.iter_mut().enumerate() {
+        *col -= u * f64x4::splat(w[j]);
+    }
+}
+
+/// True when every lane of every column is finite: `x · 0` is zero for a finite `x` and
+/// NaN for an infinite or NaN one, and a NaN survives the sum. (The zero fourth lanes of
+/// the three-row blocks stay finite unless a real entry is not.)
+#[inline(always)]
+fn all_finite<'a>(cols: impl IntoIterator<Item = &'a f64x4>) -> bool {
+    let zero = f64x4::splat(0.0);
+    let acc = cols.into_iter().fold(zero, |acc, c| acc + *c * zero);
+    acc.to_array() == [0.0; 4]
 }
 
 impl Cov {
@@ -454,24 +474,19 @@ impl Cov {
     #[inline(always)]
     fn subtract_outer(&mut self, u: &Blocks, c: f64) {
         let c = f64x4::splat(c);
-        sub_outer(&mut self.qq, u.q, u.q, c);
-        sub_outer(&mut self.qw, u.q, u.w, c);
-        sub_outer(&mut self.qd, u.q, u.d, c);
-        sub_outer(&mut self.ww, u.w, u.w, c);
-        sub_outer(&mut self.wd, u.w, u.d, c);
-        sub_outer(&mut self.dd, u.d, u.d, c);
+        sub_outer_sym(&mut self.qq, u.q, c);
+        sub_outer_sym(&mut self.ww, u.w, c);
+        sub_outer_sym(&mut self.dd, u.d, c);
+        let (wc, dc) = (u.w * c, u.d * c);
+        sub_outer(&mut self.qw, u.q, wc);
+        sub_outer(&mut self.qd, u.q, dc);
+        sub_outer(&mut self.wd, u.w, dc);
     }
 
     fn is_finite(&self) -> bool {
-        let all = |cols: &[f64x4], rows: usize| {
-            cols.iter().all(|c| c.to_array()[..rows].iter().all(|v| v.is_finite()))
-        };
-        all(&self.qq, 4)
-            && all(&self.qw, 4)
-            && all(&self.qd, 4)
-            && all(&self.ww, 3)
-            && all(&self.wd, 3)
-            && all(&self.dd, 3)
+        all_finite(
+            self.qq.iter().chain(&self.qw).chain(&self.qd).chain(&self.ww).chain(&self.wd).chain(&self.dd),
+        )
     }
 }
 
@@ -798,8 +813,8 @@ impl Ekf {
                     let (kj, vj) = (f64x4::splat(ke[j]), f64x4::splat(ve[j]));
                     p.qq[j] = p.qq[j] - (k * vj + v.q * kj) + (k * kj) * s_psi;
                 }
-                sub_outer(&mut p.qw, k, v.w, f64x4::splat(1.0));
-                sub_outer(&mut p.qd, k, v.d, f64x4::splat(1.0));
+                sub_outer(&mut p.qw, k, v.w);
+                sub_outer(&mut p.qd, k, v.d);
             }
         }
         if !(x.is_finite() && p.is_finite()) {
