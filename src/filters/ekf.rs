@@ -44,9 +44,10 @@
 //!   same way: while the model keeps mispredicting the accelerometer, it trusts it less.
 //!   Trial 15 goes from 70.95° to 11.8°, the 9D mean from 16.99° to 5.82°; 0 turns it
 //!   off and gives the fixed-noise filter.
-//! - Update: R is diagonal, so the rows are absorbed one at a time (sequential
-//!   processing: the batch posterior, each row linearised at the prediction), each as
-//!   `P − u uᵀ/s`, the Joseph form's value for the optimal gain; P is kept by blocks so
+//! - Update: R is diagonal, so the accelerometer's three rows and then the gyroscope's
+//!   three are absorbed as two batches (the same posterior as six rows in turn, or as
+//!   one batch: the gyroscope rows are linear), each as `P − V Vᵀ` with `V = U L⁻ᵀ`,
+//!   `S = L Lᵀ`, the Joseph form's value for the optimal gain; P is kept by blocks so
 //!   no product touches a structural zero; quaternion renormalised. A test checks the
 //!   result against the dense textbook update (F P Fᵀ, batch Joseph, Cholesky) to 1e-12.
 //! - Magnetometer (the paper's proposed extension): a heading measurement. The field is
@@ -295,6 +296,17 @@ impl Blocks {
         Blocks { q: self.q + o.q, w: self.w + o.w, d: self.d + o.d }
     }
 
+    #[inline(always)]
+    fn minus(&self, o: &Blocks) -> Blocks {
+        Blocks { q: self.q - o.q, w: self.w - o.w, d: self.d - o.d }
+    }
+
+    #[inline(always)]
+    fn scaled(&self, a: f64) -> Blocks {
+        let a = f64x4::splat(a);
+        Blocks { q: self.q * a, w: self.w * a, d: self.d * a }
+    }
+
     fn is_finite(&self) -> bool {
         all_finite([&self.q, &self.w, &self.d])
     }
@@ -380,19 +392,19 @@ fn add_cols<const C: usize>(x: Cols<C>, y: Cols<C>) -> Cols<C> {
     core::array::from_fn(|j| x[j] + y[j])
 }
 
-/// `M ← M − (u uᵀ) c` for a block on P's diagonal: entry `(i, j)` is `m_ij − (u_i u_j) c`,
-/// the very operations of entry `(j, i)`, so the block stays exactly symmetric.
+/// `M ← M − Σ_k u_k w_kᵀ`: entry `(i, j)` is `m_ij − ((u_0,i w_0,j + u_1,i w_1,j) +
+/// u_2,i w_2,j)`, so with `u = w` entries `(i, j)` and `(j, i)` come out the same.
 #[inline(always)]
-fn sub_outer_sym<const C: usize>(m: &mut Cols<C>, u: f64x4, c: f64x4) {
-    let v = u.to_array();
+fn sub_rank3<const C: usize>(m: &mut Cols<C>, u: [f64x4; 3], w: [f64x4; 3]) {
+    let w = w.map(|c| c.to_array());
     for (j, col) in m.iter_mut().enumerate() {
-        *col -= (u * f64x4::splat(v[j])) * c;
+        let t = u[0] * f64x4::splat(w[0][j]) + u[1] * f64x4::splat(w[1][j]);
+        *col -= t + u[2] * f64x4::splat(w[2][j]);
     }
 }
 
-/// `M ← M − u wᵀ` for a block off P's diagonal, with `w` already scaled: such a block is
-/// stored once, so no twin entry has to come out the same, and each column takes one
-/// multiplication fewer than [`sub_outer_sym`]'s.
+/// `M ← M − u wᵀ` for a block off P's diagonal (stored once, so no twin entry has to
+/// come out the same): the heading correction's restricted-gain terms.
 #[inline(always)]
 fn sub_outer<const C: usize>(m: &mut Cols<C>, u: f64x4, w: f64x4) {
     let w = w.to_array();
@@ -470,17 +482,16 @@ impl Cov {
         Blocks { q: self.qd[i], w: self.wd[i], d: self.dd[i] }
     }
 
-    /// `P ← P − c·u uᵀ`.
+    /// `P ← P − Σ_k v_k v_kᵀ`.
     #[inline(always)]
-    fn subtract_outer(&mut self, u: &Blocks, c: f64) {
-        let c = f64x4::splat(c);
-        sub_outer_sym(&mut self.qq, u.q, c);
-        sub_outer_sym(&mut self.ww, u.w, c);
-        sub_outer_sym(&mut self.dd, u.d, c);
-        let (wc, dc) = (u.w * c, u.d * c);
-        sub_outer(&mut self.qw, u.q, wc);
-        sub_outer(&mut self.qd, u.q, dc);
-        sub_outer(&mut self.wd, u.w, dc);
+    fn subtract_rank3(&mut self, v: &[Blocks; 3]) {
+        let (q, w, d) = (v.map(|b| b.q), v.map(|b| b.w), v.map(|b| b.d));
+        sub_rank3(&mut self.qq, q, q);
+        sub_rank3(&mut self.qw, q, w);
+        sub_rank3(&mut self.qd, q, d);
+        sub_rank3(&mut self.ww, w, w);
+        sub_rank3(&mut self.wd, w, d);
+        sub_rank3(&mut self.dd, d, d);
     }
 
     fn is_finite(&self) -> bool {
@@ -490,22 +501,36 @@ impl Cov {
     }
 }
 
-/// One scalar Kalman correction: measurement row h with `u = P hᵀ`, `h u = hu`, noise
-/// variance `r` and innovation `nu`. For the optimal gain `k = u/s` the Joseph form
-/// `(I − k h) P (I − k h)ᵀ + k r kᵀ` equals `P − u uᵀ/s` exactly, which is what this
-/// computes (symmetric by construction). `None` when the innovation variance is not
-/// positive and finite.
+/// Three Kalman corrections at once: rows `h_k` with `u_k = P h_kᵀ` (all from the same
+/// P), the innovation covariance `S = H P Hᵀ + R` (3×3, read from its upper triangle)
+/// and the innovations `ν`. With `S = L Lᵀ` (Cholesky) and `V = U L⁻ᵀ`, the posterior
+/// is `x + V L⁻¹ν` and `P − V Vᵀ`: the batch update, which equals three scalar
+/// corrections in turn (sequential processing, R diagonal) with one pass over P
+/// instead of three. Each entry of `V Vᵀ` is `Σ_k v_k,i v_k,j` summed in k order, so P
+/// stays exactly symmetric. `None` when S is not positive definite and finite.
 #[inline(always)]
-fn absorb(x: &mut Blocks, p: &mut Cov, u: &Blocks, hu: f64, r: f64, nu: f64) -> Option<()> {
-    let s = hu + r;
-    if !(s > 0.0 && s.is_finite()) {
+fn absorb3(x: &mut Blocks, p: &mut Cov, u: &[Blocks; 3], s: [[f64; 3]; 3], nu: [f64; 3]) -> Option<()> {
+    let l00 = s[0][0].sqrt();
+    let (l10, l20) = (s[0][1] / l00, s[0][2] / l00);
+    let d1 = s[1][1] - l10 * l10;
+    let l11 = d1.sqrt();
+    let l21 = (s[1][2] - l20 * l10) / l11;
+    let d2 = s[2][2] - l20 * l20 - l21 * l21;
+    let l22 = d2.sqrt();
+    let finite = l00.is_finite() && l10.is_finite() && l20.is_finite() && l21.is_finite() && l22.is_finite();
+    if !(s[0][0] > 0.0 && d1 > 0.0 && d2 > 0.0 && finite) {
         return None;
     }
-    let g = f64x4::splat(nu / s);
-    x.q += u.q * g;
-    x.w += u.w * g;
-    x.d += u.d * g;
-    p.subtract_outer(u, 1.0 / s);
+    // V Lᵀ = U column by column, and y = L⁻¹ν.
+    let (r0, r1, r2) = (1.0 / l00, 1.0 / l11, 1.0 / l22);
+    let v0 = u[0].scaled(r0);
+    let v1 = u[1].minus(&v0.scaled(l10)).scaled(r1);
+    let v2 = u[2].minus(&v0.scaled(l20)).minus(&v1.scaled(l21)).scaled(r2);
+    let y0 = nu[0] * r0;
+    let y1 = (nu[1] - l10 * y0) * r1;
+    let y2 = (nu[2] - l20 * y0 - l21 * y1) * r2;
+    *x = x.plus(&v0.scaled(y0)).plus(&v1.scaled(y1)).plus(&v2.scaled(y2));
+    p.subtract_rank3(&[v0, v1, v2]);
     Some(())
 }
 
@@ -713,10 +738,10 @@ impl Ekf {
         };
 
         // ---- update with z = [f, ω_IMU], eqs. (11)-(13) ----
-        // R is diagonal, so the six rows are absorbed one at a time (sequential
-        // processing, the same posterior as the batch update), each row linearised at
-        // the prediction: a row's innovation is its predicted-state innovation less
-        // h·(x − x⁻) for the corrections before it.
+        // R is diagonal, so the accelerometer's rows and then the gyroscope's are
+        // absorbed as two batches of three (the same posterior as one batch of six: the
+        // gyroscope rows are linear, so their innovation at the updated state is the
+        // batch's less h·(x − x⁻)); one pass over P per batch instead of one per row.
         let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
         let mut adapt = self.adapt;
         let mut adapt_h = self.adapt_h;
@@ -742,30 +767,34 @@ impl Ekf {
                 adapt += (nu.norm_squared() / 3.0 - adapt) * lp_gain(dt, s.accel_adapt_tau);
                 ra = ra.max(adapt * colour);
             }
-            for (i, nu_i) in [nu.x, nu.y, nu.z].into_iter().enumerate() {
-                let hq = f64x4::new([hf[(i, 0)], hf[(i, 1)], hf[(i, 2)], hf[(i, 3)]]);
-                let u = p.times_q(hq);
-                let innovation = nu_i - dot4(hq, x.q - q_pred);
-                absorb(&mut x, &mut p, &u, dot4(hq, u.q), ra, innovation)?;
-            }
+            let h: [f64x4; 3] =
+                core::array::from_fn(|i| f64x4::new([hf[(i, 0)], hf[(i, 1)], hf[(i, 2)], hf[(i, 3)]]));
+            let u = h.map(|hq| p.times_q(hq));
+            let s3 = core::array::from_fn(|i| {
+                core::array::from_fn(|j| dot4(h[i], u[j].q) + if i == j { ra } else { 0.0 })
+            });
+            absorb3(&mut x, &mut p, &u, s3, [nu.x, nu.y, nu.z])?;
         }
         // Gyroscope rows: ω_IMU,i = ω_i + δ_i, linear.
-        for (i, g) in [gyro.x, gyro.y, gyro.z].into_iter().enumerate() {
-            let u = p.column_w(i).plus(&p.column_d(i));
-            let innovation = g - (lane(x.w, i) + lane(x.d, i));
-            absorb(&mut x, &mut p, &u, lane(u.w, i) + lane(u.d, i), rg, innovation)?;
-        }
+        let u: [Blocks; 3] = core::array::from_fn(|j| p.column_w(j).plus(&p.column_d(j)));
+        let s3 = core::array::from_fn(|i| {
+            core::array::from_fn(|j| lane(u[j].w, i) + lane(u[j].d, i) + if i == j { rg } else { 0.0 })
+        });
+        let nu_g = [gyro.x, gyro.y, gyro.z];
+        let innovation = core::array::from_fn(|i| nu_g[i] - (lane(x.w, i) + lane(x.d, i)));
+        absorb3(&mut x, &mut p, &u, s3, innovation)?;
         let mut rest = None;
         if s.rest_rate_std > 0.0 {
             let mut detector = self.rest.clone();
             if detector.update(dt, gyro, accel, &RestThresholds::DEFAULT) {
-                // At rest the rate is zero: the pseudo-measurement ω = 0, row by row.
+                // At rest the rate is zero: the pseudo-measurement ω = 0.
                 let rz = s.rest_rate_std * s.rest_rate_std;
-                for i in 0..3 {
-                    let u = p.column_w(i);
-                    let innovation = -lane(x.w, i);
-                    absorb(&mut x, &mut p, &u, lane(u.w, i), rz, innovation)?;
-                }
+                let u: [Blocks; 3] = core::array::from_fn(|j| p.column_w(j));
+                let s3 = core::array::from_fn(|i| {
+                    core::array::from_fn(|j| lane(u[j].w, i) + if i == j { rz } else { 0.0 })
+                });
+                let innovation = core::array::from_fn(|i| -lane(x.w, i));
+                absorb3(&mut x, &mut p, &u, s3, innovation)?;
             }
             rest = Some(detector);
         }
@@ -950,8 +979,8 @@ mod tests {
             worst.0 = worst.0.max((f.state() - x).abs().max());
             worst.1 = worst.1.max((f.covariance() - p).abs().max() / p.abs().max());
         }
-        // Same algebra, other rounding: sequential rows and block products re-associate
-        // the sums.
+        // Same algebra, other rounding: two batches of three rows, a 3×3 Cholesky factor
+        // and block products re-associate the sums.
         assert!(
             worst.0 < 1e-12 && worst.1 < 1e-12,
             "state {:e}, covariance (relative) {:e}",
