@@ -775,10 +775,10 @@ impl Filter {
         self.update_inline(s)
     }
 
-    /// [`Filter::update`] inlined into its caller, for a caller that has just built the
-    /// sample: the values then go straight from the conversion to the filter instead of
-    /// through memory, where reading them back right after they were written stalls
-    /// (store-to-load forwarding), about 10-20 ns per update measured through the C call.
+    /// [`Filter::update`] for any [`SampleView`], inlined into its caller: the C calls
+    /// pass the host's struct and the update reads it in place, where converting it to
+    /// a [`Sample`] first cost 10-20 ns an update (the copy, read back at once, stalls
+    /// on store-to-load forwarding).
     #[inline(always)]
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
         if !self.plainly_valid(s) {
