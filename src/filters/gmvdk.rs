@@ -212,7 +212,12 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
     // sin ω from cos ω (ω in [0, π/2] after the flip): one square root instead of a
     // sine, and accurate near ω = 0 where it is formed as (1 − cos)(1 + cos).
     let r = inv_sqrt((1.0 - cos) * (1.0 + cos));
-    (q1.scale(libm::sin((1.0 - h) * omega) * r) + q2.scale(libm::sin(h * omega) * r)).normalized()
+    // sin((1 − h)ω) = sin ω cos(hω) − cos ω sin(hω): both weights from one sincos. The
+    // first, cos(hω) − cos ω sin(hω)/sin ω, is near 1 − h and loses nothing to
+    // cancellation but absolutely, where its q1 term is that small anyway.
+    let (s_h, c_h) = libm::sincos(h * omega);
+    let w2 = s_h * r;
+    (q1.scale(c_h - cos * w2) + q2.scale(w2)).normalized()
 }
 
 /// `SLERP(q1, q2, ½)`: the normalised sum along the shorter arc. Equal to [`slerp`] with
@@ -646,6 +651,21 @@ mod tests {
         assert!((m.angle_to(a) - m.angle_to(b)).abs() < 1e-12);
         // Shorter arc for sign-flipped inputs.
         assert!(slerp(a, b.scale(-1.0), 0.3).angle_to(hand) < 1e-12);
+        // Near h = 1, where the first weight is a difference of two terms near cos ω,
+        // and for arcs from 1e-5 rad to nearly half a turn: eq. (16) by hand.
+        for (axis, angle) in [
+            (Vec3::new(0.0, 1.0, 1.0), 1.0),
+            (Vec3::new(0.3, -1.0, 0.2), 1e-5),
+            (Vec3::new(1.0, 2.0, -0.5), 3.0),
+        ] {
+            let b = Quat::from_axis_angle(axis, angle) * a;
+            let omega = a.dot(b).acos();
+            for h in [0.001, 0.3, 0.999] {
+                let (w1, w2) = ((1.0 - h) * omega, h * omega);
+                let hand = (a.scale(w1.sin() / omega.sin()) + b.scale(w2.sin() / omega.sin())).normalized();
+                assert!(slerp(a, b, h).dot(hand) > 1.0 - 1e-15, "angle {angle}, h {h}");
+            }
+        }
     }
 
     #[test]
