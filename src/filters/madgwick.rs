@@ -258,7 +258,7 @@ fn linv_sqrt(x: L) -> Option<L> {
     x.all(|v| v > 1e-300 && v < 1e300).then(|| x.sqrt() * (L::splat(1.0) / x))
 }
 
-/// `(a·a)` of two lane quaternions as [`Quat::dot`].
+/// `a·b` of two lane quaternions as [`Quat::dot`].
 #[inline(always)]
 fn ldot(a: Lq, b: Lq) -> L {
     (a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + a[3] * b[3])
@@ -372,8 +372,9 @@ impl Madgwick {
     /// [`LANES`] filters' steps at once, each with an accelerometer reading and all with or all
     /// without a magnetometer reading; bit-identical to calling [`Madgwick::update`] on
     /// each. `None`, with nothing changed, when a filter needs the scalar path: the
-    /// rest-bias option is on, or a lane meets an edge case (no horizontal field, zero
-    /// gradient, a non-finite result).
+    /// rest-bias option is on, or a lane meets an edge case (no horizontal field, a
+    /// squared norm outside [`inv_sqrt`]'s fast range, the expanded norm ill conditioned,
+    /// a non-finite result).
     pub(crate) fn update_lanes(
         fs: &mut [&mut Madgwick; LANES],
         dt: [f64; LANES],
@@ -682,6 +683,46 @@ mod tests {
         let worst = last.iter().cloned().fold(0.0, f64::max);
         let best = last.iter().cloned().fold(f64::INFINITY, f64::min);
         assert!(start > 2.0 && worst < 1e-2 && best < 2.5e-3, "start {start} last {last:?}");
+    }
+
+    /// Eqs. (29)-(30) as the paper writes them: integrate, then divide by the norm.
+    fn direct_step(q: Quat, dt: f64, beta: f64, gyro: Vec3, a: Vec3) -> Quat {
+        let g = gradient_imu(q, a.normalized());
+        let q_dot = (q * Quat::pure(gyro)).scale(0.5);
+        let s = beta / g.norm();
+        let next = Quat::new(
+            q.w + dt * (q_dot.w - s * g.w),
+            q.x + dt * (q_dot.x - s * g.x),
+            q.y + dt * (q_dot.y - s * g.y),
+            q.z + dt * (q_dot.z - s * g.z),
+        );
+        next.scale(1.0 / next.norm())
+    }
+
+    #[test]
+    fn the_expanded_norm_gives_the_direct_normalisation() {
+        let gyro = Vec3::new(0.3, -0.2, 0.4);
+        // An ordinary step: the norm from |p|² − 2c p·∇f + (dt β)².
+        let q = sample_q();
+        let a = Vec3::new(0.2, -0.4, 9.7);
+        let mut f = Madgwick::new(MadgwickSettings { beta_imu: 0.041, ..Default::default() });
+        f.set_quaternion(q);
+        f.update(0.01, gyro, Some(a), None).unwrap();
+        assert!(f.quaternion().dot(direct_step(q, 0.01, 0.041, gyro, a)) > 1.0 - 1e-15);
+        // Estimate upside down (half a turn about x) while the sensor is level: the
+        // gradient of (12)-(13) is then 8q, parallel to the estimate, and with dt β = 0.5
+        // the correction removes half of the prediction: |next|² ≈ (1 − dt β)², below half
+        // of |p|² + (dt β)², so the update takes the direct norm instead.
+        let q = Quat::new(0.0, 1.0, 0.0, 0.0);
+        let a = Vec3::new(0.0, 0.0, 9.81);
+        let g = gradient_imu(q, a.normalized());
+        assert_eq!((g.w, g.x, g.y, g.z), (0.0, 8.0, 0.0, 0.0));
+        let mut f = Madgwick::new(MadgwickSettings { beta_imu: 50.0, ..Default::default() });
+        f.set_quaternion(q);
+        f.update(0.01, gyro, Some(a), None).unwrap();
+        let direct = direct_step(q, 0.01, 50.0, gyro, a);
+        assert!(f.quaternion().dot(direct) > 1.0 - 1e-15, "{:?} vs {direct:?}", f.quaternion());
+        assert!((f.quaternion().norm() - 1.0).abs() < 1e-15);
     }
 
     #[test]

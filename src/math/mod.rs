@@ -39,3 +39,20 @@ pub fn inv_sqrt(x: f64) -> f64 {
 fn inv_sqrt_outside(x: f64) -> f64 {
     1.0 / x.sqrt()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::inv_sqrt;
+
+    #[test]
+    fn inv_sqrt_is_within_two_ulp_inside_and_exact_outside_its_range() {
+        for x in [1e-299, 3e-150, 1e-9, 0.37, 1.0, 1.0 + 2e-16, 2.0, 9.80665f64.powi(2), 6.2e17, 9e299] {
+            let (fast, plain) = (inv_sqrt(x), 1.0 / x.sqrt());
+            assert!((fast - plain).abs() <= 2.0 * f64::EPSILON * plain, "{x}: {fast} vs {plain}");
+        }
+        // Outside [1e-300, 1e300] 1/x would be subnormal or infinite: the plain form.
+        for x in [1e-310, 5e-301, 2e300, f64::MAX] {
+            assert_eq!(inv_sqrt(x).to_bits(), (1.0 / x.sqrt()).to_bits(), "{x}");
+        }
+    }
+}

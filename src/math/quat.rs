@@ -286,6 +286,23 @@ mod tests {
     }
 
     #[test]
+    fn renormalized_matches_the_exact_normalisation() {
+        let unit = Quat::new(0.7, -0.2, 0.5, 0.3).normalized();
+        // Near unit (a product of unit quaternions): the Newton step, as unit as division.
+        for eps in [0.0, 3e-16, -7e-16, 4e-12, -9e-9] {
+            let q = unit.scale(1.0 + eps);
+            let (newton, exact) = (q.renormalized().unwrap(), q.try_normalized().unwrap());
+            assert!((newton.norm() - 1.0).abs() <= 2.0 * f64::EPSILON, "{eps}: {}", newton.norm());
+            assert!((newton.dot(exact) - 1.0).abs() <= 2.0 * f64::EPSILON, "{eps}");
+        }
+        // Farther from unit: the exact normalisation, bit for bit; none for zero or NaN.
+        let q = unit.scale(1.5);
+        assert_eq!(q.renormalized(), q.try_normalized());
+        assert_eq!(Quat::new(0.0, 0.0, 0.0, 0.0).renormalized(), None);
+        assert_eq!(Quat::new(f64::NAN, 0.0, 0.0, 1.0).renormalized(), None);
+    }
+
+    #[test]
     fn rows_rotate_both_ways() {
         let q = Quat::new(0.7, -0.2, 0.5, 0.3).normalized();
         let [r0, r1, r2] = q.rows();
