@@ -701,10 +701,17 @@ impl Filter {
     /// Checks a sample against every rule without touching the state.
     #[inline]
     pub fn check(&self, s: &Sample) -> Result<(), Error> {
+        self.check_view(s)
+    }
+
+    /// [`Filter::check`] for any [`SampleView`]: the quick test on the sample where it
+    /// lies, the exact rules (on a copy) only when it fails.
+    #[inline(always)]
+    fn check_view<S: SampleView>(&self, s: &S) -> Result<(), Error> {
         if self.plainly_valid(s) {
             Ok(())
         } else {
-            self.check_exactly(s)
+            self.check_exactly(&s.to_sample())
         }
     }
 
@@ -781,9 +788,7 @@ impl Filter {
     /// on store-to-load forwarding).
     #[inline(always)]
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
-        if !self.plainly_valid(s) {
-            self.check_exactly(&s.to_sample())?;
-        }
+        self.check_view(s)?;
         // check() guarantees a gyro reading.
         let gyro = s.gyro().unwrap_or_default();
         let initial = if self.flags & flags::INITIALIZED == 0 && !self.core.own_startup() {
