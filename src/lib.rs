@@ -26,6 +26,7 @@
 pub mod eval;
 /// cbindgen:ignore
 pub mod filters;
+mod isa;
 /// cbindgen:ignore
 pub mod math;
 

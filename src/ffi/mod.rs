@@ -476,7 +476,11 @@ pub unsafe extern "C" fn orient_filter_update(
             return Err(null());
         }
         let s = host_sample(&*sample)?;
-        h.filter.update_inline(&s).map_err(from_core)
+        crate::isa::widest(
+            #[inline(always)]
+            || h.filter.update_inline(&s),
+        )
+        .map_err(from_core)
     })
 }
 

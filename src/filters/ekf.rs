@@ -684,6 +684,7 @@ impl Ekf {
         d
     }
 
+    #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         let s = self.settings;
         let mut step = Step::default();

@@ -489,6 +489,7 @@ impl Gmvdk {
         self.g0 = accel.norm();
     }
 
+    #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         let mut step = Step::default();
         if let Some(mut s) = self.startup.clone() {

@@ -477,7 +477,23 @@ impl Core {
 
     /// One update in the native frame; `None` (and no change) on numerical failure.
     fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        each!(self, f => f.update(dt, gyro, accel, mag))
+        match self {
+            Core::Madgwick(f) => f.update(dt, gyro, accel, mag),
+            Core::Mahony(f) => f.update(dt, gyro, accel, mag),
+            Core::Complementary(f) => f.update(dt, gyro, accel, mag),
+            Core::Ekf(f) => crate::isa::widest(
+                #[inline(always)]
+                || f.update(dt, gyro, accel, mag),
+            ),
+            Core::Gmvdk(f) => crate::isa::widest(
+                #[inline(always)]
+                || f.update(dt, gyro, accel, mag),
+            ),
+            Core::Robust(f) => crate::isa::widest(
+                #[inline(always)]
+                || f.update(dt, gyro, accel, mag),
+            ),
+        }
     }
 
     fn diagnostics(&self) -> Diagnostics {
@@ -779,7 +795,10 @@ impl Filter {
 
     /// One step. On error nothing changes: the state is bit-identical to before.
     pub fn update(&mut self, s: &Sample) -> Result<(), Error> {
-        self.update_inline(s)
+        crate::isa::widest(
+            #[inline(always)]
+            || self.update_inline(s),
+        )
     }
 
     /// [`Filter::update`] for any [`SampleView`], inlined into its caller: the C calls
@@ -856,7 +875,10 @@ impl Filter {
             <[&Sample; LANES]>::try_from(&samples[..]),
         );
         if let (Ok(fs), Ok(ss)) = lanes {
-            if let Some(result) = Filter::try_lanes(fs, ss) {
+            if let Some(result) = crate::isa::widest(
+                #[inline(always)]
+                || Filter::try_lanes(fs, ss),
+            ) {
                 return result;
             }
         }
@@ -1115,6 +1137,35 @@ mod tests {
             gyro: Some(Vec3::new(0.5 * t.sin(), 0.3 * (1.3 * t).cos(), 0.2 + 0.1 * k as f64)),
             accel: Some(Vec3::new(0.3 * t.cos(), 0.2 * t.sin() + 0.1, 9.8)),
             mag: mag.then(|| Vec3::new(20.0 + t.sin(), 3.0 * k as f64, -40.0)),
+        }
+    }
+
+    /// `Filter::update` runs in the widest encoding the CPU has (crate::isa: AVX on most
+    /// x86-64 machines); `update_inline` called here is compiled into this test for the
+    /// baseline. Both must give the same bits, step by step, in every kind's whole state.
+    /// (On a CPU without AVX, or off x86-64, both are the same code.)
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn the_wide_encoding_gives_the_baseline_bits() {
+        for kind in Kind::ALL {
+            for mag in [false, true] {
+                let config = Config::new(kind).unwrap();
+                let (mut wide, mut base) = (Filter::new(&config).unwrap(), Filter::new(&config).unwrap());
+                let (mut a, mut b) = (vec![0; wide.state_size()], vec![0; base.state_size()]);
+                for i in 0..3000 {
+                    let mut s = rig_sample(1, i, mag);
+                    if i % 7 == 3 {
+                        s.accel = None; // a gyro-only step
+                    }
+                    if i % 500 == 250 {
+                        s.dt = 5.0; // a gap
+                    }
+                    assert_eq!(wide.update(&s), base.update_inline(&s), "{kind:?} step {i}");
+                    wide.save(&mut a).unwrap();
+                    base.save(&mut b).unwrap();
+                    assert!(a == b, "{kind:?} (mag {mag}): the states differ after step {i}");
+                }
+            }
         }
     }
 

@@ -433,6 +433,7 @@ impl Robust {
         c.bool(&mut self.hard_iron_on);
     }
 
+    #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         let mut next = self.clone();
         let step = next.step(dt, gyro, accel, mag);
