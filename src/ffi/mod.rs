@@ -476,11 +476,7 @@ pub unsafe extern "C" fn orient_filter_update(
             return Err(null());
         }
         let s = host_sample(&*sample)?;
-        crate::isa::widest(
-            #[inline(always)]
-            || h.filter.update_inline(&s),
-        )
-        .map_err(from_core)
+        h.filter.update_inline(&s).map_err(from_core)
     })
 }
 

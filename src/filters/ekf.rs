@@ -63,6 +63,7 @@
 use super::params::{id, ParamSpec};
 use super::rest::{lp_gain, RestDetector, RestThresholds};
 use super::Step;
+use crate::math::lanes::Lanes;
 use crate::math::{Quat, Vec3};
 use nalgebra::{Matrix3, Matrix3x4, Matrix4, Matrix4x3, SMatrix, Vector3};
 use wide::f64x4;
@@ -264,53 +265,81 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
 
 /// A vector in the state's block layout `[q (4), ω (3), δ (3)]`, each block one SIMD
 /// value of four lanes (the three-long blocks with a fourth lane that stays zero).
+///
+/// Stored as `wide::f64x4`; an update works on any [`Lanes`] type (`V`), 256-bit AVX
+/// registers where the CPU has them (`crate::isa::widest_lanes`), loaded at its start and
+/// stored at its end.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Blocks {
-    q: f64x4,
-    w: f64x4,
-    d: f64x4,
+struct Blocks<V = f64x4> {
+    q: V,
+    w: V,
+    d: V,
+}
+
+/// `[f(0), f(1), …]`, always inlined: `core::array::from_fn` may stay out of line, and
+/// in the AVX copy (`crate::isa`) an out-of-line call runs baseline code, where the
+/// lanes' operations are calls too.
+#[inline(always)]
+fn array<T: Copy, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
+    let mut out = [f(0); N];
+    for (i, o) in out.iter_mut().enumerate().skip(1) {
+        *o = f(i);
+    }
+    out
 }
 
 /// A three-vector in four lanes, the fourth zero.
 #[inline(always)]
-fn lanes3(x: f64, y: f64, z: f64) -> f64x4 {
-    f64x4::new([x, y, z, 0.0])
+fn lanes3<V: Lanes>(t: V::Token, x: f64, y: f64, z: f64) -> V {
+    V::new(t, [x, y, z, 0.0])
 }
 
 /// Lane `i` of `v`.
 #[inline(always)]
-fn lane(v: f64x4, i: usize) -> f64 {
+fn lane<V: Lanes>(v: V, i: usize) -> f64 {
     v.to_array()[i]
 }
 
 /// The dot product of two quaternion blocks, summed as `((a0 b0 + a1 b1) + a2 b2) + a3 b3`.
 #[inline(always)]
-fn dot4(a: f64x4, b: f64x4) -> f64 {
+fn dot4<V: Lanes>(a: V, b: V) -> f64 {
     let p = (a * b).to_array();
     ((p[0] + p[1]) + p[2]) + p[3]
 }
 
-impl Blocks {
+impl<V: Lanes> Blocks<V> {
     #[inline(always)]
-    fn plus(&self, o: &Blocks) -> Blocks {
+    fn load(b: &Blocks, t: V::Token) -> Blocks<V> {
+        Blocks { q: V::load(t, b.q), w: V::load(t, b.w), d: V::load(t, b.d) }
+    }
+
+    #[inline(always)]
+    fn store(&self) -> Blocks {
+        Blocks { q: self.q.store(), w: self.w.store(), d: self.d.store() }
+    }
+
+    #[inline(always)]
+    fn plus(&self, o: &Blocks<V>) -> Blocks<V> {
         Blocks { q: self.q + o.q, w: self.w + o.w, d: self.d + o.d }
     }
 
     #[inline(always)]
-    fn minus(&self, o: &Blocks) -> Blocks {
+    fn minus(&self, o: &Blocks<V>) -> Blocks<V> {
         Blocks { q: self.q - o.q, w: self.w - o.w, d: self.d - o.d }
     }
 
     #[inline(always)]
-    fn scaled(&self, a: f64) -> Blocks {
-        let a = f64x4::splat(a);
+    fn scaled(&self, a: f64) -> Blocks<V> {
+        let a = V::splat(self.q.token(), a);
         Blocks { q: self.q * a, w: self.w * a, d: self.d * a }
     }
 
     fn is_finite(&self) -> bool {
         all_finite([&self.q, &self.w, &self.d])
     }
+}
 
+impl Blocks {
     /// The state's ten values in order [q, ω, δ], for reading and writing in place.
     fn values_mut(&mut self) -> impl Iterator<Item = &mut f64> {
         let Blocks { q, w, d } = self;
@@ -323,7 +352,7 @@ impl Blocks {
 
 /// A block of P with `C` columns of four lanes: the q rows, or the ω or δ rows with a
 /// fourth lane that stays zero.
-type Cols<const C: usize> = [f64x4; C];
+type Cols<const C: usize, V = f64x4> = [V; C];
 
 /// The symmetric 10×10 state covariance P, kept as the six blocks of its upper
 /// triangle (the lower ones are their transposes). The model couples q with ω (through
@@ -337,79 +366,96 @@ type Cols<const C: usize> = [f64x4; C];
 /// turns LLVM's SLP vectoriser off (`.cargo/config.toml`): it slowed the small filters'
 /// dependent chains by 7-24 %.
 #[derive(Clone, Debug, PartialEq)]
-struct Cov {
-    qq: Cols<4>,
-    qw: Cols<3>,
-    qd: Cols<3>,
-    ww: Cols<3>,
-    wd: Cols<3>,
-    dd: Cols<3>,
+struct Cov<V = f64x4> {
+    qq: Cols<4, V>,
+    qw: Cols<3, V>,
+    qd: Cols<3, V>,
+    ww: Cols<3, V>,
+    wd: Cols<3, V>,
+    dd: Cols<3, V>,
 }
 
 /// `e_j s`: lane `j` set to `s`, the others zero.
 #[inline(always)]
-fn unit(j: usize, s: f64) -> f64x4 {
+fn unit<V: Lanes>(t: V::Token, j: usize, s: f64) -> V {
     let mut v = [0.0; 4];
     v[j] = s;
-    f64x4::new(v)
+    V::new(t, v)
 }
 
 /// `s I` as three padded columns.
 #[inline(always)]
-fn diag3(s: f64) -> Cols<3> {
-    core::array::from_fn(|j| unit(j, s))
+fn diag3<V: Lanes>(t: V::Token, s: f64) -> Cols<3, V> {
+    array(
+        #[inline(always)]
+        |j| unit(t, j, s),
+    )
 }
 
 /// The columns of a 4-row nalgebra matrix.
 #[inline(always)]
-fn cols<const C: usize>(m: &SMatrix<f64, 4, C>) -> Cols<C> {
+fn cols<V: Lanes, const C: usize>(t: V::Token, m: &SMatrix<f64, 4, C>) -> Cols<C, V> {
     let s = m.as_slice();
-    core::array::from_fn(|j| f64x4::new([s[4 * j], s[4 * j + 1], s[4 * j + 2], s[4 * j + 3]]))
+    array(
+        #[inline(always)]
+        |j| V::new(t, [s[4 * j], s[4 * j + 1], s[4 * j + 2], s[4 * j + 3]]),
+    )
 }
 
 /// The lanes of every column, for reading single entries: `[column][row]`.
 #[inline(always)]
-fn entries<const C: usize>(c: &Cols<C>) -> [[f64; 4]; C] {
+fn entries<V: Lanes, const C: usize>(c: &Cols<C, V>) -> [[f64; 4]; C] {
     c.map(|v| v.to_array())
 }
 
 /// `A B` for `A` given by its columns (4×K) and `B` (K×C) by its entries `b(k, j)`:
 /// column `j` is `Σ_k a_k b(k, j)`, summed in k order (nalgebra's order).
 #[inline(always)]
-fn mul_cols<const K: usize, const C: usize>(a: &Cols<K>, b: impl Fn(usize, usize) -> f64) -> Cols<C> {
-    core::array::from_fn(|j| {
-        let mut acc = a[0] * f64x4::splat(b(0, j));
-        for (k, ak) in a.iter().enumerate().skip(1) {
-            acc += *ak * f64x4::splat(b(k, j));
-        }
-        acc
-    })
+fn mul_cols<V: Lanes, const K: usize, const C: usize>(
+    a: &Cols<K, V>,
+    b: impl Fn(usize, usize) -> f64,
+) -> Cols<C, V> {
+    let t = a[0].token();
+    array(
+        #[inline(always)]
+        |j| {
+            let mut acc = a[0] * V::splat(t, b(0, j));
+            for (k, ak) in a.iter().enumerate().skip(1) {
+                acc += *ak * V::splat(t, b(k, j));
+            }
+            acc
+        },
+    )
 }
 
 /// Column-wise `x + y`.
 #[inline(always)]
-fn add_cols<const C: usize>(x: Cols<C>, y: Cols<C>) -> Cols<C> {
-    core::array::from_fn(|j| x[j] + y[j])
+fn add_cols<V: Lanes, const C: usize>(x: Cols<C, V>, y: Cols<C, V>) -> Cols<C, V> {
+    array(
+        #[inline(always)]
+        |j| x[j] + y[j],
+    )
 }
 
 /// `M ← M − Σ_k u_k w_kᵀ`: entry `(i, j)` is `m_ij − ((u_0,i w_0,j + u_1,i w_1,j) +
 /// u_2,i w_2,j)`, so with `u = w` entries `(i, j)` and `(j, i)` come out the same.
 #[inline(always)]
-fn sub_rank3<const C: usize>(m: &mut Cols<C>, u: [f64x4; 3], w: [f64x4; 3]) {
+fn sub_rank3<V: Lanes, const C: usize>(m: &mut Cols<C, V>, u: [V; 3], w: [V; 3]) {
+    let tk = u[0].token();
     let w = w.map(|c| c.to_array());
     for (j, col) in m.iter_mut().enumerate() {
-        let t = u[0] * f64x4::splat(w[0][j]) + u[1] * f64x4::splat(w[1][j]);
-        *col -= t + u[2] * f64x4::splat(w[2][j]);
+        let t = u[0] * V::splat(tk, w[0][j]) + u[1] * V::splat(tk, w[1][j]);
+        *col -= t + u[2] * V::splat(tk, w[2][j]);
     }
 }
 
 /// `M ← M − u wᵀ` for a block off P's diagonal (stored once, so no twin entry has to
 /// come out the same): the heading correction's restricted-gain terms.
 #[inline(always)]
-fn sub_outer<const C: usize>(m: &mut Cols<C>, u: f64x4, w: f64x4) {
+fn sub_outer<V: Lanes, const C: usize>(m: &mut Cols<C, V>, u: V, w: V) {
     let w = w.to_array();
     for (j, col) in m.iter_mut().enumerate() {
-        *col -= u * f64x4::splat(w[j]);
+        *col -= u * V::splat(u.token(), w[j]);
     }
 }
 
@@ -417,9 +463,11 @@ fn sub_outer<const C: usize>(m: &mut Cols<C>, u: f64x4, w: f64x4) {
 /// NaN for an infinite or NaN one, and a NaN survives the sum. (The zero fourth lanes of
 /// the three-row blocks stay finite unless a real entry is not.)
 #[inline(always)]
-fn all_finite<'a>(cols: impl IntoIterator<Item = &'a f64x4>) -> bool {
-    let zero = f64x4::splat(0.0);
-    let acc = cols.into_iter().fold(zero, |acc, c| acc + *c * zero);
+fn all_finite<'a, V: Lanes + 'a>(cols: impl IntoIterator<Item = &'a V>) -> bool {
+    let mut cols = cols.into_iter();
+    let Some(first) = cols.next() else { return true };
+    let zero = V::splat(first.token(), 0.0);
+    let acc = cols.fold(*first * zero, |acc, c| acc + *c * zero);
     acc.to_array() == [0.0; 4]
 }
 
@@ -427,12 +475,15 @@ impl Cov {
     fn diagonal(q: f64, w: f64, d: f64) -> Cov {
         let zero = [f64x4::splat(0.0); 3];
         Cov {
-            qq: core::array::from_fn(|j| unit(j, q)),
+            qq: array(
+                #[inline(always)]
+                |j| unit((), j, q),
+            ),
             qw: zero,
             qd: zero,
-            ww: diag3(w),
+            ww: diag3((), w),
             wd: zero,
-            dd: diag3(d),
+            dd: diag3((), d),
         }
     }
 
@@ -458,33 +509,62 @@ impl Cov {
         };
         &mut column.as_array_mut()[row]
     }
+}
+
+impl<V: Lanes> Cov<V> {
+    #[inline(always)]
+    fn load(p: &Cov, t: V::Token) -> Cov<V> {
+        let l = |c: &[f64x4; 3]| c.map(|v| V::load(t, v));
+        Cov {
+            qq: p.qq.map(|v| V::load(t, v)),
+            qw: l(&p.qw),
+            qd: l(&p.qd),
+            ww: l(&p.ww),
+            wd: l(&p.wd),
+            dd: l(&p.dd),
+        }
+    }
+
+    #[inline(always)]
+    fn store(&self) -> Cov {
+        let s = |c: &[V; 3]| c.map(|v| v.store());
+        Cov {
+            qq: self.qq.map(|v| v.store()),
+            qw: s(&self.qw),
+            qd: s(&self.qd),
+            ww: s(&self.ww),
+            wd: s(&self.wd),
+            dd: s(&self.dd),
+        }
+    }
 
     /// `P hᵀ` for a measurement row that reads q only, through `hq`.
     #[inline(always)]
-    fn times_q(&self, hq: f64x4) -> Blocks {
+    fn times_q(&self, hq: V) -> Blocks<V> {
+        let t = hq.token();
         let h = hq.to_array();
-        let q = mul_cols::<4, 1>(&self.qq, |k, _| h[k])[0];
+        let q = mul_cols::<V, 4, 1>(&self.qq, |k, _| h[k])[0];
         let w = self.qw.map(|c| dot4(c, hq));
         let d = self.qd.map(|c| dot4(c, hq));
-        Blocks { q, w: lanes3(w[0], w[1], w[2]), d: lanes3(d[0], d[1], d[2]) }
+        Blocks { q, w: lanes3(t, w[0], w[1], w[2]), d: lanes3(t, d[0], d[1], d[2]) }
     }
 
     /// Column `4 + i` of P (the ω_i column).
     #[inline(always)]
-    fn column_w(&self, i: usize) -> Blocks {
+    fn column_w(&self, i: usize) -> Blocks<V> {
         let wd = entries(&self.wd);
-        Blocks { q: self.qw[i], w: self.ww[i], d: lanes3(wd[0][i], wd[1][i], wd[2][i]) }
+        Blocks { q: self.qw[i], w: self.ww[i], d: lanes3(self.ww[0].token(), wd[0][i], wd[1][i], wd[2][i]) }
     }
 
     /// Column `7 + i` of P (the δ_i column).
     #[inline(always)]
-    fn column_d(&self, i: usize) -> Blocks {
+    fn column_d(&self, i: usize) -> Blocks<V> {
         Blocks { q: self.qd[i], w: self.wd[i], d: self.dd[i] }
     }
 
     /// `P ← P − Σ_k v_k v_kᵀ`.
     #[inline(always)]
-    fn subtract_rank3(&mut self, v: &[Blocks; 3]) {
+    fn subtract_rank3(&mut self, v: &[Blocks<V>; 3]) {
         let (q, w, d) = (v.map(|b| b.q), v.map(|b| b.w), v.map(|b| b.d));
         sub_rank3(&mut self.qq, q, q);
         sub_rank3(&mut self.qw, q, w);
@@ -509,7 +589,13 @@ impl Cov {
 /// instead of three. Each entry of `V Vᵀ` is `Σ_k v_k,i v_k,j` summed in k order, so P
 /// stays exactly symmetric. `None` when S is not positive definite and finite.
 #[inline(always)]
-fn absorb3(x: &mut Blocks, p: &mut Cov, u: &[Blocks; 3], s: [[f64; 3]; 3], nu: [f64; 3]) -> Option<()> {
+fn absorb3<V: Lanes>(
+    x: &mut Blocks<V>,
+    p: &mut Cov<V>,
+    u: &[Blocks<V>; 3],
+    s: [[f64; 3]; 3],
+    nu: [f64; 3],
+) -> Option<()> {
     let l00 = s[0][0].sqrt();
     let (l10, l20) = (s[0][1] / l00, s[0][2] / l00);
     let d1 = s[1][1] - l10 * l10;
@@ -601,20 +687,20 @@ pub fn gravity_model(q: Quat, g: f64) -> (Vec3, Matrix3x4<f64>) {
     (f, h)
 }
 
-fn quat_of(v: f64x4) -> Quat {
+fn quat_of<V: Lanes>(v: V) -> Quat {
     let [w, x, y, z] = v.to_array();
     Quat::new(w, x, y, z)
 }
 
-fn vector_of(q: Quat) -> f64x4 {
-    f64x4::new([q.w, q.x, q.y, q.z])
+fn vector_of<V: Lanes>(t: V::Token, q: Quat) -> V {
+    V::new(t, [q.w, q.x, q.y, q.z])
 }
 
 impl Ekf {
     pub fn new(settings: EkfSettings) -> Ekf {
         let mut f = Ekf {
             settings,
-            x: Blocks { q: vector_of(Quat::IDENTITY), w: f64x4::splat(0.0), d: f64x4::splat(0.0) },
+            x: Blocks { q: vector_of((), Quat::IDENTITY), w: f64x4::splat(0.0), d: f64x4::splat(0.0) },
             p: Cov::diagonal(0.0, 0.0, 0.0),
             rest: RestDetector::default(),
             adapt: 0.0,
@@ -636,7 +722,7 @@ impl Ekf {
 
     /// Sets the orientation (native NED), keeping the covariance.
     pub fn set_quaternion(&mut self, q: Quat) {
-        self.x.q = vector_of(q);
+        self.x.q = vector_of((), q);
     }
 
     /// Visits the state as ten values [q, ω, δ], then P as a full 10×10 matrix in
@@ -684,8 +770,36 @@ impl Ekf {
         d
     }
 
-    #[inline(always)]
+    /// One step; `None`, with nothing changed, when it would not be finite. Runs with
+    /// 256-bit lanes where the CPU has AVX (`crate::isa::widest_lanes`; the same bits).
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        struct Run<'a> {
+            ekf: &'a mut Ekf,
+            dt: f64,
+            gyro: Vec3,
+            accel: Option<Vec3>,
+            mag: Option<Vec3>,
+        }
+        impl crate::isa::WithLanes for Run<'_> {
+            type Out = Option<Step>;
+            #[inline(always)]
+            fn run<V: Lanes>(self, t: V::Token) -> Option<Step> {
+                self.ekf.update_in::<V>(t, self.dt, self.gyro, self.accel, self.mag)
+            }
+        }
+        crate::isa::widest_lanes(Run { ekf: self, dt, gyro, accel, mag })
+    }
+
+    /// [`Ekf::update`] with lane type `V`.
+    #[inline(always)]
+    fn update_in<V: Lanes>(
+        &mut self,
+        tk: V::Token,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+    ) -> Option<Step> {
         let s = self.settings;
         let mut step = Step::default();
 
@@ -704,38 +818,49 @@ impl Ekf {
         let a_w = libm::exp(-dt / s.tau_omega);
         let a_d = libm::exp(-dt / s.tau_drift);
         let q = quat_of(self.x.q);
-        let mut x = Blocks { q: self.x.q, w: self.x.w * f64x4::splat(a_w), d: self.x.d * f64x4::splat(a_d) };
+        let x0 = Blocks::<V>::load(&self.x, tk);
+        let mut x = Blocks { q: x0.q, w: x0.w * V::splat(tk, a_w), d: x0.d * V::splat(tk, a_d) };
         let (e, de) = exp_and_jacobian(Vec3::new(lane(x.w, 0), lane(x.w, 1), lane(x.w, 2)), 0.5 * dt);
-        x.q = vector_of(q * e);
-        let dq_dw: Cols<3> = mul_cols(&cols(&left(q)), |k, j| de[(k, j)]); // D = ∂q⁺/∂ω⁺ (4×3)
+        x.q = vector_of(tk, q * e);
+        let dq_dw: Cols<3, V> = mul_cols(&cols(tk, &left(q)), |k, j| de[(k, j)]); // D = ∂q⁺/∂ω⁺ (4×3)
         let qw = s.omega_std * s.omega_std * (1.0 - a_w * a_w);
         let qd = s.drift_std * s.drift_std * (1.0 - a_d * a_d);
         let r = right(e);
-        let rc = cols(&r);
-        let a = dq_dw.map(|c| c * f64x4::splat(a_w)); // a_ω D
-        let p0 = &self.p;
+        let rc = cols(tk, &r);
+        let a = dq_dw.map(|c| c * V::splat(tk, a_w)); // a_ω D
+        let p0 = &Cov::<V>::load(&self.p, tk);
         let (qq0, qw0, qd0) = (entries(&p0.qq), entries(&p0.qw), entries(&p0.qd));
         let (ww0, wd0) = (entries(&p0.ww), entries(&p0.wd));
         // (A B)(k, j) reads B's column j, row k; (A Bᵀ) reads B's column k, row j.
-        let t: Cols<4> = add_cols(mul_cols(&rc, |k, j| qq0[j][k]), mul_cols(&a, |k, j| qw0[k][j]));
-        let b: Cols<3> = add_cols(mul_cols(&rc, |k, j| qw0[j][k]), mul_cols(&a, |k, j| ww0[j][k]));
-        let p_qw: Cols<3> = core::array::from_fn(|j| b[j] * f64x4::splat(a_w) + dq_dw[j] * f64x4::splat(qw));
+        let t: Cols<4, V> = add_cols(mul_cols(&rc, |k, j| qq0[j][k]), mul_cols(&a, |k, j| qw0[k][j]));
+        let b: Cols<3, V> = add_cols(mul_cols(&rc, |k, j| qw0[j][k]), mul_cols(&a, |k, j| ww0[j][k]));
+        let p_qw: Cols<3, V> = array(
+            #[inline(always)]
+            |j| b[j] * V::splat(tk, a_w) + dq_dw[j] * V::splat(tk, qw),
+        );
         let d_e = entries(&dq_dw);
-        let p_qq: Cols<4> = add_cols(mul_cols(&t, |k, j| r[(j, k)]), mul_cols(&p_qw, |k, j| d_e[k][j]));
-        let p_qd: Cols<3> = add_cols(mul_cols(&rc, |k, j| qd0[j][k]), mul_cols(&a, |k, j| wd0[j][k]));
+        let p_qq: Cols<4, V> = add_cols(mul_cols(&t, |k, j| r[(j, k)]), mul_cols(&p_qw, |k, j| d_e[k][j]));
+        let p_qd: Cols<3, V> = add_cols(mul_cols(&rc, |k, j| qd0[j][k]), mul_cols(&a, |k, j| wd0[j][k]));
         let pq = entries(&p_qq);
-        let half = f64x4::splat(0.5);
-        let (aww, awd, add) = (f64x4::splat(a_w * a_w), f64x4::splat(a_w * a_d), f64x4::splat(a_d * a_d));
+        let half = V::splat(tk, 0.5);
+        let (aww, awd, add) = (V::splat(tk, a_w * a_w), V::splat(tk, a_w * a_d), V::splat(tk, a_d * a_d));
         let mut p = Cov {
             // (P + Pᵀ)/2: column j plus row j.
-            qq: core::array::from_fn(|j| {
-                (p_qq[j] + f64x4::new([pq[0][j], pq[1][j], pq[2][j], pq[3][j]])) * half
-            }),
+            qq: array(
+                #[inline(always)]
+                |j| (p_qq[j] + V::new(tk, [pq[0][j], pq[1][j], pq[2][j], pq[3][j]])) * half,
+            ),
             qw: p_qw,
-            qd: p_qd.map(|c| c * f64x4::splat(a_d)),
-            ww: core::array::from_fn(|j| p0.ww[j] * aww + unit(j, qw)),
+            qd: p_qd.map(|c| c * V::splat(tk, a_d)),
+            ww: array(
+                #[inline(always)]
+                |j| p0.ww[j] * aww + unit(tk, j, qw),
+            ),
             wd: p0.wd.map(|c| c * awd),
-            dd: core::array::from_fn(|j| p0.dd[j] * add + unit(j, qd)),
+            dd: array(
+                #[inline(always)]
+                |j| p0.dd[j] * add + unit(tk, j, qd),
+            ),
         };
 
         // ---- update with z = [f, ω_IMU], eqs. (11)-(13) ----
@@ -768,21 +893,41 @@ impl Ekf {
                 adapt += (nu.norm_squared() / 3.0 - adapt) * lp_gain(dt, s.accel_adapt_tau);
                 ra = ra.max(adapt * colour);
             }
-            let h: [f64x4; 3] =
-                core::array::from_fn(|i| f64x4::new([hf[(i, 0)], hf[(i, 1)], hf[(i, 2)], hf[(i, 3)]]));
+            let h: [V; 3] = array(
+                #[inline(always)]
+                |i| V::new(tk, [hf[(i, 0)], hf[(i, 1)], hf[(i, 2)], hf[(i, 3)]]),
+            );
             let u = h.map(|hq| p.times_q(hq));
-            let s3 = core::array::from_fn(|i| {
-                core::array::from_fn(|j| dot4(h[i], u[j].q) + if i == j { ra } else { 0.0 })
-            });
+            let s3 = array(
+                #[inline(always)]
+                |i| {
+                    array(
+                        #[inline(always)]
+                        |j| dot4(h[i], u[j].q) + if i == j { ra } else { 0.0 },
+                    )
+                },
+            );
             absorb3(&mut x, &mut p, &u, s3, [nu.x, nu.y, nu.z])?;
         }
         // Gyroscope rows: ω_IMU,i = ω_i + δ_i, linear.
-        let u: [Blocks; 3] = core::array::from_fn(|j| p.column_w(j).plus(&p.column_d(j)));
-        let s3 = core::array::from_fn(|i| {
-            core::array::from_fn(|j| lane(u[j].w, i) + lane(u[j].d, i) + if i == j { rg } else { 0.0 })
-        });
+        let u: [Blocks<V>; 3] = array(
+            #[inline(always)]
+            |j| p.column_w(j).plus(&p.column_d(j)),
+        );
+        let s3 = array(
+            #[inline(always)]
+            |i| {
+                array(
+                    #[inline(always)]
+                    |j| lane(u[j].w, i) + lane(u[j].d, i) + if i == j { rg } else { 0.0 },
+                )
+            },
+        );
         let nu_g = [gyro.x, gyro.y, gyro.z];
-        let innovation = core::array::from_fn(|i| nu_g[i] - (lane(x.w, i) + lane(x.d, i)));
+        let innovation = array(
+            #[inline(always)]
+            |i| nu_g[i] - (lane(x.w, i) + lane(x.d, i)),
+        );
         absorb3(&mut x, &mut p, &u, s3, innovation)?;
         let mut rest = None;
         if s.rest_rate_std > 0.0 {
@@ -790,11 +935,23 @@ impl Ekf {
             if detector.update(dt, gyro, accel, &RestThresholds::DEFAULT) {
                 // At rest the rate is zero: the pseudo-measurement ω = 0.
                 let rz = s.rest_rate_std * s.rest_rate_std;
-                let u: [Blocks; 3] = core::array::from_fn(|j| p.column_w(j));
-                let s3 = core::array::from_fn(|i| {
-                    core::array::from_fn(|j| lane(u[j].w, i) + if i == j { rz } else { 0.0 })
-                });
-                let innovation = core::array::from_fn(|i| -lane(x.w, i));
+                let u: [Blocks<V>; 3] = array(
+                    #[inline(always)]
+                    |j| p.column_w(j),
+                );
+                let s3 = array(
+                    #[inline(always)]
+                    |i| {
+                        array(
+                            #[inline(always)]
+                            |j| lane(u[j].w, i) + if i == j { rz } else { 0.0 },
+                        )
+                    },
+                );
+                let innovation = array(
+                    #[inline(always)]
+                    |i| -lane(x.w, i),
+                );
                 absorb3(&mut x, &mut p, &u, s3, innovation)?;
             }
             rest = Some(detector);
@@ -805,7 +962,7 @@ impl Ekf {
         if !(q_norm.is_finite() && q_norm > 1e-3) {
             return None;
         }
-        x.q /= f64x4::splat(q_norm);
+        x.q /= V::splat(tk, q_norm);
 
         // ---- heading from the magnetometer (moves heading only) ----
         if let (Some(m), true) = (mag, step.used_accel) {
@@ -816,8 +973,8 @@ impl Ekf {
                 step.used_mag = true;
                 let innovation = -libm::atan2(me.y, me.x);
                 // Direction of a heading change in q: ∂q/∂ψ = ½ ẑ ⊗ q.
-                let dq = vector_of(Quat::new(0.0, 0.0, 0.0, 0.5) * q);
-                let hq = dq * f64x4::splat(4.0);
+                let dq: V = vector_of(tk, Quat::new(0.0, 0.0, 0.0, 0.5) * q);
+                let hq = dq * V::splat(tk, 4.0);
                 let v = p.times_q(hq);
                 let p_psi = dot4(hq, v.q);
                 // Magnetic disturbances are low-frequency too: count the heading variance
@@ -832,15 +989,15 @@ impl Ekf {
                 }
                 let k_psi = p_psi / (p_psi + r_psi);
                 let turn = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), k_psi * innovation);
-                x.q = vector_of(turn * q);
+                x.q = vector_of(tk, turn * q);
                 // The gain k = [dq k_ψ; 0; 0] is restricted, not optimal, so the full
                 // Joseph form applies: with v = P hᵀ,
                 // P ← P − k vᵀ − v kᵀ + (h v + r) k kᵀ, which touches the q rows only.
-                let k = dq * f64x4::splat(k_psi);
+                let k: V = dq * V::splat(tk, k_psi);
                 let (ke, ve) = (k.to_array(), v.q.to_array());
-                let s_psi = f64x4::splat(p_psi + r_psi);
+                let s_psi = V::splat(tk, p_psi + r_psi);
                 for j in 0..4 {
-                    let (kj, vj) = (f64x4::splat(ke[j]), f64x4::splat(ve[j]));
+                    let (kj, vj) = (V::splat(tk, ke[j]), V::splat(tk, ve[j]));
                     p.qq[j] = p.qq[j] - (k * vj + v.q * kj) + (k * kj) * s_psi;
                 }
                 sub_outer(&mut p.qw, k, v.w);
@@ -850,8 +1007,8 @@ impl Ekf {
         if !(x.is_finite() && p.is_finite()) {
             return None;
         }
-        self.x = x;
-        self.p = p;
+        self.x = x.store();
+        self.p = p.store();
         self.adapt = adapt;
         self.adapt_h = adapt_h;
         if let Some(r) = rest {
@@ -881,6 +1038,45 @@ mod tests {
 
         fn state(&self) -> V10 {
             V10::from_iterator(self.x.clone().values_mut().map(|v| *v))
+        }
+    }
+
+    /// The state and P as bit patterns, in snapshot order.
+    fn bits(f: &mut Ekf) -> Vec<u64> {
+        let mut out = vec![0; 8 * f.state_len()];
+        let mut w = crate::filters::state::Writer { buf: Some(&mut out), pos: 0 };
+        f.codec(&mut w);
+        out.chunks(8).map(|c| u64::from_le_bytes(c.try_into().unwrap())).collect()
+    }
+
+    impl Ekf {
+        fn state_len(&mut self) -> usize {
+            let mut w = crate::filters::state::Writer { buf: None, pos: 0 };
+            self.codec(&mut w);
+            w.pos / 8
+        }
+    }
+
+    /// `update` runs with the widest lanes the CPU has (256-bit AVX registers on most
+    /// x86-64 machines); the baseline `f64x4` lanes, compiled into this test, must give
+    /// the same bits at every step, with and without the magnetometer and at rest.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn the_wide_lanes_give_the_baseline_bits() {
+        let settings = EkfSettings { rest_rate_std: 0.01, ..EkfSettings::default() };
+        let (mut wide, mut base) = (Ekf::new(settings), Ekf::new(settings));
+        for i in 0..3000 {
+            let t = i as f64 * 0.01;
+            let moving = (i / 300) % 2 == 0;
+            let r = if moving { 1.0 } else { 0.0 };
+            let gyro = Vec3::new(0.5 * r * t.sin(), 0.3 * r * (1.3 * t).cos(), 0.01 + 0.2 * r);
+            let accel = Vec3::new(0.3 * r * t.cos(), 0.2 * r * t.sin() + 0.1, -9.8);
+            let mag = (i % 3 != 0).then(|| Vec3::new(20.0 + t.sin(), 3.0, 40.0));
+            let accel = (i % 7 != 3).then_some(accel);
+            let a = wide.update(0.01, gyro, accel, mag);
+            let b = base.update_in::<f64x4>((), 0.01, gyro, accel, mag);
+            assert_eq!(a, b, "step {i}");
+            assert!(bits(&mut wide) == bits(&mut base), "the states differ after step {i}");
         }
     }
 

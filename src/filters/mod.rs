@@ -481,10 +481,8 @@ impl Core {
             Core::Madgwick(f) => f.update(dt, gyro, accel, mag),
             Core::Mahony(f) => f.update(dt, gyro, accel, mag),
             Core::Complementary(f) => f.update(dt, gyro, accel, mag),
-            Core::Ekf(f) => crate::isa::widest(
-                #[inline(always)]
-                || f.update(dt, gyro, accel, mag),
-            ),
+            // Dispatches itself: 256-bit lanes with AVX (crate::isa::widest_lanes).
+            Core::Ekf(f) => f.update(dt, gyro, accel, mag),
             Core::Gmvdk(f) => crate::isa::widest(
                 #[inline(always)]
                 || f.update(dt, gyro, accel, mag),
@@ -795,10 +793,7 @@ impl Filter {
 
     /// One step. On error nothing changes: the state is bit-identical to before.
     pub fn update(&mut self, s: &Sample) -> Result<(), Error> {
-        crate::isa::widest(
-            #[inline(always)]
-            || self.update_inline(s),
-        )
+        self.update_inline(s)
     }
 
     /// [`Filter::update`] for any [`SampleView`], inlined into its caller: the C calls
@@ -875,10 +870,7 @@ impl Filter {
             <[&Sample; LANES]>::try_from(&samples[..]),
         );
         if let (Ok(fs), Ok(ss)) = lanes {
-            if let Some(result) = crate::isa::widest(
-                #[inline(always)]
-                || Filter::try_lanes(fs, ss),
-            ) {
+            if let Some(result) = Filter::try_lanes(fs, ss) {
                 return result;
             }
         }
@@ -1140,10 +1132,10 @@ mod tests {
         }
     }
 
-    /// `Filter::update` runs in the widest encoding the CPU has (crate::isa: AVX on most
-    /// x86-64 machines); `update_inline` called here is compiled into this test for the
-    /// baseline. Both must give the same bits, step by step, in every kind's whole state.
-    /// (On a CPU without AVX, or off x86-64, both are the same code.)
+    /// The EKF, GMVDK and robust updates run in the AVX copy where the CPU has it
+    /// (crate::isa; 256-bit lanes in the EKF). Forced onto the baseline code, the same
+    /// steps must give the same bits, step by step, in every kind's whole state. (On a
+    /// CPU without AVX, or off x86-64, both are the same code.)
     #[test]
     #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn the_wide_encoding_gives_the_baseline_bits() {
@@ -1160,7 +1152,8 @@ mod tests {
                     if i % 500 == 250 {
                         s.dt = 5.0; // a gap
                     }
-                    assert_eq!(wide.update(&s), base.update_inline(&s), "{kind:?} step {i}");
+                    let baseline = crate::isa::baseline(|| base.update(&s));
+                    assert_eq!(wide.update(&s), baseline, "{kind:?} step {i}");
                     wide.save(&mut a).unwrap();
                     base.save(&mut b).unwrap();
                     assert!(a == b, "{kind:?} (mag {mag}): the states differ after step {i}");

@@ -8,6 +8,7 @@
 //!   bit-identical on every platform (std's `sqrt` is exact everywhere and is kept).
 
 mod frame;
+pub(crate) mod lanes;
 mod quat;
 mod vec3;
 
