@@ -268,7 +268,10 @@ impl Complementary {
         }
         // Rest: |ω_m| and |a_m| near their stationary values (the start-up means). It
         // depends on the readings alone, not on the estimate.
-        let rest = (gyro - self.b0).norm() < self.settings.gyro_rest
+        // |ω_m − ω̄| < gyro_rest compared squared: no square root for the usual case, a
+        // moving sensor, whose test ends there.
+        let gyro_rest = self.settings.gyro_rest;
+        let rest = (gyro - self.b0).norm_squared() < gyro_rest * gyro_rest
             && (a.norm() - self.g0).abs() < self.settings.accel_rest;
         let omega_tilde = gyro - self.bias; // (7)
         let q_tilde = self.q * rotation_of(omega_tilde, dt);
@@ -277,6 +280,9 @@ impl Complementary {
             let g_omega = q_tilde.z_axis_in_body(); // (8)
             let theta_e = g_a.cross(g_omega); // (9)
             let bias = self.bias - theta_e * (self.settings.ki * dt); // (10)
+            if !bias.is_finite() {
+                return None;
+            }
             let q = self.q * rotation_of(gyro - bias + theta_e * self.settings.kp, dt); // (4)
             (q, bias)
         } else {
@@ -291,9 +297,12 @@ impl Complementary {
         committed
     }
 
+    /// Stores `q` renormalised and `bias` (finite: only the rest branch changes it, and
+    /// checks it).
+    #[inline(always)]
     fn commit(&mut self, q: Quat, bias: Vec3, step: Step) -> Option<Step> {
         // exp() is unit up to rounding; renormalise so it cannot drift over long runs.
-        self.q = q.renormalized().filter(|_| bias.is_finite())?;
+        self.q = q.renormalized()?;
         self.bias = bias;
         Some(step)
     }
