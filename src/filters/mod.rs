@@ -487,10 +487,7 @@ impl Core {
                 #[inline(always)]
                 || f.update(dt, gyro, accel, mag),
             ),
-            Core::Robust(f) => crate::isa::widest(
-                #[inline(always)]
-                || f.update(dt, gyro, accel, mag),
-            ),
+            Core::Robust(f) => f.update(dt, gyro, accel, mag),
         }
     }
 
@@ -1141,7 +1138,7 @@ mod tests {
         }
     }
 
-    /// The EKF, GMVDK and robust updates run in the AVX copy where the CPU has it
+    /// The EKF and GMVDK updates run in the AVX copy where the CPU has it
     /// (crate::isa; 256-bit lanes in the EKF). Forced onto the baseline code, the same
     /// steps must give the same bits, step by step, in every kind's whole state. (On a
     /// CPU without AVX, or off x86-64, both are the same code.)

@@ -433,14 +433,17 @@ impl Robust {
         c.bool(&mut self.hard_iron_on);
     }
 
-    #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        let mut next = self.clone();
-        let step = next.step(dt, gyro, accel, mag);
-        if !(next.q.is_finite() && next.bias.is_finite() && next.delta.is_finite()) {
+        // Stepped in place, with a copy of the state kept to put back on failure: a step
+        // on a copy then assigned back reads the copy, just written field by field, with
+        // wide loads, which cannot be forwarded from the narrower stores and wait for
+        // them to retire.
+        let before = self.clone();
+        let step = self.step(dt, gyro, accel, mag);
+        if !(self.q.is_finite() && self.bias.is_finite() && self.delta.is_finite()) {
+            *self = before;
             return None;
         }
-        *self = next;
         Some(step)
     }
 
