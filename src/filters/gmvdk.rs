@@ -512,7 +512,7 @@ impl Gmvdk {
         let omega_b = gyro - self.bias;
         // Refused when the integration overflows (an absurd but finite rate): normalising
         // an infinite norm would give the zero quaternion.
-        let q_g = (self.q + (self.q * Quat::pure(omega_b)).scale(0.5 * dt)).try_normalized()?;
+        let q_g = (self.q + self.q.mul_pure(omega_b).scale(0.5 * dt)).try_normalized()?;
 
         // α from stillness (Appendix B.1).
         let c = 1.0 - libm::exp(-dt / st.activity_tau);

@@ -156,10 +156,14 @@ fn jt_f(j: &[[f64; 4]; 3], f: &[f64; 3]) -> Quat {
     Quat::new(col(0), col(1), col(2), col(3))
 }
 
-/// The IMU gradient `∇f = J_gᵀ f_g`, eq. (21) first case.
+/// The IMU gradient `∇f = J_gᵀ f_g`, eq. (21) first case: [`jt_f`] without the two
+/// zero entries of (13)'s last row (`0 · f` changes nothing but the sign of an exact
+/// zero).
 #[inline]
 pub fn gradient_imu(q: Quat, a: Vec3) -> Quat {
-    jt_f(&jacobian_g(q), &objective_g(q, a))
+    let (j, f) = (jacobian_g(q), objective_g(q, a));
+    let col = |c: usize| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2];
+    Quat::new(j[0][0] * f[0] + j[1][0] * f[1], col(1), col(2), j[0][3] * f[0] + j[1][3] * f[1])
 }
 
 /// The MARG gradient `∇f = J_g,bᵀ f_g,b`, eqs. (18), (19), (21) second case.
@@ -483,11 +487,11 @@ impl Madgwick {
     ) -> Option<(Quat, Step)> {
         let q = self.q;
         let gyro = gyro - bias;
-        // (3): rate of change of orientation measured by the gyroscope.
-        let q_dot_omega = (q * Quat::pure(gyro)).scale(0.5);
+        // (3): rate of change of orientation measured by the gyroscope, ½ q ⊗ ω, and (29)
+        // with it alone: the prediction the correction is taken from. The ½ is folded
+        // into dt (both products exact but for rounding once: the same bits).
         let mut step = Step::default();
-        // (29) with the gyroscope's rate alone: the prediction the correction is taken from.
-        let p = q + q_dot_omega.scale(dt);
+        let p = q + q.mul_pure(gyro).scale(0.5 * dt);
         let Some(accel) = accel else {
             return Some((p.try_normalized()?, step));
         };

@@ -191,7 +191,7 @@ impl Mahony {
             omega = omega + e * self.settings.kp;
         }
         let h = 0.5 * dt;
-        let q = self.q + (self.q * Quat::pure(omega)).scale(h);
+        let q = self.q + self.q.mul_pure(omega).scale(h);
         // |q + h q⊗ω|² = |q|² (1 + h²|ω|²), as q⊗ω is orthogonal to q: the norm is known
         // without waiting for the new quaternion.
         let n2 = self.q.norm_squared() * (1.0 + h * h * omega.norm_squared());
