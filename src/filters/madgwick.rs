@@ -497,11 +497,20 @@ impl Madgwick {
         };
         step.used_accel = true;
         let a = accel.normalized();
-        let marg = mag.and_then(|mag| {
-            let m = mag.normalized();
-            let (bx, bz) = reference_field(q, m);
-            (bx > 0.0).then(|| gradient_marg(q, a, bx, bz, m))
-        });
+        // A match, not a closure: LLVM left the closure out of line, and the call spilled
+        // eight registers.
+        let marg = match mag {
+            Some(mag) => {
+                let m = mag.normalized();
+                let (bx, bz) = reference_field(q, m);
+                if bx > 0.0 {
+                    Some(gradient_marg(q, a, bx, bz, m))
+                } else {
+                    None
+                }
+            }
+            None => None,
+        };
         step.used_mag = marg.is_some();
         let (gradient, beta) = match marg {
             Some(g) => (g, self.settings.beta_marg),
