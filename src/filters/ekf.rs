@@ -513,19 +513,6 @@ impl Cov {
 
 impl<V: Lanes> Cov<V> {
     #[inline(always)]
-    fn load(p: &Cov, t: V::Token) -> Cov<V> {
-        let l = |c: &[f64x4; 3]| c.map(|v| V::load(t, v));
-        Cov {
-            qq: p.qq.map(|v| V::load(t, v)),
-            qw: l(&p.qw),
-            qd: l(&p.qd),
-            ww: l(&p.ww),
-            wd: l(&p.wd),
-            dd: l(&p.dd),
-        }
-    }
-
-    #[inline(always)]
     fn store(&self) -> Cov {
         let s = |c: &[V; 3]| c.map(|v| v.store());
         Cov {
@@ -828,7 +815,8 @@ impl Ekf {
         let r = right(e);
         let rc = cols(tk, &r);
         let a = dq_dw.map(|c| c * V::splat(tk, a_w)); // a_ω D
-        let p0 = &Cov::<V>::load(&self.p, tk);
+                                                      // P as stored, read in place: entries as arrays, columns loaded where used.
+        let p0 = &self.p;
         let (qq0, qw0, qd0) = (entries(&p0.qq), entries(&p0.qw), entries(&p0.qd));
         let (ww0, wd0) = (entries(&p0.ww), entries(&p0.wd));
         // (A B)(k, j) reads B's column j, row k; (A Bᵀ) reads B's column k, row j.
@@ -854,12 +842,12 @@ impl Ekf {
             qd: p_qd.map(|c| c * V::splat(tk, a_d)),
             ww: array(
                 #[inline(always)]
-                |j| p0.ww[j] * aww + unit(tk, j, qw),
+                |j| V::load(tk, p0.ww[j]) * aww + unit(tk, j, qw),
             ),
-            wd: p0.wd.map(|c| c * awd),
+            wd: p0.wd.map(|c| V::load(tk, c) * awd),
             dd: array(
                 #[inline(always)]
-                |j| p0.dd[j] * add + unit(tk, j, qd),
+                |j| V::load(tk, p0.dd[j]) * add + unit(tk, j, qd),
             ),
         };
 
