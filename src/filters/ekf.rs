@@ -276,9 +276,10 @@ struct Blocks<V = f64x4> {
     d: V,
 }
 
-/// `[f(0), f(1), …]`, always inlined: `core::array::from_fn` may stay out of line, and
-/// in the AVX copy (`crate::isa`) an out-of-line call runs baseline code, where the
-/// lanes' operations are calls too.
+/// `[f(0), f(1), …]`. Where there is an AVX copy (`crate::isa`), always inlined:
+/// `core::array::from_fn` may stay out of line, and an out-of-line call from the AVX
+/// copy runs baseline code, where the lanes' operations are calls too.
+#[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
 #[inline(always)]
 fn array<T: Copy, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
     let mut out = [f(0); N];
@@ -286,6 +287,14 @@ fn array<T: Copy, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
         *o = f(i);
     }
     out
+}
+
+/// `[f(0), f(1), …]`: `core::array::from_fn` everywhere else. The loop above cost the
+/// aarch64 build's update 12 % more instructions (3,425 against 3,052, EKF IMU).
+#[cfg(not(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri))))]
+#[inline(always)]
+fn array<T: Copy, const N: usize>(f: impl FnMut(usize) -> T) -> [T; N] {
+    core::array::from_fn(f)
 }
 
 /// A three-vector in four lanes, the fourth zero.
