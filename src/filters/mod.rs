@@ -483,10 +483,7 @@ impl Core {
             Core::Complementary(f) => f.update(dt, gyro, accel, mag),
             // Dispatches itself: 256-bit lanes with AVX (crate::isa::widest_lanes).
             Core::Ekf(f) => f.update(dt, gyro, accel, mag),
-            Core::Gmvdk(f) => crate::isa::widest(
-                #[inline(always)]
-                || f.update(dt, gyro, accel, mag),
-            ),
+            Core::Gmvdk(f) => gmvdk_update(f, dt, gyro, accel, mag),
             Core::Robust(f) => f.update(dt, gyro, accel, mag),
         }
     }
@@ -543,6 +540,17 @@ impl Core {
             Core::Robust(_) => Kind::Robust,
         }
     }
+}
+
+/// GMVDK's update in the widest copy the CPU has (crate::isa::widest). Out of line: inlined
+/// into [`Core::update`], its large frame made every kind's dispatch save six registers
+/// and set up that frame before the jump to its own update.
+#[inline(never)]
+fn gmvdk_update(f: &mut Gmvdk, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+    crate::isa::widest(
+        #[inline(always)]
+        || f.update(dt, gyro, accel, mag),
+    )
 }
 
 fn madgwick_settings(c: &Config) -> MadgwickSettings {

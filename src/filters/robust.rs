@@ -433,6 +433,8 @@ impl Robust {
         c.bool(&mut self.hard_iron_on);
     }
 
+    /// Out of line for the reason given at `Complementary::update`.
+    #[inline(never)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         // Stepped in place, with a copy of the state kept to put back on failure: a step
         // on a copy then assigned back reads the copy, just written field by field, with

@@ -105,16 +105,21 @@ impl Quat {
 
     /// [`Quat::try_normalized`] with the squared norm `n2` computed by the caller, for an
     /// update that knows it before the quaternion's last components are ready.
+    ///
+    /// The usual case, `n2` in [`super::inv_sqrt`]'s fast range, is tested first with two
+    /// comparisons; a zero, non-finite or extreme `n2` goes out of line.
     #[inline]
     pub fn normalized_with(self, n2: f64) -> Option<Quat> {
-        if !(n2.is_finite() && n2 > 0.0) {
-            return None;
-        }
-        Some(self.scale(super::inv_sqrt(n2))).filter(|q| q.is_finite())
+        let r = if n2 > 1e-300 && n2 < 1e300 { n2.sqrt() * (1.0 / n2) } else { outside_scale(n2)? };
+        Some(self.scale(r)).filter(|q| q.is_finite())
     }
 
+    /// No NaN or infinite component. Tested as `Σ c · 0 == 0`, which is `±0` for finite
+    /// components and NaN otherwise: four multiplications, three additions and one
+    /// comparison on the floating-point side, against four integer masks and compares.
+    #[inline]
     pub fn is_finite(self) -> bool {
-        self.w.is_finite() && self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+        (self.w * 0.0 + self.x * 0.0) + (self.y * 0.0 + self.z * 0.0) == 0.0
     }
 
     /// `q ⊗ [0, v] ⊗ q*` for a unit quaternion: body to earth when `q` is an orientation.
@@ -293,12 +298,58 @@ impl Add for Quat {
     }
 }
 
+/// `1/√n2` for an `n2` outside `[1e-300, 1e300]` ([`super::inv_sqrt`]'s slow form), or
+/// `None` when `n2` is zero, negative or not finite.
+#[cold]
+#[inline(never)]
+fn outside_scale(n2: f64) -> Option<f64> {
+    (n2.is_finite() && n2 > 0.0).then(|| 1.0 / n2.sqrt())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn close(a: f64, b: f64) -> bool {
         (a - b).abs() < 1e-12
+    }
+
+    #[test]
+    fn is_finite_is_false_for_any_nan_or_infinite_component_only() {
+        let bad = [f64::NAN, -f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+        let good = [0.0, -0.0, 1.0, -f64::MAX, f64::MAX, f64::MIN_POSITIVE, 5e-324, -3e-310];
+        for i in 0..4 {
+            for &v in &good {
+                let mut c = [0.5; 4];
+                c[i] = v;
+                assert!(Quat::new(c[0], c[1], c[2], c[3]).is_finite(), "{i} {v}");
+                if i < 3 {
+                    assert!(Vec3::new(c[0], c[1], c[2]).is_finite(), "{i} {v}");
+                }
+            }
+            for &v in &bad {
+                let mut c = [f64::MAX; 4];
+                c[i] = v;
+                assert!(!Quat::new(c[0], c[1], c[2], c[3]).is_finite(), "{i} {v}");
+                if i < 3 {
+                    assert!(!Vec3::new(c[0], c[1], c[2]).is_finite(), "{i} {v}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn normalized_with_uses_the_plain_root_outside_the_fast_range() {
+        let q = Quat::new(0.7, -0.2, 0.5, 0.3);
+        for n2 in [1e-310, 5e-301, 2e300, f64::MAX] {
+            let want = q.scale(1.0 / n2.sqrt());
+            assert_eq!(q.normalized_with(n2), want.is_finite().then_some(want), "{n2}");
+        }
+        for n2 in [0.0, -0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert_eq!(q.normalized_with(n2), None, "{n2}");
+        }
+        let n2 = q.norm_squared();
+        assert_eq!(q.normalized_with(n2), Some(q.scale(n2.sqrt() * (1.0 / n2))));
     }
 
     #[test]

@@ -42,10 +42,11 @@ impl Vec3 {
         self * super::inv_sqrt(self.norm_squared())
     }
 
-    /// True when all three components are finite (not NaN, not ±Inf).
+    /// True when all three components are finite (not NaN, not ±Inf); tested as
+    /// [`crate::math::Quat::is_finite`] is.
     #[inline]
     pub fn is_finite(self) -> bool {
-        self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+        (self.x * 0.0 + self.y * 0.0) + self.z * 0.0 == 0.0
     }
 
     /// The largest absolute component.
