@@ -3,8 +3,11 @@
 //! library is), and per sample of the batch call; beside them, in the same process and
 //! on the same samples, the fastest existing Rust implementations of the same filters
 //! (the `ahrs` crate's Madgwick and Mahony, `fusion-ahrs`, a port of x-io Fusion, and
-//! `vqf-rs`, a port of VQF). Then one frame of a 20-sensor rig through the multi-sensor
-//! call. Prints medians over interleaved rounds and ratios measured in the same run.
+//! `vqf-rs`, a port of VQF). For Madgwick and Mahony, also the floor under any update of
+//! theirs: the same arithmetic with nothing else (module `floor`), once with the state
+//! read from and written to memory each step, as a call must, and once held in
+//! registers. Then one frame of a 20-sensor rig through the multi-sensor call. Prints
+//! medians over interleaved rounds and ratios measured in the same run.
 //!
 //!     cargo run --release --example bench [-- --rounds N]
 //!     bench --count KIND imu|marg N [c] (N updates only, through the Rust API or with `c`
@@ -19,9 +22,10 @@ use orient::ffi::{
     orient_filter_update_batch, orient_filters_update, OrientConfig, OrientFilter, OrientQuaternion,
     OrientSample, OrientStatus, OrientVec3, ORIENT_SAMPLE_ACCEL, ORIENT_SAMPLE_GYRO, ORIENT_SAMPLE_MAG,
 };
-use orient::filters::madgwick::{Madgwick, MadgwickSettings};
+use orient::filters::madgwick::{gradient_imu, gradient_marg, reference_field, Madgwick, MadgwickSettings};
 use orient::filters::mahony::{Mahony, MahonySettings};
-use orient::{Config, Filter, Kind, Sample, Vec3};
+use orient::math::inv_sqrt;
+use orient::{Config, Filter, Kind, Quat, Sample, Vec3};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -156,6 +160,84 @@ fn fusion_anchor(samples: &[Sample], mag: bool) -> Anchor<'_> {
     }
 }
 
+/// The paper's arithmetic alone, the floor under a filter's update time: the operations
+/// of [`Madgwick::update`] and [`Mahony::update`] with their default settings, in the same
+/// order (so the same bits, which `main` checks before timing), and nothing else: no
+/// sample checks, no `Option`, no kind dispatch, no finiteness tests, no failure path.
+/// Each update still waits for the previous one's quaternion, as every filter's must.
+mod floor {
+    use super::*;
+
+    /// Madgwick eqs. (29)-(30), IMU (12)-(13) or MARG (18)-(19) with (31)-(32).
+    #[inline(always)]
+    pub fn madgwick(q: Quat, s: &Sample, marg: bool) -> Quat {
+        let (dt, gyro, a) = (s.dt, s.gyro.unwrap_or_default(), s.accel.unwrap_or_default().normalized());
+        let p = q + q.mul_pure(gyro).scale(0.5 * dt);
+        let (gradient, beta) = if marg {
+            let m = s.mag.unwrap_or_default().normalized();
+            let (bx, bz) = reference_field(q, m);
+            (gradient_marg(q, a, bx, bz, m), MadgwickSettings::default().beta_marg)
+        } else {
+            (gradient_imu(q, a), MadgwickSettings::default().beta_imu)
+        };
+        let k = beta * dt;
+        let c = k * inv_sqrt(gradient.norm_squared());
+        let n2 = (p.norm_squared() + k * k) - 2.0 * p.dot(gradient) * c;
+        (p - gradient.scale(c)).scale(inv_sqrt(n2))
+    }
+
+    /// Mahony's update with its default gains (`k_i = 0`, so the bias stays zero).
+    #[inline(always)]
+    pub fn mahony(q: Quat, s: &Sample, marg: bool) -> Quat {
+        let (dt, gyro, a) = (s.dt, s.gyro.unwrap_or_default(), s.accel.unwrap_or_default().normalized());
+        let [r0, r1, up] = q.rows();
+        let mut e = a.cross(up);
+        if marg {
+            let m = s.mag.unwrap_or_default().normalized();
+            let h = Vec3::new(r0.dot(m), r1.dot(m), up.dot(m));
+            let bx = (h.x * h.x + h.y * h.y).sqrt();
+            e = e + (m.cross(r0) * bx + m.cross(up) * h.z);
+        }
+        let omega = (gyro - Vec3::ZERO) + e * MahonySettings::default().kp;
+        let h = 0.5 * dt;
+        let n2 = q.norm_squared() * (1.0 + h * h * omega.norm_squared());
+        (q + q.mul_pure(omega).scale(h)).scale(inv_sqrt(n2))
+    }
+
+    /// Steps `q` through `samples` with the floor of `kind` (Madgwick, else Mahony): one
+    /// loop per case, so that each is compiled with its update inlined. With `in_memory`
+    /// every step reads the quaternion from memory and writes it back (`black_box` on its
+    /// address keeps the compiler from holding it in registers), as an update behind a
+    /// call must: the next call's chain then starts with a load that waits for the
+    /// store. Without it the quaternion stays in registers from one step to the next.
+    pub fn run(kind: Kind, marg: bool, q: &mut Quat, samples: &[Sample], in_memory: bool) {
+        let mut cell = *q;
+        macro_rules! each {
+            ($step:ident, $marg:expr) => {
+                if in_memory {
+                    for s in samples {
+                        let c = black_box(&mut cell);
+                        *c = $step(*c, s, $marg);
+                    }
+                } else {
+                    let mut r = cell;
+                    for s in samples {
+                        r = $step(r, s, $marg);
+                    }
+                    cell = r;
+                }
+            };
+        }
+        match (kind == Kind::Madgwick, marg) {
+            (true, false) => each!(madgwick, false),
+            (true, true) => each!(madgwick, true),
+            (false, false) => each!(mahony, false),
+            (false, true) => each!(mahony, true),
+        }
+        *q = cell;
+    }
+}
+
 fn main() {
     let mut rounds = 21;
     let args: Vec<String> = std::env::args().collect();
@@ -212,6 +294,23 @@ fn main() {
             // Every variant starts from the same state: past start-up, on the recording.
             let mut core = Madgwick::new(MadgwickSettings::default());
             let mut mahony_core = Mahony::new(MahonySettings::default());
+            // The floor (`floor`) computes what the core computes: checked on these samples.
+            if matches!(kind, Kind::Madgwick | Kind::Mahony) {
+                let (mut a, mut b) = (Madgwick::new(MadgwickSettings::default()), mahony_core.clone());
+                let mut q = Quat::IDENTITY;
+                for s in &samples[..2000] {
+                    floor::run(kind, with_mag, &mut q, std::slice::from_ref(s), false);
+                    let core_q = if kind == Kind::Madgwick {
+                        a.update(s.dt, s.gyro.unwrap(), s.accel, s.mag).unwrap();
+                        a.quaternion()
+                    } else {
+                        b.update(s.dt, s.gyro.unwrap(), s.accel, s.mag).unwrap();
+                        b.quaternion()
+                    };
+                    assert_eq!(q, core_q, "the floor must compute the core's numbers");
+                }
+            }
+            let (mut floor_mem, mut floor_reg) = (Quat::IDENTITY, Quat::IDENTITY);
             let mut filter = Filter::new(&Config::new(kind).unwrap()).unwrap();
             let handles = [new_c_filter(kind), new_c_filter(kind), new_c_filter(kind)];
             for s in &samples[..1000] {
@@ -284,6 +383,15 @@ fn main() {
                         }
                     }));
                 }
+                if matches!(kind, Kind::Madgwick | Kind::Mahony) {
+                    // The paper's arithmetic alone: state in memory, then in registers.
+                    variants.push(Box::new(|| {
+                        floor::run(kind, with_mag, black_box(&mut floor_mem), black_box(&samples), true);
+                    }));
+                    variants.push(Box::new(|| {
+                        floor::run(kind, with_mag, black_box(&mut floor_reg), black_box(&samples), false);
+                    }));
+                }
                 time_interleaved(rounds, PER_ROUND, &mut variants)
             };
             for h in handles {
@@ -300,7 +408,13 @@ fn main() {
                 print!(" {name} {ns:.1} ({:.2}x)", rust / ns);
             }
             if matches!(kind, Kind::Madgwick | Kind::Mahony) {
-                print!(" | bare core {:.1}", medians[medians.len() - 1]);
+                let n = medians.len();
+                print!(
+                    " | bare core {:.1} | arithmetic alone {:.1}, state in registers {:.1}",
+                    medians[n - 3],
+                    medians[n - 2],
+                    medians[n - 1]
+                );
             }
             println!();
         }
