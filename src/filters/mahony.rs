@@ -116,6 +116,7 @@ impl Mahony {
 
     /// The correction term `ω_mes = â × v̂ (+ m̂ × ŵ)` in the sensor frame, and whether
     /// the magnetometer contributed.
+    #[inline(always)]
     pub fn correction(q: Quat, accel: Vec3, mag: Option<Vec3>) -> (Vec3, bool) {
         let a = accel.normalized();
         // The rows of R(q): v̂ is the third, the earth's z axis in the sensor frame.
@@ -142,7 +143,30 @@ impl Mahony {
         if self.settings.rest_bias_tau > 0.0 {
             return self.update_with_rest_bias(dt, gyro, accel, mag);
         }
-        let (q, bias, step) = self.step(self.bias, dt, gyro, accel, mag)?;
+        match (accel, mag) {
+            (Some(a), None) => self.update_with::<false>(dt, gyro, a, Vec3::ZERO),
+            (Some(a), Some(m)) => self.update_with::<true>(dt, gyro, a, m),
+            (None, _) => self.update_gyro_only(dt, gyro, mag),
+        }
+    }
+
+    /// The update without the rest-bias option, with an accelerometer reading and with
+    /// (`MAG`) or without a magnetometer reading: one out-of-line copy per case, each with
+    /// its step and correction inlined and its own register allocation. One shared copy
+    /// kept both cases' values live at once, and spilled the quaternion to the stack and
+    /// read it back on the update's critical path.
+    #[inline(never)]
+    fn update_with<const MAG: bool>(&mut self, dt: f64, gyro: Vec3, accel: Vec3, mag: Vec3) -> Option<Step> {
+        let (q, bias, step) = self.step(self.bias, dt, gyro, Some(accel), MAG.then_some(mag))?;
+        self.q = q;
+        self.bias = bias;
+        Some(step)
+    }
+
+    /// The update without the rest-bias option and without an accelerometer reading.
+    #[inline(never)]
+    fn update_gyro_only(&mut self, dt: f64, gyro: Vec3, mag: Option<Vec3>) -> Option<Step> {
+        let (q, bias, step) = self.step(self.bias, dt, gyro, None, mag)?;
         self.q = q;
         self.bias = bias;
         Some(step)
