@@ -33,6 +33,23 @@ pub fn inv_sqrt(x: f64) -> f64 {
     }
 }
 
+/// [`inv_sqrt`], or `None` when `x` is zero, negative or not finite. The usual case costs
+/// the same two comparisons as `inv_sqrt`'s; the others are told apart out of line.
+#[inline]
+pub(crate) fn try_inv_sqrt(x: f64) -> Option<f64> {
+    if x > 1e-300 && x < 1e300 {
+        Some(x.sqrt() * (1.0 / x))
+    } else {
+        try_inv_sqrt_outside(x)
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn try_inv_sqrt_outside(x: f64) -> Option<f64> {
+    (x.is_finite() && x > 0.0).then(|| inv_sqrt_outside(x))
+}
+
 /// Out of line, so the compiler does not compute it for every call and select (which put
 /// a third operation on the divider, shared by the root and the division).
 #[cold]

@@ -107,11 +107,11 @@ impl Quat {
     /// update that knows it before the quaternion's last components are ready.
     ///
     /// The usual case, `n2` in [`super::inv_sqrt`]'s fast range, is tested first with two
-    /// comparisons; a zero, non-finite or extreme `n2` goes out of line.
+    /// comparisons; a zero, non-finite or extreme `n2` goes out of line
+    /// ([`super::try_inv_sqrt`]).
     #[inline]
     pub fn normalized_with(self, n2: f64) -> Option<Quat> {
-        let r = if n2 > 1e-300 && n2 < 1e300 { n2.sqrt() * (1.0 / n2) } else { outside_scale(n2)? };
-        Some(self.scale(r)).filter(|q| q.is_finite())
+        Some(self.scale(super::try_inv_sqrt(n2)?)).filter(|q| q.is_finite())
     }
 
     /// No NaN or infinite component. Tested as `Σ c · 0 == 0`, which is `±0` for finite
@@ -296,14 +296,6 @@ impl Add for Quat {
     fn add(self, o: Quat) -> Quat {
         Quat::new(self.w + o.w, self.x + o.x, self.y + o.y, self.z + o.z)
     }
-}
-
-/// `1/√n2` for an `n2` outside `[1e-300, 1e300]` ([`super::inv_sqrt`]'s slow form), or
-/// `None` when `n2` is zero, negative or not finite.
-#[cold]
-#[inline(never)]
-fn outside_scale(n2: f64) -> Option<f64> {
-    (n2.is_finite() && n2 > 0.0).then(|| 1.0 / n2.sqrt())
 }
 
 #[cfg(test)]
