@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs examples/bench RUNS times (default 7), each in a fresh process, and prints per row
-# the median and the range over the runs of the Rust, C and batch times, and of the
-# first anchor's ratio. One process's times are bimodal for the small filters (the same
+# the median and the range over the runs of the Rust, C and batch times, of the first
+# anchor's ratio, and (Madgwick, Mahony) of the floor: their arithmetic alone with the
+# state in memory (examples/bench.rs, module floor). One process's times are bimodal for the small filters (the same
 # binary gives Madgwick IMU 38-40 ns in most processes and 60-65 ns in some, while the
 # anchors in that process stay put; docs/PERFORMANCE.md), so a single run can mislead.
 set -euo pipefail
@@ -13,10 +14,11 @@ trap 'rm -f "$out"' EXIT
 for _ in $(seq "$RUNS"); do
   target/release/examples/bench | awk 'NF >= 8 && $3 ~ /^[0-9.]+$/ {
     ratio = "-"; for (i = 9; i <= NF; i++) if ($i ~ /^\([0-9.]+x\)$/) { ratio = substr($i, 2, length($i) - 3); break }
-    print $1 " " $2, $3, $4, $6, ratio }' >> "$out"
+    floor = "-"; for (i = 9; i < NF; i++) if ($i == "alone") { floor = $(i + 1); sub(/,$/, "", floor); break }
+    print $1 " " $2, $3, $4, $6, ratio, floor }' >> "$out"
 done
-printf '%-20s %22s %22s %22s %22s\n' "" "Rust ns" "C ns" "batch ns" "Rust/anchor"
-printf '%-20s %22s %22s %22s %22s\n' "kind" "median [min-max]" "median [min-max]" "median [min-max]" "median [min-max]"
+printf '%-20s %22s %22s %22s %22s %22s\n' "" "Rust ns" "C ns" "batch ns" "Rust/anchor" "floor ns"
+printf '%-20s %22s %22s %22s %22s %22s\n' "kind" "median [min-max]" "median [min-max]" "median [min-max]" "median [min-max]" "median [min-max]"
 awk -v runs="$RUNS" '
   function stat(list,   n, a, i, j, t) {
     n = split(list, a, " ")
@@ -25,7 +27,8 @@ awk -v runs="$RUNS" '
     return sprintf("%.2f [%.2f-%.2f]", a[int((n + 1) / 2)], a[1], a[n])
   }
   { key = $1 " " $2; if (!(key in seen)) { seen[key] = 1; order[++k] = key }
-    r[key] = r[key] " " $3; c[key] = c[key] " " $4; b[key] = b[key] " " $5; x[key] = x[key] " " $6 }
+    r[key] = r[key] " " $3; c[key] = c[key] " " $4; b[key] = b[key] " " $5; x[key] = x[key] " " $6
+    f[key] = f[key] " " $7 }
   END { for (i = 1; i <= k; i++) { key = order[i]
-    printf "%-20s %22s %22s %22s %22s\n", key, stat(r[key]), stat(c[key]), stat(b[key]), stat(x[key]) }
+    printf "%-20s %22s %22s %22s %22s %22s\n", key, stat(r[key]), stat(c[key]), stat(b[key]), stat(x[key]), stat(f[key]) }
     printf "(%d runs)\n", runs }' "$out"
