@@ -26,10 +26,9 @@ pub use vec3::Vec3;
 /// infinite, it is `1.0 / x.sqrt()`.
 #[inline]
 pub fn inv_sqrt(x: f64) -> f64 {
-    if x > 1e-300 && x < 1e300 {
-        x.sqrt() * (1.0 / x)
-    } else {
-        inv_sqrt_outside(x)
+    match inv_sqrt_fast(x) {
+        Some(r) => r,
+        None => inv_sqrt_outside(x),
     }
 }
 
@@ -37,10 +36,19 @@ pub fn inv_sqrt(x: f64) -> f64 {
 /// the same two comparisons as `inv_sqrt`'s; the others are told apart out of line.
 #[inline]
 pub(crate) fn try_inv_sqrt(x: f64) -> Option<f64> {
+    match inv_sqrt_fast(x) {
+        Some(r) => Some(r),
+        None => try_inv_sqrt_outside(x),
+    }
+}
+
+/// `√x · (1/x)` when `x` lies in `[1e-300, 1e300]`, the range where it is used.
+#[inline(always)]
+fn inv_sqrt_fast(x: f64) -> Option<f64> {
     if x > 1e-300 && x < 1e300 {
         Some(x.sqrt() * (1.0 / x))
     } else {
-        try_inv_sqrt_outside(x)
+        None
     }
 }
 
