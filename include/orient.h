@@ -88,9 +88,34 @@ typedef struct OrientFilter OrientFilter;
 
 /**
  * `orient_filter_flags`: the last accepted update followed a gap (dt above
- * ORIENT_PARAM_GAP_DT) and integrated over ORIENT_PARAM_GAP_DT instead of dt.
+ * ORIENT_PARAM_GAP_DT). Nothing was integrated over the gap, whose motion is unknown:
+ * the update re-acquired the orientation (ORIENT_FLAG_REACQUIRED) or, on a sample
+ * without an accelerometer reading, held it (ORIENT_FLAG_REACQUIRE_PENDING).
  */
 #define ORIENT_FLAG_GAP 8
+
+/**
+ * `orient_filter_flags`: the last accepted update re-acquired the orientation after a
+ * gap: inclination from its accelerometer reading, heading from its magnetometer
+ * reading when it has one (every kind but the robust one, whose magnetic disturbance
+ * test may refuse the reading, and the complementary one, which uses it only with
+ * align_heading), else the heading held before the gap. The kind's low-passes and
+ * detectors start over; its bias estimate is kept.
+ */
+#define ORIENT_FLAG_REACQUIRED 16
+
+/**
+ * `orient_filter_flags`: a gap ended on a sample without an accelerometer reading; the
+ * orientation is held, then integrated from the gyroscope, until the next sample with an
+ * accelerometer reading, which re-acquires it (ORIENT_FLAG_REACQUIRED).
+ */
+#define ORIENT_FLAG_REACQUIRE_PENDING 32
+
+/**
+ * `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
+ * smallest value that has it on.
+ */
+#define ORIENT_PARAM_FLAG_ZERO_OFF 1
 
 /**
  * Parameter slot (every kind): gravity magnitude for the gravity and linear
@@ -112,8 +137,9 @@ typedef struct OrientFilter OrientFilter;
 
 /**
  * Parameter slot (every kind): the longest dt (s) taken as it is; a larger dt is a gap in
- * the data: the step integrates over this value instead and sets ORIENT_FLAG_GAP.
- * Default 1; 0 turns the policy off (every finite dt > 0 is integrated as given).
+ * the data: the update re-acquires the orientation from the sensors and sets
+ * ORIENT_FLAG_GAP (see ORIENT_FLAG_REACQUIRED). Default 0.25; 0 turns the policy off
+ * (every accepted dt is integrated as given).
  */
 #define ORIENT_PARAM_GAP_DT 3
 
@@ -444,7 +470,7 @@ enum OrientStatus
    */
   ORIENT_STATUS_NON_FINITE = 7,
   /**
-   * dt is below 1e-9 s (zero, negative, subnormal), NaN or infinite.
+   * dt is below 1e-9 s (zero, negative, subnormal), above 1e6 s, NaN or infinite.
    */
   ORIENT_STATUS_INVALID_DT = 8,
   /**
@@ -453,7 +479,9 @@ enum OrientStatus
    */
   ORIENT_STATUS_ZERO_VECTOR = 9,
   /**
-   * A vector whose squared norm overflows a double.
+   * A vector whose squared norm overflows a double, or a reading with a component at
+   * or beyond its physical bound: gyroscope 1e4 rad/s, accelerometer 1e5 m/s^2,
+   * magnetometer 1e12 (any unit).
    */
   ORIENT_STATUS_TOO_LARGE = 10,
   /**
@@ -668,9 +696,9 @@ typedef struct OrientParamInfo {
    */
   uint32_t id;
   /**
-   * Always 0.
+   * ORIENT_PARAM_FLAG_* bits.
    */
-  uint32_t reserved;
+  uint32_t flags;
   /**
    * Identifier, e.g. "beta_imu".
    */
@@ -685,7 +713,8 @@ typedef struct OrientParamInfo {
   const char *description;
   double default_value;
   /**
-   * Smallest accepted value (inclusive).
+   * Smallest accepted value (inclusive), besides 0 where ORIENT_PARAM_FLAG_ZERO_OFF
+   * is set. Subnormal values are never accepted.
    */
   double min;
   /**
@@ -708,7 +737,7 @@ typedef struct OrientVec3 {
  */
 typedef struct OrientSample {
   /**
-   * Seconds since the previous sample; finite and at least 1e-9.
+   * Seconds since the previous sample; finite, at least 1e-9 and at most 1e6.
    */
   double dt;
   /**
@@ -896,18 +925,21 @@ OrientStatus orient_filter_get_param(const OrientFilter *filter, uint32_t id, do
 /**
  * One update. On any status but OK the filter's state is exactly as before.
  *
- * Checks, in order: dt finite and at least 1e-9 s (INVALID_DT; in a batch this
- * catches timestamps going backwards); flags and reserved (INVALID_ARGUMENT); gyroscope present
- * (MISSING_SENSOR), finite (NON_FINITE), within ORIENT_PARAM_GYRO_RANGE (SATURATED);
+ * Checks, in order: flags and reserved (INVALID_ARGUMENT); dt finite, at least 1e-9 s
+ * and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards);
+ * gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
+ * ORIENT_PARAM_GYRO_RANGE (SATURATED), every component below 1e4 rad/s (TOO_LARGE);
  * accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
  * below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
  * nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE
- * (SATURATED); until the filter has an orientation, every sample must carry an
+ * (SATURATED), every component below its physical bound, 1e5 m/s^2 and 1e12
+ * (TOO_LARGE); until the filter has an orientation, every sample must carry an
  * accelerometer (NOT_INITIALIZED). Subnormal components in an otherwise usable vector
  * are accepted. Fields whose ORIENT_SAMPLE_* bit is clear are never read.
  *
- * Recoveries that are not errors: a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
- * packets) is integrated as ORIENT_PARAM_GAP_DT and flagged ORIENT_FLAG_GAP; a
+ * Recoveries that are not errors: after a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
+ * packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
+ * ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
  * magnetometer parallel to gravity gives no heading, so that step is an IMU update
  * (ORIENT_FLAG_MAG_USED clear). A step whose result would not be finite returns
  * NUMERIC (only reachable with ORIENT_PARAM_GAP_DT = 0).

@@ -6,7 +6,7 @@
 mod common;
 
 use common::sim::{simulate, Moment};
-use orient::{flags, Config, Error, Field, Filter, Kind, Quat, Sample, Vec3};
+use orient::{Config, Error, Field, Filter, Kind, Quat, Sample, Vec3};
 
 fn warmed(kind: Kind) -> (Filter, Sample) {
     let run = simulate(Quat::IDENTITY, 4.0, 100.0, (0.002, 0.02, 0.2), |t| Moment {
@@ -58,9 +58,10 @@ fn every_field_of_every_kind_against_every_bad_value() {
                 };
                 let expected_rejection = if !v.is_finite() {
                     Some(if field == 0 { Error::InvalidDt(v) } else { Error::NonFinite(sensor) })
-                } else if field == 0 && v < orient::filters::MIN_DT {
+                } else if field == 0 && !(orient::filters::MIN_DT..=orient::filters::MAX_DT).contains(&v) {
                     Some(Error::InvalidDt(v))
-                } else if v == 1e300 && field >= 4 {
+                } else if v == 1e300 && field >= 1 {
+                    // Beyond every physical bound: refused before any arithmetic.
                     Some(Error::TooLarge(sensor))
                 } else {
                     None
@@ -77,13 +78,6 @@ fn every_field_of_every_kind_against_every_bad_value() {
                     (Ok(()), None) => {
                         let q = f.quaternion();
                         assert!(q.is_finite() && (q.norm() - 1.0).abs() < 1e-12, "{name}: {q:?}");
-                        if field == 0 && v == 1e300 {
-                            assert_ne!(f.flags() & flags::GAP, 0, "{name}: a gap is flagged");
-                        }
-                    }
-                    // A finite but absurd gyroscope reading may overflow a step: refused whole.
-                    (Err(Error::Numeric), None) if (1..=3).contains(&field) && v == 1e300 => {
-                        assert_eq!(f, f0)
                     }
                     (r, want) => panic!("{name}: got {r:?}, documented {want:?}"),
                 }

@@ -75,6 +75,9 @@ namespace Orient.Native
         public const uint FlagAccelUsed = 2; // ORIENT_FLAG_ACCEL_USED
         public const uint FlagMagUsed = 4; // ORIENT_FLAG_MAG_USED
         public const uint FlagGap = 8; // ORIENT_FLAG_GAP
+        public const uint FlagReacquired = 16; // ORIENT_FLAG_REACQUIRED
+        public const uint FlagReacquirePending = 32; // ORIENT_FLAG_REACQUIRE_PENDING
+        public const uint ParamFlagZeroOff = 1; // ORIENT_PARAM_FLAG_ZERO_OFF
         public const uint ParamGravity = 0; // ORIENT_PARAM_GRAVITY
         public const uint ParamGyroRange = 1; // ORIENT_PARAM_GYRO_RANGE
         public const uint ParamAccelRange = 2; // ORIENT_PARAM_ACCEL_RANGE
@@ -187,7 +190,7 @@ namespace Orient.Native
     public struct ParamInfo
     {
         public uint Id;
-        public uint Reserved;
+        public uint Flags; // ORIENT_PARAM_FLAG_*
         public IntPtr Name;
         public IntPtr Unit;
         public IntPtr Description;

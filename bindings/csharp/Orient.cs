@@ -79,8 +79,11 @@ namespace Orient
         public string Unit;
         public string Description;
         public double Default;
+        /// <summary>Smallest accepted value, besides 0 where ZeroTurnsOff.</summary>
         public double Min;
         public double Max;
+        /// <summary>0 is also accepted and turns the feature off.</summary>
+        public bool ZeroTurnsOff;
     }
 
     /// <summary>A filter configuration: kind, frame, initial orientation, parameters.</summary>
@@ -486,6 +489,7 @@ namespace Orient
                 p.Description = Marshal.PtrToStringAnsi(info.Description);
                 p.Default = info.DefaultValue;
                 p.Min = info.Min;
+                p.ZeroTurnsOff = (info.Flags & Native.Consts.ParamFlagZeroOff) != 0;
                 p.Max = info.Max;
                 list.Add(p);
             }

@@ -358,7 +358,7 @@ pub unsafe extern "C" fn orient_param_info(
             info,
             OrientParamInfo {
                 id: spec.id,
-                reserved: 0,
+                flags: if spec.zero_off { ORIENT_PARAM_FLAG_ZERO_OFF } else { 0 },
                 name: strings.name.as_ptr(),
                 unit: strings.unit.as_ptr(),
                 description: strings.doc.as_ptr(),
@@ -450,18 +450,21 @@ pub unsafe extern "C" fn orient_filter_get_param(
 
 /// One update. On any status but OK the filter's state is exactly as before.
 ///
-/// Checks, in order: dt finite and at least 1e-9 s (INVALID_DT; in a batch this
-/// catches timestamps going backwards); flags and reserved (INVALID_ARGUMENT); gyroscope present
-/// (MISSING_SENSOR), finite (NON_FINITE), within ORIENT_PARAM_GYRO_RANGE (SATURATED);
+/// Checks, in order: flags and reserved (INVALID_ARGUMENT); dt finite, at least 1e-9 s
+/// and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards);
+/// gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
+/// ORIENT_PARAM_GYRO_RANGE (SATURATED), every component below 1e4 rad/s (TOO_LARGE);
 /// accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
 /// below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
 /// nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE
-/// (SATURATED); until the filter has an orientation, every sample must carry an
+/// (SATURATED), every component below its physical bound, 1e5 m/s^2 and 1e12
+/// (TOO_LARGE); until the filter has an orientation, every sample must carry an
 /// accelerometer (NOT_INITIALIZED). Subnormal components in an otherwise usable vector
 /// are accepted. Fields whose ORIENT_SAMPLE_* bit is clear are never read.
 ///
-/// Recoveries that are not errors: a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
-/// packets) is integrated as ORIENT_PARAM_GAP_DT and flagged ORIENT_FLAG_GAP; a
+/// Recoveries that are not errors: after a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
+/// packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
+/// ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
 /// magnetometer parallel to gravity gives no heading, so that step is an IMU update
 /// (ORIENT_FLAG_MAG_USED clear). A step whose result would not be finite returns
 /// NUMERIC (only reachable with ORIENT_PARAM_GAP_DT = 0).
@@ -847,6 +850,8 @@ mod tests {
         assert_eq!(ORIENT_FLAG_ACCEL_USED, flags::ACCEL_USED);
         assert_eq!(ORIENT_FLAG_MAG_USED, flags::MAG_USED);
         assert_eq!(ORIENT_FLAG_GAP, flags::GAP);
+        assert_eq!(ORIENT_FLAG_REACQUIRED, flags::REACQUIRED);
+        assert_eq!(ORIENT_FLAG_REACQUIRE_PENDING, flags::REACQUIRE_PENDING);
         assert_eq!(ORIENT_PARAM_GAP_DT, params::id::GAP_DT);
         assert_eq!(core::mem::size_of::<OrientSample>(), 88);
         assert_eq!(core::mem::size_of::<OrientConfig>(), 1072);

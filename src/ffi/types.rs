@@ -26,8 +26,25 @@ pub const ORIENT_FLAG_ACCEL_USED: u32 = 2;
 /// `orient_filter_flags`: the last accepted update used the magnetometer.
 pub const ORIENT_FLAG_MAG_USED: u32 = 4;
 /// `orient_filter_flags`: the last accepted update followed a gap (dt above
-/// ORIENT_PARAM_GAP_DT) and integrated over ORIENT_PARAM_GAP_DT instead of dt.
+/// ORIENT_PARAM_GAP_DT). Nothing was integrated over the gap, whose motion is unknown:
+/// the update re-acquired the orientation (ORIENT_FLAG_REACQUIRED) or, on a sample
+/// without an accelerometer reading, held it (ORIENT_FLAG_REACQUIRE_PENDING).
 pub const ORIENT_FLAG_GAP: u32 = 8;
+/// `orient_filter_flags`: the last accepted update re-acquired the orientation after a
+/// gap: inclination from its accelerometer reading, heading from its magnetometer
+/// reading when it has one (every kind but the robust one, whose magnetic disturbance
+/// test may refuse the reading, and the complementary one, which uses it only with
+/// align_heading), else the heading held before the gap. The kind's low-passes and
+/// detectors start over; its bias estimate is kept.
+pub const ORIENT_FLAG_REACQUIRED: u32 = 16;
+/// `orient_filter_flags`: a gap ended on a sample without an accelerometer reading; the
+/// orientation is held, then integrated from the gyroscope, until the next sample with an
+/// accelerometer reading, which re-acquires it (ORIENT_FLAG_REACQUIRED).
+pub const ORIENT_FLAG_REACQUIRE_PENDING: u32 = 32;
+
+/// `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
+/// smallest value that has it on.
+pub const ORIENT_PARAM_FLAG_ZERO_OFF: u32 = 1;
 
 /// Parameter slot (every kind): gravity magnitude for the gravity and linear
 /// acceleration outputs, m/s^2, default 9.80665.
@@ -39,8 +56,9 @@ pub const ORIENT_PARAM_GYRO_RANGE: u32 = 1;
 /// at or beyond it is rejected with ORIENT_STATUS_SATURATED. Default 0 = no check.
 pub const ORIENT_PARAM_ACCEL_RANGE: u32 = 2;
 /// Parameter slot (every kind): the longest dt (s) taken as it is; a larger dt is a gap in
-/// the data: the step integrates over this value instead and sets ORIENT_FLAG_GAP.
-/// Default 1; 0 turns the policy off (every finite dt > 0 is integrated as given).
+/// the data: the update re-acquires the orientation from the sensors and sets
+/// ORIENT_FLAG_GAP (see ORIENT_FLAG_REACQUIRED). Default 0.25; 0 turns the policy off
+/// (every accepted dt is integrated as given).
 pub const ORIENT_PARAM_GAP_DT: u32 = 3;
 /// Parameter slot (Madgwick): beta for steps without magnetometer, rad/s, default 0.041
 /// (Madgwick 2010, section V). beta = sqrt(3/4) * max gyro error, eq. (33):
@@ -184,12 +202,14 @@ pub enum OrientStatus {
     ParamOutOfRange = 6,
     /// A present sample field, or a given quaternion, holds NaN or +-Inf.
     NonFinite = 7,
-    /// dt is below 1e-9 s (zero, negative, subnormal), NaN or infinite.
+    /// dt is below 1e-9 s (zero, negative, subnormal), above 1e6 s, NaN or infinite.
     InvalidDt = 8,
     /// An accelerometer, magnetometer or quaternion whose norm is zero (or so small
     /// that its square is not a normal double).
     ZeroVector = 9,
-    /// A vector whose squared norm overflows a double.
+    /// A vector whose squared norm overflows a double, or a reading with a component at
+    /// or beyond its physical bound: gyroscope 1e4 rad/s, accelerometer 1e5 m/s^2,
+    /// magnetometer 1e12 (any unit).
     TooLarge = 10,
     /// A reading at or beyond the configured ORIENT_PARAM_*_RANGE.
     Saturated = 11,
@@ -296,7 +316,7 @@ pub struct OrientEuler {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct OrientSample {
-    /// Seconds since the previous sample; finite and at least 1e-9.
+    /// Seconds since the previous sample; finite, at least 1e-9 and at most 1e6.
     pub dt: f64,
     /// Angular rate, rad/s, sensor frame.
     pub gyro: OrientVec3,
@@ -344,8 +364,8 @@ pub struct OrientConfig {
 pub struct OrientParamInfo {
     /// Slot in OrientConfig.params.
     pub id: u32,
-    /// Always 0.
-    pub reserved: u32,
+    /// ORIENT_PARAM_FLAG_* bits.
+    pub flags: u32,
     /// Identifier, e.g. "beta_imu".
     pub name: *const c_char,
     /// Unit, e.g. "rad/s"; "1" for dimensionless.
@@ -353,7 +373,8 @@ pub struct OrientParamInfo {
     /// Meaning and the source of the default.
     pub description: *const c_char,
     pub default_value: f64,
-    /// Smallest accepted value (inclusive).
+    /// Smallest accepted value (inclusive), besides 0 where ORIENT_PARAM_FLAG_ZERO_OFF
+    /// is set. Subnormal values are never accepted.
     pub min: f64,
     /// Largest accepted value (inclusive).
     pub max: f64,

@@ -40,7 +40,7 @@
 //!   defines north instead, aligning the output with the configured earth frame.
 
 use super::params::{id, ParamSpec};
-use super::startup::StartupMeans;
+use super::startup::{StartupMeans, Stillness};
 use super::Step;
 use crate::math::{Frame, Quat, Vec3};
 
@@ -85,6 +85,7 @@ pub(crate) const PARAMS: [ParamSpec; 6] = [
         default: 1.0,
         min: 0.0,
         max: 1000.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::COMPLEMENTARY_KI,
@@ -96,6 +97,7 @@ pub(crate) const PARAMS: [ParamSpec; 6] = [
         default: 0.01,
         min: 0.0,
         max: 1000.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::COMPLEMENTARY_GYRO_REST,
@@ -106,6 +108,7 @@ pub(crate) const PARAMS: [ParamSpec; 6] = [
         default: 0.02,
         min: 0.0,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::COMPLEMENTARY_ACCEL_REST,
@@ -116,6 +119,7 @@ pub(crate) const PARAMS: [ParamSpec; 6] = [
         default: 0.2,
         min: 0.0,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::COMPLEMENTARY_INIT_DURATION,
@@ -126,6 +130,7 @@ pub(crate) const PARAMS: [ParamSpec; 6] = [
         default: 2.0,
         min: 0.0,
         max: 3600.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::COMPLEMENTARY_ALIGN_HEADING,
@@ -136,6 +141,7 @@ pub(crate) const PARAMS: [ParamSpec; 6] = [
         default: 0.0,
         min: 0.0,
         max: 1.0,
+        zero_off: false,
     },
 ];
 
@@ -194,6 +200,18 @@ impl Complementary {
         self.startup = None;
     }
 
+    /// After a gap: the attitude from the accelerometer (and, with `align_heading`, the
+    /// magnetometer; else the heading held), the bias ω_b and the stationary values kept.
+    pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
+        let (q, used_mag) = match r.with_mag {
+            Some(q) if self.settings.align_heading => (q, true),
+            _ => (r.keep, false),
+        };
+        self.q = q;
+        self.rest = false;
+        used_mag
+    }
+
     pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
         c.quat(&mut self.q);
         c.vec3(&mut self.bias);
@@ -246,13 +264,16 @@ impl Complementary {
         if let Some(mut s) = self.startup.clone() {
             // The wrapper guarantees an accelerometer reading until initialised.
             let a = accel?;
-            if !s.add(dt, gyro, a, mag, self.settings.init_duration) {
+            // Still: within twice the rest thresholds of the period's means.
+            let still =
+                Stillness { gyro: 2.0 * self.settings.gyro_rest, accel: 2.0 * self.settings.accel_rest };
+            if !s.add(dt, gyro, a, mag, self.settings.init_duration, still) {
                 self.startup = Some(s);
                 step.initializing = true;
                 return Some(step);
             }
             self.q = self.initial_attitude(&s);
-            self.bias = s.gyro();
+            self.bias = s.bias();
             self.b0 = self.bias;
             self.g0 = s.accel_norm();
             self.startup = None;

@@ -137,6 +137,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.2,
         min: 1e-4,
         max: 1e6,
+        zero_off: false,
     },
     ParamSpec {
         id: id::EKF_OMEGA_STD,
@@ -147,6 +148,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 3.0,
         min: 1e-6,
         max: 1e3,
+        zero_off: false,
     },
     ParamSpec {
         id: id::EKF_TAU_DRIFT,
@@ -157,6 +159,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 100.0,
         min: 1e-3,
         max: 1e9,
+        zero_off: false,
     },
     ParamSpec {
         id: id::EKF_DRIFT_STD,
@@ -166,6 +169,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.02,
         min: 1e-9,
         max: 10.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::EKF_GYRO_NOISE,
@@ -175,6 +179,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 8.726_646_259_971_648e-4,
         min: 1e-9,
         max: 10.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::EKF_ACCEL_NOISE,
@@ -184,6 +189,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 32e-6 * 9.80665,
         min: 1e-9,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::EKF_ACCEL_MOTION,
@@ -194,6 +200,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.5,
         min: 0.0,
         max: 1e3,
+        zero_off: false,
     },
     ParamSpec {
         id: id::EKF_HEADING_STD,
@@ -204,6 +211,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.1,
         min: 1e-6,
         max: 10.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::EKF_MOTION_TAU,
@@ -215,6 +223,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.5,
         min: 0.0,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::EKF_HEADING_TAU,
@@ -226,6 +235,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 1.0,
         min: 0.0,
         max: 1000.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::EKF_REST_RATE_STD,
@@ -235,8 +245,9 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
               the pseudo-measurement omega = 0 with this standard deviation (zero-rate update), \
               which pins the drift delta to the resting gyro; default 0 = off (the paper).",
         default: 0.0,
-        min: 0.0,
+        min: 1e-6,
         max: 10.0,
+        zero_off: true,
     },
     ParamSpec {
         id: id::EKF_ACCEL_ADAPT_TAU,
@@ -247,8 +258,9 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
               is trusted less (innovation-based adaptive noise, where the paper only allows 'a \
               modicum'); default 2 (BROAD mean 9D within 0.15 deg over 1-5 s); 0 = off.",
         default: 2.0,
-        min: 0.0,
+        min: 1e-3,
         max: 1000.0,
+        zero_off: true,
     },
     ParamSpec {
         id: id::EKF_HEADING_ADAPT_TAU,
@@ -258,8 +270,9 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
               the heading variance from below, so a disturbed field is trusted less; default 2; \
               0 = off.",
         default: 2.0,
-        min: 0.0,
+        min: 1e-3,
         max: 1000.0,
+        zero_off: true,
     },
 ];
 
@@ -721,6 +734,21 @@ impl Ekf {
         self.x.q = vector_of((), q);
     }
 
+    /// After a gap: the re-acquired orientation, ω from this gyroscope reading less the
+    /// drift estimate δ (kept), the covariance back to its initial value (the orientation
+    /// is as uncertain as at start-up), rest detection and adaptation started over.
+    pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
+        let (q, used_mag) = r.plain();
+        let omega = r.gyro - self.drift();
+        self.x.q = vector_of((), q);
+        self.x.w = f64x4::new([omega.x, omega.y, omega.z, 0.0]);
+        self.reset_covariance();
+        self.rest = RestDetector::default();
+        self.adapt = 0.0;
+        self.adapt_h = 0.0;
+        used_mag
+    }
+
     /// Visits the state as ten values [q, ω, δ], then P as a full 10×10 matrix in
     /// column-major order (the snapshot layout of format version 1).
     pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
@@ -768,7 +796,41 @@ impl Ekf {
 
     /// One step; `None`, with nothing changed, when it would not be finite. Runs with
     /// 256-bit lanes where the CPU has AVX (`crate::isa::widest_lanes`; the same bits).
+    ///
+    /// A step that fails from a covariance which has lost its conditioning (settings
+    /// changed under a running filter to extreme values, say) would fail again on every
+    /// later sample. So it is tried once more from a fresh start of the uncertain parts:
+    /// P at its initial value and ω at this gyroscope reading less the drift estimate,
+    /// the orientation and drift kept. Only if that fails too is the step refused.
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        if let Some(step) = self.step(dt, gyro, accel, mag) {
+            return Some(step);
+        }
+        self.retry_from_fresh_covariance(dt, gyro, accel, mag)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn retry_from_fresh_covariance(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+    ) -> Option<Step> {
+        let before = self.clone();
+        let omega = gyro - self.drift();
+        self.x.w = f64x4::new([omega.x, omega.y, omega.z, 0.0]);
+        self.reset_covariance();
+        let step = self.step(dt, gyro, accel, mag);
+        if step.is_none() {
+            *self = before;
+        }
+        step
+    }
+
+    #[inline(always)]
+    fn step(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         struct Run<'a> {
             ekf: &'a mut Ekf,
             dt: f64,

@@ -50,7 +50,7 @@
 //!   as it does when μ_K = 0.
 
 use super::params::{id, ParamSpec};
-use super::startup::StartupMeans;
+use super::startup::{StartupMeans, Stillness};
 use super::Step;
 use crate::math::{inv_sqrt, Frame, Quat, Vec3};
 
@@ -108,6 +108,7 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         default: 1.0,
         min: 0.0,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::GMVDK_SLOPE_MUK,
@@ -117,6 +118,7 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         default: 1.5,
         min: 0.0,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::GMVDK_MU_WINDOW,
@@ -126,6 +128,7 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         default: 0.4,
         min: 0.0,
         max: 60.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::GMVDK_INIT_DURATION,
@@ -135,6 +138,7 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         default: 1.0,
         min: 0.0,
         max: 3600.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::GMVDK_ACTIVITY_TAU,
@@ -144,6 +148,7 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         default: 0.1,
         min: 1e-4,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::GMVDK_GYRO_ACTIVITY,
@@ -154,6 +159,7 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         default: 0.5,
         min: 1e-6,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::GMVDK_ACCEL_ACTIVITY,
@@ -164,6 +170,7 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         default: 1.0,
         min: 1e-6,
         max: 1000.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::GMVDK_BIAS_WINDOW,
@@ -174,6 +181,7 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         default: 1.0,
         min: 1e-3,
         max: 3600.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::GMVDK_STATIC_ALPHA,
@@ -183,6 +191,7 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         default: 0.95,
         min: 0.0,
         max: 1.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::GMVDK_RELATIVE_OUTPUT,
@@ -193,6 +202,7 @@ pub(crate) const PARAMS: [ParamSpec; 10] = [
         default: 0.0,
         min: 0.0,
         max: 1.0,
+        zero_off: false,
     },
 ];
 
@@ -412,6 +422,23 @@ impl Gmvdk {
         }
     }
 
+    /// The orientation in ENU, whatever `relative_output` says.
+    pub fn absolute_quaternion(&self) -> Quat {
+        self.q
+    }
+
+    /// After a gap: the re-acquired attitude (the start-up pose that a relative output
+    /// refers to is kept), the static-run regression started over, the bias kept. The
+    /// gap counts as time, so the μ window forgets the readings before it.
+    pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
+        let (q, used_mag) = r.plain();
+        self.q = q;
+        self.time += r.dt;
+        self.regression = Regression::default();
+        self.mag_seen = false;
+        used_mag
+    }
+
     /// A known initial attitude (ENU): start-up is skipped; the references are taken from
     /// the first readings (A_init as gravity's reaction along up, M_init as the first
     /// field rotated into the earth frame).
@@ -483,7 +510,7 @@ impl Gmvdk {
             .unwrap_or(Quat::IDENTITY);
         self.q = q;
         self.q_start = q;
-        self.bias = s.gyro();
+        self.bias = s.bias();
         self.a_init = Some(q.rotate(accel));
         self.m_init = mag.map(|m| q.rotate(m));
         self.g0 = accel.norm();
@@ -495,7 +522,9 @@ impl Gmvdk {
         if let Some(mut s) = self.startup.clone() {
             let a = accel?;
             self.time += dt;
-            if !s.add(dt, gyro, a, mag, self.settings.init_duration) {
+            // Still: within the activity scales, where stillness would reach zero.
+            let still = Stillness { gyro: self.settings.gyro_activity, accel: self.settings.accel_activity };
+            if !s.add(dt, gyro, a, mag, self.settings.init_duration, still) {
                 self.startup = Some(s);
                 step.initializing = true;
                 return Some(step);

@@ -69,6 +69,7 @@ pub(crate) const PARAMS: [ParamSpec; 3] = [
         default: 0.041,
         min: 0.0,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::MADGWICK_BETA_MARG,
@@ -81,6 +82,7 @@ pub(crate) const PARAMS: [ParamSpec; 3] = [
         default: 0.041,
         min: 0.0,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::MADGWICK_REST_BIAS_TAU,
@@ -90,8 +92,9 @@ pub(crate) const PARAMS: [ParamSpec; 3] = [
               tilt for 1.5 s) with this time constant and subtract it; default 0 = off (the \
               paper has no bias estimate in this form).",
         default: 0.0,
-        min: 0.0,
+        min: 1e-3,
         max: 3600.0,
+        zero_off: true,
     },
 ];
 
@@ -371,6 +374,14 @@ impl Madgwick {
     /// Sets the estimate; `q` must be a unit quaternion.
     pub fn set_quaternion(&mut self, q: Quat) {
         self.q = q;
+    }
+
+    /// After a gap: the re-acquired estimate, rest detection started over, bias kept.
+    pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
+        let (q, used_mag) = r.plain();
+        self.q = q;
+        self.rest = RestBias::default();
+        used_mag
     }
 
     /// [`LANES`] filters' steps at once, each with an accelerometer reading and all with or all

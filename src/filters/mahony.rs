@@ -52,6 +52,7 @@ pub(crate) const PARAMS: [ParamSpec; 3] = [
         default: 0.5,
         min: 0.0,
         max: 1000.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::MAHONY_KI,
@@ -62,6 +63,7 @@ pub(crate) const PARAMS: [ParamSpec; 3] = [
         default: 0.0,
         min: 0.0,
         max: 1000.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::MAHONY_REST_BIAS_TAU,
@@ -71,8 +73,9 @@ pub(crate) const PARAMS: [ParamSpec; 3] = [
               bias b follows the low-passed gyro with this time constant; default 0 = off \
               (Mahony's filter).",
         default: 0.0,
-        min: 0.0,
+        min: 1e-3,
         max: 3600.0,
+        zero_off: true,
     },
 ];
 
@@ -96,6 +99,15 @@ impl Mahony {
 
     pub fn set_quaternion(&mut self, q: Quat) {
         self.q = q;
+    }
+
+    /// After a gap: the re-acquired estimate, rest detection started over; the bias b
+    /// (the integral term) is kept.
+    pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
+        let (q, used_mag) = r.plain();
+        self.q = q;
+        self.rest = RestBias::default();
+        used_mag
     }
 
     pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {

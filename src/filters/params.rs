@@ -17,7 +17,7 @@ pub mod id {
     pub const GYRO_RANGE: u32 = 1;
     /// Accelerometer full-scale range; readings at or beyond it are rejected as saturated.
     pub const ACCEL_RANGE: u32 = 2;
-    /// The longest dt taken as given; a larger one is a gap (see `GAP` flag).
+    /// The longest dt taken as given; a larger one is a gap, re-acquired (see `GAP` flag).
     pub const GAP_DT: u32 = 3;
 
     /// Madgwick β for steps without a magnetometer.
@@ -90,16 +90,32 @@ pub struct ParamSpec {
     /// One sentence: meaning, and where the default comes from.
     pub doc: &'static str,
     pub default: f64,
-    /// Smallest accepted value (inclusive).
+    /// Smallest accepted value (inclusive), besides the 0 that `zero_off` allows.
     pub min: f64,
     /// Largest accepted value (inclusive).
     pub max: f64,
+    /// 0 is also accepted and turns the feature off; `min` is then the smallest value
+    /// that has it on (smaller ones would mean no filter, only broken arithmetic).
+    pub zero_off: bool,
 }
 
 impl ParamSpec {
-    /// True when `value` is finite and within `[min, max]`.
+    /// True when `value` is finite and within `[min, max]`, or 0 where that turns the
+    /// feature off. Subnormal values are never accepted (a ±0 is a 0).
     pub fn accepts(&self, value: f64) -> bool {
-        value.is_finite() && value >= self.min && value <= self.max
+        let zero = value == 0.0;
+        let normal = zero || value.abs() >= f64::MIN_POSITIVE;
+        value.is_finite() && normal && ((zero && self.zero_off) || (value >= self.min && value <= self.max))
+    }
+
+    /// The smallest positive value accepted: `min`, or the smallest normal number for a
+    /// range that starts at 0.
+    pub fn smallest_positive(&self) -> f64 {
+        if self.min > 0.0 {
+            self.min
+        } else {
+            f64::MIN_POSITIVE
+        }
     }
 }
 
@@ -114,6 +130,7 @@ pub const COMMON: [ParamSpec; 4] = [
         default: 9.80665,
         min: 1e-3,
         max: 1e3,
+        zero_off: false,
     },
     ParamSpec {
         id: id::GYRO_RANGE,
@@ -122,8 +139,9 @@ pub const COMMON: [ParamSpec; 4] = [
         doc: "Gyroscope full scale: a sample with any axis at or beyond it is rejected as \
               saturated; 0 turns the check off (default, since the range is the sensor's).",
         default: 0.0,
-        min: 0.0,
-        max: 1e6,
+        min: 0.1,
+        max: 1e4,
+        zero_off: true,
     },
     ParamSpec {
         id: id::ACCEL_RANGE,
@@ -132,18 +150,22 @@ pub const COMMON: [ParamSpec; 4] = [
         doc: "Accelerometer full scale: a sample with any axis at or beyond it is rejected as \
               saturated; 0 turns the check off (default).",
         default: 0.0,
-        min: 0.0,
-        max: 1e6,
+        min: 1.0,
+        max: 1e5,
+        zero_off: true,
     },
     ParamSpec {
         id: id::GAP_DT,
         name: "gap_dt",
         unit: "s",
         doc: "Longest dt taken as given: a larger dt is a gap in the data (dropped packets), and \
-              the step integrates over gap_dt instead and sets the GAP flag; default 1 (at least \
-              10x any sensor period in use); 0 turns it off.",
-        default: 1.0,
-        min: 0.0,
+              the update re-acquires the orientation from the sensors instead of integrating \
+              over it (GAP and REACQUIRED flags); default 0.25 (orient: over a quarter second \
+              a hand's rate changes enough that integrating the next sample's rate errs more \
+              than one accelerometer reading; 10 periods of a 40 Hz sensor); 0 turns it off.",
+        default: 0.25,
+        min: 1e-3,
         max: 1e6,
+        zero_off: true,
     },
 ];

@@ -111,6 +111,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 2.5,
         min: 1e-3,
         max: 1000.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_TAU_MAG,
@@ -121,6 +122,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 9.0,
         min: 1e-3,
         max: 1000.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_REST_GYRO,
@@ -131,6 +133,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.03490658503988659,
         min: 0.0,
         max: 10.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_REST_ACCEL,
@@ -141,6 +144,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.5,
         min: 0.0,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_REST_TIME,
@@ -151,6 +155,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 1.5,
         min: 0.0,
         max: 3600.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_REST_TILT,
@@ -163,6 +168,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.008726646259971648,
         min: 0.0,
         max: 3.2,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_REST_TAU,
@@ -173,6 +179,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.5,
         min: 1e-3,
         max: 100.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_BIAS_TAU_REST,
@@ -183,6 +190,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 2.0,
         min: 1e-3,
         max: 3600.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_BIAS_TAU_MOTION,
@@ -192,8 +200,9 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
               default 100 (orient: 40 times tau_acc, so accelerations that leak through the \
               low-pass average out before they move the bias); 0 turns it off.",
         default: 100.0,
-        min: 0.0,
+        min: 1e-3,
         max: 1e6,
+        zero_off: true,
     },
     ParamSpec {
         id: id::ROBUST_BIAS_LIMIT,
@@ -204,6 +213,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.03490658503988659,
         min: 0.0,
         max: 10.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_MAG_NORM_TH,
@@ -214,6 +224,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.1,
         min: 0.0,
         max: 10.0,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_MAG_DIP_TH,
@@ -224,6 +235,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         default: 0.17453292519943295,
         min: 0.0,
         max: 3.2,
+        zero_off: false,
     },
     ParamSpec {
         id: id::ROBUST_HARD_IRON_TIME,
@@ -232,8 +244,9 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         doc: "A sensor-fixed disturbance (attached magnet) is compensated once its estimate has \
               been consistent this long; default 3 (orient); 0 turns compensation off.",
         default: 3.0,
-        min: 0.0,
+        min: 1e-3,
         max: 3600.0,
+        zero_off: true,
     },
 ];
 
@@ -254,19 +267,41 @@ fn dip(f: Vec3) -> f64 {
     libm::asin((-f.z / f.norm()).clamp(-1.0, 1.0))
 }
 
-/// A second-order Butterworth low-pass of a vector (direct form II transposed). Its
-/// cutoff is `√2 / (2π τ)` for time constant τ; the coefficients come from the bilinear
-/// transform with pre-warping and are recomputed only when dt or τ change.
+/// A second-order Butterworth low-pass of a vector, `ÿ = ω² (x − y) − 2ζω ẏ` with
+/// ζ = 1/√2 and ω = √2/τ (cutoff `√2 / (2π τ)` for time constant τ), stepped exactly
+/// for an input held over each step (x is the sample that ends it). With the deviation
+/// `e = y − x` and the damped frequency `ω_d = ω √(1 − ζ²) = 1/τ`, one step of dt is
+///
+/// ```text
+/// e' = E [(C + S) e + τ S ẏ],   ẏ' = E [−(2/τ) S e + (C − S) ẏ],
+/// E = exp(−dt/τ), C = cos(dt/τ), S = sin(dt/τ)
+/// ```
+///
+/// (the flow of the equation over dt). Two properties make it safe for any dt and any
+/// sequence of dt, where the usual biquad is not:
+/// - The state is the output and its rate in physical units, so a step of another dt (a
+///   late packet, a gap) meets a state that means the same at every dt. A biquad's
+///   state holds differences per sample, which a longer step misreads as a rate many
+///   times too large and answers with a swing of degrees.
+/// - Each step is the equation's own flow, so the filter stays stable for every dt and
+///   the output settles on the input when dt is long against τ. A bilinear step would
+///   ring at the Nyquist frequency there, and a pre-warped one turns unstable once
+///   `ω dt / 2` reaches π/2.
+///
+/// The coefficients are recomputed only when dt or τ change.
 #[derive(Clone, Debug, Default, PartialEq)]
 struct Butterworth {
     /// dt and τ the coefficients belong to.
     dt: f64,
     tau: f64,
-    b0: f64,
-    a1: f64,
-    a2: f64,
-    s1: Vec3,
-    s2: Vec3,
+    /// One step: `e' = ee·e + ev·ẏ`, `ẏ' = ve·e + vv·ẏ`.
+    ee: f64,
+    ev: f64,
+    ve: f64,
+    vv: f64,
+    /// Output y and its rate ẏ (per second).
+    y: Vec3,
+    v: Vec3,
 }
 
 impl Butterworth {
@@ -274,50 +309,38 @@ impl Butterworth {
         if dt == self.dt && tau == self.tau {
             return;
         }
-        let fc = core::f64::consts::SQRT_2 / (core::f64::consts::TAU * tau);
-        let c = libm::tan(core::f64::consts::PI * fc * dt);
-        let d = c * c + core::f64::consts::SQRT_2 * c + 1.0;
-        self.b0 = c * c / d;
-        self.a1 = 2.0 * (c * c - 1.0) / d;
-        self.a2 = (1.0 - core::f64::consts::SQRT_2 * c + c * c) / d;
+        let e = libm::exp(-dt / tau);
+        let (s, c) = libm::sincos(dt / tau);
+        self.ee = e * (c + s);
+        self.ev = e * s * tau;
+        self.ve = -2.0 * e * s / tau;
+        self.vv = e * (c - s);
         self.dt = dt;
         self.tau = tau;
     }
 
     /// Sets the state to the steady state of a constant input `x`.
     fn settle(&mut self, x: Vec3) {
-        // Steady state needs the coefficients; those of any dt give y = x (unit DC gain),
-        // but s1, s2 depend on them, so settle again on the first filter call.
-        self.dt = f64::NAN;
-        self.s1 = x;
-        self.s2 = Vec3::ZERO;
+        self.y = x;
+        self.v = Vec3::ZERO;
     }
 
     fn filter(&mut self, dt: f64, tau: f64, x: Vec3) -> Vec3 {
-        if self.dt.is_nan() {
-            let held = self.s1;
-            self.coefficients(dt, tau);
-            let (b0, a2) = (self.b0, self.a2);
-            self.s1 = held * (1.0 - b0);
-            self.s2 = held * (b0 - a2);
-        } else {
-            self.coefficients(dt, tau);
-        }
-        let (b0, a1, a2) = (self.b0, self.a1, self.a2);
-        let y = x * b0 + self.s1;
-        self.s1 = x * (2.0 * b0) - y * a1 + self.s2;
-        self.s2 = x * b0 - y * a2;
-        y
+        self.coefficients(dt, tau);
+        let e = self.y - x;
+        self.y = x + e * self.ee + self.v * self.ev;
+        self.v = e * self.ve + self.v * self.vv;
+        self.y
     }
 
     fn codec(&mut self, c: &mut dyn Codec) {
         c.f64(&mut self.dt);
         c.f64(&mut self.tau);
-        c.f64(&mut self.b0);
-        c.f64(&mut self.a1);
-        c.f64(&mut self.a2);
-        c.vec3(&mut self.s1);
-        c.vec3(&mut self.s2);
+        for k in [&mut self.ee, &mut self.ev, &mut self.ve, &mut self.vv] {
+            c.f64(k);
+        }
+        c.vec3(&mut self.y);
+        c.vec3(&mut self.v);
     }
 }
 
@@ -395,6 +418,37 @@ impl Robust {
 
     pub fn bias(&self) -> Vec3 {
         self.bias
+    }
+
+    /// After a gap: inclination from this accelerometer reading, heading from the
+    /// magnetometer only when its field (less the hard iron in use) passes the norm and
+    /// dip tests against the reference, else the heading held; the low-passes, rest
+    /// detection and the hard-iron consistency clock start over; the bias, the magnetic
+    /// reference and a hard-iron offset in use are kept.
+    pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
+        let mut q = r.keep;
+        let mut used_mag = false;
+        if let Some(m) = r.mag {
+            let m = if self.hard_iron_on { m - self.hard_iron } else { m };
+            let trusted = self.mag_count == 0 || self.accepts(r.keep.rotate(m));
+            if let Some(with_mag) =
+                crate::math::Frame::Enu.attitude_from(r.accel, Some(m)).filter(|_| trusted)
+            {
+                q = with_mag;
+                used_mag = true;
+            }
+        }
+        self.q_gyr = q;
+        self.q_inc = Quat::IDENTITY;
+        self.delta = 0.0;
+        self.q = q;
+        self.acc_lp.settle(q.rotate(r.accel));
+        self.acc_seen = true;
+        self.rest = RestDetector::default();
+        self.hi_started = false;
+        self.hi_clock = 0.0;
+        self.mag_disturbed = !used_mag && r.mag.is_some();
+        used_mag
     }
 
     /// True when the last sample was classified as rest.
@@ -615,6 +669,66 @@ mod tests {
         let a = est.rotate_inverse(up);
         let b = truth.rotate_inverse(up);
         libm::atan2(a.cross(b).norm(), a.dot(b))
+    }
+
+    /// One step is the flow of `ÿ = ω² (x − y) − 2ζω ẏ` (ζ = 1/√2, ω = √2/τ) over dt with
+    /// the input held: against a fine fourth-order Runge-Kutta integration of that
+    /// equation, over steps of mixed lengths.
+    #[test]
+    fn the_low_pass_steps_its_differential_equation_exactly() {
+        let (zeta, tau) = (core::f64::consts::FRAC_1_SQRT_2, 0.8);
+        let omega = core::f64::consts::SQRT_2 / tau;
+        let deriv = |x: f64, y: f64, v: f64| (v, omega * omega * (x - y) - 2.0 * zeta * omega * v);
+        let (mut y, mut v) = (0.0, 0.0);
+        let mut f = Butterworth::default();
+        f.settle(Vec3::ZERO);
+        for i in 0..300 {
+            let dt = [0.01, 0.003, 0.25, 1.7][i % 4];
+            let x = (i as f64 * 0.37).sin() + 1.0;
+            let n = 2000;
+            let h = dt / n as f64;
+            for _ in 0..n {
+                let k1 = deriv(x, y, v);
+                let k2 = deriv(x, y + 0.5 * h * k1.0, v + 0.5 * h * k1.1);
+                let k3 = deriv(x, y + 0.5 * h * k2.0, v + 0.5 * h * k2.1);
+                let k4 = deriv(x, y + h * k3.0, v + h * k3.1);
+                y += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+                v += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+            }
+            let got = f.filter(dt, tau, Vec3::new(x, 0.0, 0.0)).x;
+            assert!((got - y).abs() < 1e-10, "step {i} (dt {dt}): {got} vs {y}");
+        }
+    }
+
+    /// A steady input passes unchanged whatever the steps, and a step response stays
+    /// bounded for every τ in the parameter's range at any dt and any mix of dt.
+    #[test]
+    fn the_low_pass_is_stable_for_every_dt_and_tau() {
+        let spec = PARAMS.iter().find(|p| p.id == id::ROBUST_TAU_ACC).unwrap();
+        let mut taus = vec![spec.min, spec.max, spec.default];
+        let mut t = spec.min;
+        while t < spec.max {
+            taus.push(t);
+            t *= 1.37;
+        }
+        let v = Vec3::new(0.3, -9.0, 2.0);
+        for &tau in &taus {
+            for dt in [1e-9, 1e-4, 0.001, 0.0123, 0.1, 0.7, 3.0, 100.0] {
+                let mut f = Butterworth::default();
+                f.settle(v);
+                for k in 0..50 {
+                    let y = f.filter(if k % 3 == 0 { dt } else { 0.01 }, tau, v);
+                    assert!((y - v).norm() < 1e-7 * v.norm(), "tau {tau}, dt {dt}: {y:?}");
+                }
+                // A unit step: a Butterworth overshoots by about 4 %.
+                let mut f = Butterworth::default();
+                f.settle(Vec3::ZERO);
+                for k in 0..2000 {
+                    let y = f.filter(if k % 5 == 0 { 0.01 } else { dt }, tau, Vec3::new(1.0, 0.0, 0.0)).x;
+                    assert!(y.is_finite() && y.abs() < 1.05, "tau {tau}, dt {dt}: {y}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -1,11 +1,24 @@
 //! The static start-up period of the complementary filter and GMVDK: running sums of the
-//! readings over the period, and their means.
+//! readings over the period, and their means. Both papers take the initial bias and
+//! attitude from a still period; a period that was not still would give them a wrong
+//! bias and reference for good (McGinnis' rest test compares with them), so a sample
+//! that leaves the period's mean by more than the kind's stillness thresholds starts the
+//! period over from that sample. A sensor that never keeps still is not waited for
+//! forever: once [`PATIENCE`] periods have passed, the period in progress is finished
+//! whatever the motion, with a zero bias (the mean rate of a motion is no bias).
+
+/// How many start-up durations to wait for a still period before starting without one.
+pub(crate) const PATIENCE: f64 = 5.0;
 
 use super::state::Codec;
 use crate::math::Vec3;
 
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct StartupMeans {
+    /// Time since the first start-up sample, over restarts (s).
+    elapsed: f64,
+    /// A sample that was not still came after the patience ran out.
+    moved: bool,
     time: f64,
     n: u32,
     gyro: Vec3,
@@ -15,9 +28,38 @@ pub(crate) struct StartupMeans {
     n_mag: u32,
 }
 
+/// How far a start-up sample may lie from the period's mean and still count as still.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Stillness {
+    /// |ω − mean ω| (rad/s).
+    pub gyro: f64,
+    /// | |a| − mean |a| | (m/s²).
+    pub accel: f64,
+}
+
 impl StartupMeans {
-    /// Adds one sample; true once the sums cover `duration` seconds.
-    pub fn add(&mut self, dt: f64, gyro: Vec3, accel: Vec3, mag: Option<Vec3>, duration: f64) -> bool {
+    /// Adds one sample; true once the sums cover `duration` seconds. A sample that is not
+    /// still against the period so far starts the period over.
+    pub fn add(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Vec3,
+        mag: Option<Vec3>,
+        duration: f64,
+        still: Stillness,
+    ) -> bool {
+        if self.n > 0
+            && ((gyro - self.gyro()).norm() > still.gyro
+                || (accel.norm() - self.accel_norm()).abs() > still.accel)
+        {
+            if self.elapsed < PATIENCE * duration {
+                *self = StartupMeans { elapsed: self.elapsed, ..StartupMeans::default() };
+            } else {
+                self.moved = true;
+            }
+        }
+        self.elapsed += dt;
         self.time += dt;
         self.n += 1;
         self.gyro = self.gyro + gyro;
@@ -32,6 +74,15 @@ impl StartupMeans {
 
     pub fn gyro(&self) -> Vec3 {
         self.gyro * (1.0 / self.n as f64)
+    }
+
+    /// The initial bias: the mean rate of a still period, zero after motion.
+    pub fn bias(&self) -> Vec3 {
+        if self.moved {
+            Vec3::ZERO
+        } else {
+            self.gyro()
+        }
     }
 
     pub fn accel(&self) -> Vec3 {
@@ -53,6 +104,8 @@ impl StartupMeans {
         let mut present = s.is_some();
         c.bool(&mut present);
         let mut v = s.clone().unwrap_or_default();
+        c.f64(&mut v.elapsed);
+        c.bool(&mut v.moved);
         c.f64(&mut v.time);
         c.u32(&mut v.n);
         c.vec3(&mut v.gyro);

@@ -256,7 +256,16 @@ static void config_paths(void) {
     for (i = 0; i < count; i++) {
         CHECK_STATUS(orient_param_info(ORIENT_KIND_MADGWICK, i, &info), ORIENT_STATUS_OK);
         CHECK(info.name && info.unit && info.description && strlen(info.description) > 10);
-        CHECK(info.min <= info.default_value && info.default_value <= info.max);
+        CHECK((info.flags & ~(uint32_t)ORIENT_PARAM_FLAG_ZERO_OFF) == 0);
+        if (info.default_value == 0.0 && (info.flags & ORIENT_PARAM_FLAG_ZERO_OFF)) {
+            /* Off by default: 0 is accepted, and so is min, while a value below min is not. */
+            CHECK_STATUS(orient_config_set_param(&c, info.id, info.min), ORIENT_STATUS_OK);
+            CHECK_STATUS(orient_config_set_param(&c, info.id, 0.5 * info.min), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+            CHECK_STATUS(orient_config_set_param(&c, info.id, 0.0), ORIENT_STATUS_OK);
+        } else {
+            CHECK(info.min <= info.default_value && info.default_value <= info.max);
+        }
+        CHECK_STATUS(orient_config_set_param(&c, info.id, 5e-324), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
         CHECK_STATUS(orient_param_find(ORIENT_KIND_MADGWICK, info.name, &id), ORIENT_STATUS_OK);
         CHECK(id == info.id);
         CHECK(c.params[info.id] == info.default_value);
@@ -429,7 +438,7 @@ static void bad_input(int32_t kind) {
     struct {
         OrientSample s;
         OrientStatus expected;
-    } cases[24];
+    } cases[32];
     int n = 0, i;
 
     CHECK(f && twin);
@@ -440,7 +449,7 @@ static void bad_input(int32_t kind) {
     CHECK_STATUS(orient_filter_set_param(twin, ORIENT_PARAM_ACCEL_RANGE, 156.9), ORIENT_STATUS_OK);
     CHECK(warm_up(f) > 0);
     CHECK(warm_up(twin) > 0);
-    /* No gap policy here, so that an overflowing step reaches ORIENT_STATUS_NUMERIC. */
+    /* No gap policy here: a dt beyond 1e6 s is still refused. */
     CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_GAP_DT, 0.0), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_filter_set_param(twin, ORIENT_PARAM_GAP_DT, 0.0), ORIENT_STATUS_OK);
 
@@ -470,7 +479,10 @@ static void bad_input(int32_t kind) {
     BAD(bad.flags = ORIENT_SAMPLE_ACCEL, ORIENT_STATUS_MISSING_SENSOR);
     BAD(bad.flags |= 8u, ORIENT_STATUS_INVALID_ARGUMENT);
     BAD(bad.reserved = 1, ORIENT_STATUS_INVALID_ARGUMENT);
-    if (kind == ORIENT_KIND_MADGWICK) BAD(bad.dt = 1e300, ORIENT_STATUS_NUMERIC);
+    BAD(bad.dt = 1e300, ORIENT_STATUS_INVALID_DT);
+    BAD(bad.dt = 2e6, ORIENT_STATUS_INVALID_DT);
+    BAD(bad.gyro.y = 1e4, ORIENT_STATUS_SATURATED);
+    BAD(bad.mag.y = -1e12, ORIENT_STATUS_TOO_LARGE);
 #undef BAD
 
     for (i = 0; i < n; i++) {
@@ -515,15 +527,17 @@ static void bad_input(int32_t kind) {
     CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
     CHECK(same_quaternion(a, b));
 
-    /* A gap: dt above ORIENT_PARAM_GAP_DT is integrated over gap_dt and flagged. */
+    /* A gap: after a dt above ORIENT_PARAM_GAP_DT the orientation is re-acquired from
+       the sensors, and flagged. */
     {
         uint32_t flags = 0;
         OrientSample g = good_sample();
         CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_GAP_DT, 1.0), ORIENT_STATUS_OK);
-        g.dt = 1e300;
+        g.dt = 3.0;
         CHECK_STATUS(orient_filter_update(f, &g), ORIENT_STATUS_OK);
         CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
         CHECK((flags & ORIENT_FLAG_GAP) != 0);
+        CHECK((flags & ORIENT_FLAG_REACQUIRED) != 0);
         CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
         CHECK(fabs(a.w * a.w + a.x * a.x + a.y * a.y + a.z * a.z - 1.0) < 1e-12);
         g.dt = 0.01;
