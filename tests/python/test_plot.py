@@ -27,7 +27,7 @@ def test_bands_follow_rest_and_rejected_magnetometer():
     r = f.update_batch(gyr, acc, mag, dt=0.01)
     b = ev.bands(t, r)
     assert "rest" in b and b["rest"][0][1] < 3.0 + 1e-9  # rest ends when the turn starts
-    assert any(t0 <= 4.0 and 4.0 <= t1 for t0, t1 in b["mag rejected"]), b
+    assert any(t0 <= 4.0 and 4.0 <= t1 for t0, t1 in b["mag unused"]), b
     assert "gap" not in b
     gap = orient.Madgwick().update_batch(gyr[:10], acc[:10], dt=np.r_[[0.01] * 5, 2.0, [0.01] * 4])
     assert ev.bands(np.arange(10.0), gap, has_mag=False)["gap"] == [(5.0, 5.0)]
@@ -47,4 +47,4 @@ def test_plot_writes_an_svg_with_every_series_and_band(tmp_path):
     for k in results:
         for angle in ("total", "heading", "inclination"):
             assert f"{k}-{angle}" in ids, (k, angle)
-    assert "robust-band-rest-0" in ids and "robust-band-mag rejected-0" in ids
+    assert "robust-band-rest-0" in ids and "robust-band-mag unused-0" in ids

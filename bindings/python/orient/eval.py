@@ -146,14 +146,15 @@ def remove_heading_offset(est: np.ndarray, truth: np.ndarray, movement: np.ndarr
 
 def bands(t: np.ndarray, result: BatchResult, has_accel: bool = True, has_mag: bool = True) -> dict:
     """Time spans where the filter reported a condition, for plots: ``{name: [(t0, t1), ...]}``
-    for ``rest`` (diagnostics.rest, kinds with a rest detector), ``mag rejected`` (a
-    magnetometer was given but the update did not use it), ``accel rejected`` (likewise
-    for the accelerometer) and ``gap`` (FLAG_GAP). A condition no sample shows is absent."""
+    for ``rest`` (diagnostics.rest, kinds with a rest detector), ``mag unused`` (a
+    magnetometer was given but the update did not use it: a rejected disturbance, or a
+    kind that does not use it then), ``accel unused`` (likewise for the accelerometer:
+    acceleration rejection) and ``gap`` (FLAG_GAP), as the replay tool's ``--svg`` draws. A condition no sample shows is absent."""
     flags = result.flags
     conditions = {
         "rest": result.rest,
-        "mag rejected": (flags & FLAG_MAG_USED) == 0 if has_mag else np.zeros(len(flags), bool),
-        "accel rejected": (flags & FLAG_ACCEL_USED) == 0 if has_accel else np.zeros(len(flags), bool),
+        "mag unused": (flags & FLAG_MAG_USED) == 0 if has_mag else np.zeros(len(flags), bool),
+        "accel unused": (flags & FLAG_ACCEL_USED) == 0 if has_accel else np.zeros(len(flags), bool),
         "gap": (flags & FLAG_GAP) != 0,
     }
     out = {}

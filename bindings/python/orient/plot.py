@@ -11,14 +11,14 @@ from ._filter import BatchResult
 from .eval import Recording, bands, error_angles
 
 ANGLES = ("total", "heading", "inclination")
-BAND_COLORS = {"rest": "#2ca02c", "mag rejected": "#d62728", "accel rejected": "#ff7f0e", "gap": "#7f7f7f"}
+BAND_COLORS = {"rest": "#2ca02c", "mag unused": "#d62728", "accel unused": "#ff7f0e", "gap": "#7f7f7f"}
 
 
 def plot_errors(rec: Recording, results: Mapping[str, BatchResult], path: Optional[str] = None) -> Any:
     """Draws the total, heading and inclination error (degrees) over time of each filter
     in ``results`` (label -> :class:`BatchResult`, quaternions in ENU) against
     ``rec.truth``, one panel per angle, with shaded bands where each filter reported
-    rest, a rejected magnetometer or accelerometer, or a gap (:func:`orient.eval.bands`).
+    rest, an unused magnetometer or accelerometer, or a gap (:func:`orient.eval.bands`).
     Saves to ``path`` when given (format from its suffix, e.g. ``.svg``) and returns the
     matplotlib Figure.
 
