@@ -132,7 +132,7 @@ mod tests {
     fn arrays_equal_the_record_batch_and_stop_at_a_bad_sample() {
         unsafe {
             let mut c = core::mem::MaybeUninit::<OrientConfig>::uninit();
-            assert_eq!(orient_config_default(OrientKind::Robust as i32, c.as_mut_ptr()), OrientStatus::Ok);
+            assert_eq!(orient_config_default(OrientKind::Mahony as i32, c.as_mut_ptr()), OrientStatus::Ok);
             let (mut a, mut b) = (core::ptr::null_mut(), core::ptr::null_mut());
             assert_eq!(orient_filter_new(c.as_ptr(), &mut a), OrientStatus::Ok);
             assert_eq!(orient_filter_new(c.as_ptr(), &mut b), OrientStatus::Ok);
