@@ -1,24 +1,35 @@
 //! Replays a recording through a filter and scores it against ground truth.
 //!
 //! ```text
-//! cargo run --release --example replay -- --filter NAME [--no-mag] [--frame enu|ned|nwu]
-//!     [--set KEY=VALUE]... [--out OUT.csv] INPUT.csv
+//! cargo run --release --example replay -- --filter NAME[,NAME...] [--no-mag] [--frame enu|ned|nwu]
+//!     [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv
 //! ```
 //!
-//! - NAME: madgwick, mahony, complementary, ekf or gmvdk.
+//! - NAME: madgwick, mahony, complementary, ekf, gmvdk or robust; several (comma-separated
+//!   or `--filter` repeated) replay the same recording through each in turn.
 //! - `--no-mag` ignores the magnetometer columns (6D).
-//! - `--set` changes a parameter by name (see the filter's parameter table); repeatable.
+//! - `--set` changes a parameter by name (see the filter's parameter table); repeatable;
+//!   with several filters it applies to each that has the parameter.
 //! - INPUT: CSV as in shared/data/FORMAT.md (header row, columns by name, extra columns
 //!   ignored); dt from consecutive `t`.
-//! - OUT: `t,qw,qx,qy,qz` followed by the filter's diagnostics (`bias_x,bias_y,bias_z`,
+//! - OUT (one filter only): `t,qw,qx,qy,qz` followed by the filter's diagnostics (`bias_x,bias_y,bias_z`,
 //!   `rest`, `alpha,mu_ka,mu_km,mu_k`, `rate_*`, `p0..p9`, as the kind offers them; NaN
 //!   where a value is absent), one row per input row, quaternion in the chosen frame.
 //! - With ground truth (`quat_*`, `movement`), prints BROAD's total / heading /
 //!   inclination RMSE in degrees over `movement == 1` rows; with `--no-mag` also after
 //!   removing one constant heading offset.
+//! - SVG (needs ground truth): the total, heading and inclination error over time of
+//!   every filter replayed, and a lane per filter with bands where it reported rest, a
+//!   magnetometer it did not use (magnetic disturbance), an accelerometer it did not use
+//!   (acceleration rejection) or a gap (see `replay/plot.rs`); with `--no-mag` the
+//!   error after removing the heading offset.
+//! - Standard output closed early (`| head`): the tool stops quietly, status 0.
 //!
 //! Exit status: 0 on success, 2 on bad arguments or malformed input (the message names
 //! the line and column), 1 when writing the output fails.
+
+#[path = "replay/plot.rs"]
+mod plot;
 
 use orient::eval::{remove_heading_offset, score, Recording, Scores};
 use orient::filters::{diag, Diagnostics};
@@ -28,15 +39,30 @@ use std::path::PathBuf;
 use std::process::exit;
 use std::time::Instant;
 
-const USAGE: &str = "usage: replay --filter NAME [--no-mag] [--frame enu|ned|nwu] [--set KEY=VALUE]... \
-                     [--out OUT.csv] INPUT.csv";
+const USAGE: &str = "usage: replay --filter NAME[,NAME...] [--no-mag] [--frame enu|ned|nwu] \
+                     [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv";
+
+/// println! that stops the tool quietly (status 0) when standard output was closed, as
+/// `| head` does, instead of panicking on the broken pipe; other write errors are status 1.
+macro_rules! say {
+    ($($arg:tt)*) => {
+        if let Err(e) = writeln!(std::io::stdout().lock(), $($arg)*) {
+            if e.kind() != std::io::ErrorKind::BrokenPipe {
+                eprintln!("replay: cannot write to standard output: {e}");
+                exit(1);
+            }
+            exit(0);
+        }
+    };
+}
 
 struct Args {
-    kind: Kind,
+    kinds: Vec<Kind>,
     no_mag: bool,
     frame: Frame,
     sets: Vec<(String, f64)>,
     out: Option<PathBuf>,
+    svg: Option<PathBuf>,
     input: PathBuf,
 }
 
@@ -46,11 +72,12 @@ fn fail(message: impl std::fmt::Display) -> ! {
 }
 
 fn parse_args() -> Args {
-    let mut kind = None;
+    let mut kinds = Vec::new();
     let mut no_mag = false;
     let mut frame = Frame::Enu;
     let mut sets = Vec::new();
     let mut out = None;
+    let mut svg = None;
     let mut input = None;
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
@@ -58,12 +85,12 @@ fn parse_args() -> Args {
             |name: &str| it.next().unwrap_or_else(|| fail(format!("{name} needs a value\n{USAGE}")));
         match arg.as_str() {
             "--filter" => {
-                let v = value("--filter");
                 let names: Vec<&str> = Kind::ALL.iter().map(|k| k.name()).collect();
-                kind =
-                    Some(Kind::from_name(&v).unwrap_or_else(|| {
+                for v in value("--filter").split(',') {
+                    kinds.push(Kind::from_name(v.trim()).unwrap_or_else(|| {
                         fail(format!("unknown filter '{v}' (one of: {})", names.join(", ")))
                     }));
+                }
             }
             "--no-mag" => no_mag = true,
             "--frame" => {
@@ -82,8 +109,9 @@ fn parse_args() -> Args {
                 sets.push((key.trim().to_string(), val));
             }
             "--out" => out = Some(PathBuf::from(value("--out"))),
+            "--svg" => svg = Some(PathBuf::from(value("--svg"))),
             "-h" | "--help" => {
-                println!("{USAGE}");
+                say!("{USAGE}");
                 exit(0)
             }
             s if s.starts_with("--") => fail(format!("unknown option '{s}'\n{USAGE}")),
@@ -91,12 +119,19 @@ fn parse_args() -> Args {
             _ => input = Some(PathBuf::from(arg)),
         }
     }
+    if kinds.is_empty() {
+        fail(format!("--filter is required\n{USAGE}"));
+    }
+    if out.is_some() && kinds.len() > 1 {
+        fail("--out takes one filter (its columns depend on the kind)");
+    }
     Args {
-        kind: kind.unwrap_or_else(|| fail(format!("--filter is required\n{USAGE}"))),
+        kinds,
         no_mag,
         frame,
         sets,
         out,
+        svg,
         input: input.unwrap_or_else(|| fail(format!("no input file\n{USAGE}"))),
     }
 }
@@ -152,45 +187,111 @@ fn extra_values(d: &Diagnostics, present: u32) -> Vec<f64> {
 }
 
 fn print_scores(label: &str, s: &Scores) {
-    println!(
+    say!(
         "{label:<28} total {:6.2}  heading {:6.2}  inclination {:6.2}   ({} samples)",
-        s.total, s.heading, s.inclination, s.count
+        s.total,
+        s.heading,
+        s.inclination,
+        s.count
     );
 }
 
-fn main() {
-    let args = parse_args();
-    let mut config = Config::new(args.kind).unwrap_or_else(|e| fail(e));
+/// One filter's run over the recording.
+struct Run {
+    kind: Kind,
+    /// The estimates in ENU (what BROAD scores).
+    enu: Vec<Quat>,
+    /// orient_filter_flags after each sample (0 for a rejected one).
+    flags: Vec<u32>,
+    /// Diagnostics' rest flag after each sample (false where the kind has none).
+    rest: Vec<bool>,
+}
+
+fn configure(kind: Kind, args: &Args) -> Config {
+    let mut config = Config::new(kind).unwrap_or_else(|e| fail(e));
     config.frame = args.frame;
     for (key, value) in &args.sets {
         match config.set(key, *value) {
+            None if args.kinds.len() > 1 => {}
             None => {
-                let names: Vec<&str> = args.kind.params().map(|p| p.name).collect();
-                fail(format!("{} has no parameter '{key}' (it has: {})", args.kind.name(), names.join(", ")))
+                let names: Vec<&str> = kind.params().map(|p| p.name).collect();
+                fail(format!("{} has no parameter '{key}' (it has: {})", kind.name(), names.join(", ")))
             }
             Some(Err(e)) => fail(format!("--set {key}={value}: {e}")),
             Some(Ok(())) => {}
         }
     }
+    config
+}
+
+fn main() {
+    let args = parse_args();
+    if args.kinds.len() > 1 {
+        for (key, _) in &args.sets {
+            if !args.kinds.iter().any(|k| k.param_by_name(key).is_some()) {
+                fail(format!("none of the filters has a parameter '{key}'"));
+            }
+        }
+    }
+    let configs: Vec<Config> = args.kinds.iter().map(|k| configure(*k, &args)).collect();
     let rec = Recording::read(&args.input, !args.no_mag)
         .unwrap_or_else(|e| fail(format!("{}: {e}", args.input.display())));
+    if args.svg.is_some() && !rec.has_truth() {
+        fail(format!("--svg: {} has no ground truth columns (quat_*, movement)", args.input.display()));
+    }
     let samples = rec.samples();
-    let mut filter = Filter::new(&config).unwrap_or_else(|e| fail(e));
+    let mut runs = Vec::new();
+    for (i, config) in configs.iter().enumerate() {
+        if i > 0 {
+            say!();
+        }
+        runs.push(replay(&args, config, &rec, &samples));
+    }
+    if let Some(path) = &args.svg {
+        let series: Vec<plot::Series> = runs
+            .iter()
+            .map(|r| plot::Series { label: r.kind.name(), estimates: &r.enu, flags: &r.flags, rest: &r.rest })
+            .collect();
+        let title = format!(
+            "{} ({})",
+            args.input.file_name().map_or(String::new(), |n| n.to_string_lossy().into_owned()),
+            if args.no_mag { "6D" } else { "9D" }
+        );
+        if let Err(e) = plot::write_svg(path, &title, &rec, &series, !args.no_mag) {
+            eprintln!("replay: cannot write {}: {e}", path.display());
+            exit(1);
+        }
+        say!("svg: {}", path.display());
+    }
+}
 
+fn replay(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Sample]) -> Run {
+    let kind = config.kind();
+    let mut filter = Filter::new(config).unwrap_or_else(|e| fail(e));
     let mut estimates: Vec<Quat> = Vec::with_capacity(samples.len());
-    let columns = extra_columns(args.kind.diagnostics());
+    let mut sample_flags: Vec<u32> = Vec::with_capacity(samples.len());
+    let mut rest: Vec<bool> = Vec::with_capacity(samples.len());
+    let columns = extra_columns(kind.diagnostics());
     let mut extras: Vec<Vec<f64>> = Vec::with_capacity(if args.out.is_some() { samples.len() } else { 0 });
     let mut rejected = 0usize;
     let mut first_rejection = None;
     let start = Instant::now();
     for (i, s) in samples.iter().enumerate() {
-        if let Err(e) = filter.update(s) {
-            rejected += 1;
-            first_rejection.get_or_insert((i, e));
-        }
+        let accepted = match filter.update(s) {
+            Ok(()) => true,
+            Err(e) => {
+                rejected += 1;
+                first_rejection.get_or_insert((i, e));
+                false
+            }
+        };
         estimates.push(filter.quaternion());
+        sample_flags.push(if accepted { filter.flags() } else { 0 });
+        if args.svg.is_some() {
+            rest.push(accepted && filter.diagnostics().rest == 1.0);
+        }
         if args.out.is_some() {
-            extras.push(extra_values(&filter.diagnostics(), args.kind.diagnostics()));
+            extras.push(extra_values(&filter.diagnostics(), kind.diagnostics()));
         }
     }
     let elapsed = start.elapsed();
@@ -213,9 +314,9 @@ fn main() {
     }
 
     let dims = if args.no_mag { "6D" } else { "9D" };
-    println!(
+    say!(
         "{} {dims}, frame {}, {} samples from {} in {:.1} ms ({:.0} ns/sample), {rejected} rejected",
-        args.kind.name(),
+        kind.name(),
         args.frame.name(),
         samples.len(),
         args.input.display(),
@@ -223,19 +324,23 @@ fn main() {
         elapsed.as_secs_f64() * 1e9 / samples.len().max(1) as f64,
     );
     if let Some((i, e)) = first_rejection {
-        println!("first rejected sample: row {} (line {}): {e}", i, i + 2);
-    }
-    if !rec.has_truth() {
-        println!("no ground truth columns (quat_*, movement): nothing to score");
-        return;
+        say!("first rejected sample: row {} (line {}): {e}", i, i + 2);
     }
     // BROAD scores ENU q_ES.
     let to_enu = args.frame.rotation_to(Frame::Enu);
     let mut enu: Vec<Quat> = estimates.iter().map(|q| to_enu.map_or(*q, |c| c * *q)).collect();
+    let run = |enu: Vec<Quat>| Run { kind, enu, flags: sample_flags.clone(), rest: rest.clone() };
+    if !rec.has_truth() {
+        say!("no ground truth columns (quat_*, movement): nothing to score");
+        return run(enu);
+    }
     print_scores("BROAD RMSE [deg]:", &score(&enu, &rec.truth, &rec.movement));
     if args.no_mag {
-        let offset = remove_heading_offset(&mut enu, &rec.truth, &rec.movement);
+        let mut fixed = enu.clone();
+        let offset = remove_heading_offset(&mut fixed, &rec.truth, &rec.movement);
         let label = format!("heading offset {:+.1} deg removed:", offset.to_degrees());
-        print_scores(&label, &score(&enu, &rec.truth, &rec.movement));
+        print_scores(&label, &score(&fixed, &rec.truth, &rec.movement));
+        enu = fixed;
     }
+    run(enu)
 }

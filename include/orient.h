@@ -1055,6 +1055,33 @@ OrientStatus orient_filter_reset(OrientFilter *filter);
  */
 OrientStatus orient_filter_set_quaternion(OrientFilter *filter, const struct OrientQuaternion *q);
 
+/**
+ * Updates with `n` samples given as arrays, in order; the same updates as
+ * orient_filter_update_batch with the same samples, bit for bit.
+ *
+ * `gyro` holds `3 n` doubles (x, y, z of sample 0, then of sample 1, ...; a C-ordered
+ * n x 3 array); `accel` and `mag` likewise, or NULL when the samples have no such
+ * reading. `dt` holds `dt_count` doubles: 1 (every sample takes `dt[0]`) or `n` (one
+ * per sample); any other count is ORIENT_STATUS_INVALID_ARGUMENT. After each sample,
+ * `quaternions[i]`, `flags[i]` (orient_filter_flags) and `diagnostics[i]`
+ * (orient_filter_diagnostics) receive the filter's outputs; each may be NULL when not
+ * wanted. Stops at the first bad sample exactly as orient_filter_update_batch does: the
+ * samples before it stay applied, the bad one changes nothing, and `*processed` (when
+ * not NULL) is its index; on success it is `n`. `gyro` and `dt` may be NULL only when
+ * `n` is 0.
+ */
+OrientStatus orient_filter_update_arrays(OrientFilter *filter,
+                                         size_t n,
+                                         const double *dt,
+                                         size_t dt_count,
+                                         const double *gyro,
+                                         const double *accel,
+                                         const double *mag,
+                                         struct OrientQuaternion *quaternions,
+                                         uint32_t *flags,
+                                         struct OrientDiagnostics *diagnostics,
+                                         size_t *processed);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

@@ -4,7 +4,8 @@
 #                                     missing): enough to build and run the demo
 #   scripts/setup-debian.sh           everything the tests use: also binutils, CMake,
 #                                     pkg-config, Mono (C# tests), valgrind,
-#                                     abi-compliance-checker from apt; cbindgen 0.29.4 from
+#                                     abi-compliance-checker, python3 and python3-venv
+#                                     (Python package tests) from apt; cbindgen 0.29.4 from
 #                                     crates.io; nightly with Miri and cargo-fuzz
 #   scripts/setup-debian.sh --cross   all of that plus the Linux board targets (aarch64,
 #                                     armv7): Rust standard libraries, Debian's cross
@@ -30,6 +31,9 @@ fi
 
 $sudo apt-get install -y -qq --no-install-recommends \
   binutils pkg-config cmake mono-mcs mono-runtime abi-compliance-checker valgrind >/dev/null
+# The Python package's tests: python3 with venv (Debian splits it out); the test
+# requirements themselves come from PyPI into a fresh virtual environment.
+$sudo apt-get install -y -qq --no-install-recommends python3 python3-venv >/dev/null
 
 if [ "$(cbindgen --version 2>/dev/null || true)" != "cbindgen 0.29.4" ]; then
   cargo install cbindgen --locked --version 0.29.4 --quiet

@@ -5,6 +5,7 @@
 # (with and without exceptions), the C# binding under Mono and the Unity scripts
 # against a stub, the examples in every language, the install layout with CMake and
 # pkg-config consumers, golden vectors, and the BROAD recordings in ../shared/data;
+# the Python package built as a wheel and tested with pytest in a fresh venv;
 # then the same suite for aarch64 and armv7 under qemu-user (the golden vectors must
 # match bit for bit there too).
 set -euo pipefail
@@ -22,6 +23,8 @@ echo "== ABI against the committed baseline"
 scripts/check-abi.sh
 echo "== cargo test"
 cargo test
+echo "== Python package: wheel, fresh virtual environment, pytest"
+scripts/test-python.sh
 echo "== Miri on the library's unit tests (unsafe FFI code included)"
 # Tree Borrows: nalgebra's matrix views break the stricter Stacked Borrows model
 # inside nalgebra itself (cholesky -> gemv), which is not orient's code.

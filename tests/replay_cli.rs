@@ -120,3 +120,58 @@ fn every_kind_replays_and_writes_its_diagnostics_as_extra_columns() {
         assert!(last.iter().all(|v| v.is_finite()), "{kind}: {last:?}");
     }
 }
+
+#[test]
+fn a_closed_standard_output_ends_the_tool_quietly() {
+    // The reading end closed before the tool writes anything, as `| head -0` would.
+    let mut child = common::native::command(&replay())
+        .args(["--filter", "robust,madgwick", EXCERPT])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{stderr}");
+    assert!(stderr.is_empty(), "expected no message, got: {stderr}");
+}
+
+#[test]
+fn several_filters_replay_in_turn_and_draw_one_svg() {
+    let svg = tmp("several.svg");
+    let o = run(&["--filter", "robust,madgwick", "--filter", "ekf", "--svg", svg.to_str().unwrap(), EXCERPT]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{stdout}{}", String::from_utf8_lossy(&o.stderr));
+    for kind in ["robust 9D", "madgwick 9D", "ekf 9D"] {
+        assert!(stdout.contains(kind), "{kind}: {stdout}");
+    }
+    assert_eq!(stdout.matches("BROAD RMSE [deg]:").count(), 3, "{stdout}");
+    assert!(stdout.contains(&format!("svg: {}", svg.display())), "{stdout}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<svg") && text.trim_end().ends_with("</svg>"));
+    for kind in ["robust", "madgwick", "ekf"] {
+        for series in ["total", "heading", "inclination", "rest", "mag unused", "accel unused", "gap"] {
+            assert!(text.contains(&format!("\n{kind} {series}\n")), "no label '{kind} {series}'");
+        }
+    }
+    // --out takes one filter; --svg needs ground truth.
+    let out = tmp("two.csv");
+    assert_eq!(
+        run(&["--filter", "robust,madgwick", "--out", out.to_str().unwrap(), EXCERPT]).status.code(),
+        Some(2)
+    );
+    let no_truth = tmp("no_truth.csv");
+    std::fs::write(&no_truth, "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.8\n0.01,0,0,0,0,0,9.8\n")
+        .unwrap();
+    let o = run(&[
+        "--filter",
+        "madgwick",
+        "--no-mag",
+        "--svg",
+        svg.to_str().unwrap(),
+        no_truth.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no ground truth"));
+}

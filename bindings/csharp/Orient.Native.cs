@@ -325,5 +325,13 @@ namespace Orient.Native
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern Status orient_filter_set_quaternion(IntPtr filter, ref Quaternion q);
+
+        /// <summary>Batch update from arrays: gyro, accel and mag hold 3n doubles each
+        /// (accel and mag may be null), dt holds dtCount (1 or n) doubles.</summary>
+        /// <param name="quaternions">null, or room for n quaternions; flags and diagnostics likewise.</param>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern unsafe Status orient_filter_update_arrays(
+            IntPtr filter, UIntPtr n, double* dt, UIntPtr dtCount, double* gyro, double* accel, double* mag,
+            Quaternion* quaternions, uint* flags, Diagnostics* diagnostics, UIntPtr* processed);
     }
 }

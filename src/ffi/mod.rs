@@ -13,9 +13,11 @@
 //! names, and a handle is not used from two threads at once.
 #![allow(clippy::missing_safety_doc)]
 
+mod arrays;
 mod error;
 mod types;
 
+pub use arrays::*;
 pub use types::*;
 
 use crate::filters::{Config, Filter, Init, Kind, Sample, SampleView};
@@ -713,24 +715,22 @@ pub unsafe extern "C" fn orient_filter_diagnostics(
     filter: *const OrientFilter,
     diagnostics: *mut OrientDiagnostics,
 ) -> OrientStatus {
-    guard(|| {
-        let d = handle(filter)?.filter.diagnostics();
-        put(
-            diagnostics,
-            OrientDiagnostics {
-                present: d.present,
-                reserved: 0,
-                gyro_bias: vec_to(d.gyro_bias),
-                rest: d.rest,
-                alpha: d.alpha,
-                mu_ka: d.mu_ka,
-                mu_km: d.mu_km,
-                mu_k: d.mu_k,
-                rate: vec_to(d.rate),
-                covariance: d.covariance,
-            },
-        )
-    })
+    guard(|| put(diagnostics, diagnostics_to(&handle(filter)?.filter.diagnostics())))
+}
+
+fn diagnostics_to(d: &crate::filters::Diagnostics) -> OrientDiagnostics {
+    OrientDiagnostics {
+        present: d.present,
+        reserved: 0,
+        gyro_bias: vec_to(d.gyro_bias),
+        rest: d.rest,
+        alpha: d.alpha,
+        mu_ka: d.mu_ka,
+        mu_km: d.mu_km,
+        mu_k: d.mu_k,
+        rate: vec_to(d.rate),
+        covariance: d.covariance,
+    }
 }
 
 /// Size in bytes of this filter's state blob (orient_filter_save); constant per kind.

@@ -98,6 +98,39 @@ static int split(char *line, char **tok) {
     return n;
 }
 
+/* Runs a case through orient_filter_update_arrays when every row has the same sensors
+ * (the arrays carry a sensor for all samples or for none). */
+static void arrays_case(const OrientConfig *config, int n) {
+    static double dt[MAX_ROWS], gyro[3 * MAX_ROWS], accel[3 * MAX_ROWS], mag[3 * MAX_ROWS];
+    static uint32_t flags[MAX_ROWS];
+    OrientFilter *f = NULL;
+    uint32_t sensors = rows[0].sample.flags;
+    size_t processed = 0;
+    int i, mismatches = 0;
+    for (i = 0; i < n; i++) {
+        const OrientSample *s = &rows[i].sample;
+        if (s->flags != sensors) return;
+        dt[i] = s->dt;
+        gyro[3 * i] = s->gyro.x, gyro[3 * i + 1] = s->gyro.y, gyro[3 * i + 2] = s->gyro.z;
+        accel[3 * i] = s->accel.x, accel[3 * i + 1] = s->accel.y, accel[3 * i + 2] = s->accel.z;
+        mag[3 * i] = s->mag.x, mag[3 * i + 1] = s->mag.y, mag[3 * i + 2] = s->mag.z;
+    }
+    CHECK_STATUS(orient_filter_new(config, &f), ORIENT_STATUS_OK);
+    if (!f) return;
+    CHECK_STATUS(orient_filter_update_arrays(f, (size_t)n, dt, (size_t)n, gyro,
+                                             (sensors & ORIENT_SAMPLE_ACCEL) ? accel : NULL,
+                                             (sensors & ORIENT_SAMPLE_MAG) ? mag : NULL, batch_out,
+                                             flags, NULL, &processed),
+                 ORIENT_STATUS_OK);
+    CHECK(processed == (size_t)n);
+    for (i = 0; i < n; i++) {
+        if (!same_quaternion(batch_out[i], rows[i].expected)) mismatches++;
+    }
+    CHECK(mismatches == 0);
+    CHECK(n == 0 || (flags[n - 1] & ORIENT_FLAG_INITIALIZED));
+    CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
+}
+
 /* Runs one case through single updates and through one batch call. */
 static void run_case(const char *name, const OrientConfig *config, int n) {
     OrientFilter *single = NULL;
@@ -129,6 +162,7 @@ static void run_case(const char *name, const OrientConfig *config, int n) {
         }
         CHECK(mismatches == 0);
     }
+    arrays_case(config, n);
     CHECK_STATUS(orient_filter_free(single), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_filter_free(batch), ORIENT_STATUS_OK);
 }
@@ -526,6 +560,50 @@ static void bad_input(int32_t kind) {
     CHECK_STATUS(orient_filter_update_batch(NULL, batch, 1, NULL, NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
     CHECK(same_quaternion(a, b));
+    /* The arrays call: the same stop at a bad sample, its own argument checks. */
+    {
+        double dt = s.dt, gyro[9], accel[9];
+        OrientDiagnostics d[3];
+        uint32_t fl[3];
+        for (i = 0; i < 3; i++) {
+            gyro[3 * i] = s.gyro.x, gyro[3 * i + 1] = s.gyro.y, gyro[3 * i + 2] = s.gyro.z;
+            accel[3 * i] = s.accel.x, accel[3 * i + 1] = s.accel.y, accel[3 * i + 2] = s.accel.z;
+        }
+        accel[5] = NAN;
+        CHECK_STATUS(orient_filter_update_arrays(f, 3, &dt, 1, gyro, accel, NULL, NULL, fl, d, &processed),
+                     ORIENT_STATUS_NON_FINITE);
+        CHECK(processed == 1);
+        CHECK(strstr(orient_last_error(), "sample 1") != NULL);
+        {
+            /* Sample 0's flags and diagnostics are the filter's after it (no mag given). */
+            OrientDiagnostics now;
+            uint32_t flags_now = 0;
+            CHECK_STATUS(orient_filter_flags(f, &flags_now), ORIENT_STATUS_OK);
+            CHECK_STATUS(orient_filter_diagnostics(f, &now), ORIENT_STATUS_OK);
+            CHECK(fl[0] == flags_now && !(fl[0] & ORIENT_FLAG_MAG_USED));
+            CHECK(d[0].present == now.present && bits(d[0].gyro_bias.x) == bits(now.gyro_bias.x));
+        }
+        CHECK_STATUS(orient_filter_update_arrays(twin, 1, &dt, 1, gyro, accel, NULL, NULL, NULL, NULL, NULL),
+                     ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_quaternion(twin, &b), ORIENT_STATUS_OK);
+        CHECK(same_quaternion(a, b));
+        CHECK_STATUS(orient_filter_update_arrays(f, 3, &dt, 2, gyro, NULL, NULL, NULL, NULL, NULL, NULL),
+                     ORIENT_STATUS_INVALID_ARGUMENT);
+        CHECK_STATUS(orient_filter_update_arrays(f, 3, &dt, 1, NULL, NULL, NULL, NULL, NULL, NULL, NULL),
+                     ORIENT_STATUS_NULL_POINTER);
+        CHECK_STATUS(orient_filter_update_arrays(f, 3, NULL, 1, gyro, NULL, NULL, NULL, NULL, NULL, NULL),
+                     ORIENT_STATUS_NULL_POINTER);
+        CHECK_STATUS(orient_filter_update_arrays(f, SIZE_MAX, &dt, 1, gyro, NULL, NULL, NULL, NULL, NULL, NULL),
+                     ORIENT_STATUS_COUNT_TOO_LARGE);
+        CHECK_STATUS(orient_filter_update_arrays(NULL, 1, &dt, 1, gyro, NULL, NULL, NULL, NULL, NULL, NULL),
+                     ORIENT_STATUS_NULL_POINTER);
+        CHECK_STATUS(orient_filter_update_arrays(f, 0, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL, &processed),
+                     ORIENT_STATUS_OK);
+        CHECK(processed == 0);
+        CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
+        CHECK(same_quaternion(a, b));
+    }
 
     /* A gap: after a dt above ORIENT_PARAM_GAP_DT the orientation is re-acquired from
        the sensors, and flagged. */

@@ -1,0 +1,66 @@
+"""orient: IMU/MARG orientation filters (Madgwick, Mahony, McGinnis complementary,
+Kim-Golnaraghi EKF, GMVDK and the recommended ``Robust``) over orient's C library.
+
+Conventions: earth frame ENU by default (NED, NWU selectable); Hamilton quaternions
+(w, x, y, z) mapping sensor to earth; gyroscope rad/s, accelerometer m/s^2,
+magnetometer any unit; float64; dt in seconds with every sample.
+
+Example (``gyr``, ``acc``, ``mag``: (N, 3) NumPy arrays)::
+
+    import orient
+    f = orient.Robust(tau_acc=3.0)
+    r = f.update_batch(gyr, acc, mag, dt=0.01)
+    r.quaternion, r.flags, r.diagnostics["gyro_bias"]
+"""
+
+from ._filter import (
+    BatchResult,
+    Complementary,
+    Ekf,
+    Filter,
+    Gmvdk,
+    Madgwick,
+    Mahony,
+    OrientError,
+    ParamInfo,
+    Robust,
+    params,
+    status_message,
+    version,
+)
+from ._native import (
+    DIAGNOSTICS_DTYPE,
+    FLAG_ACCEL_USED,
+    FLAG_GAP,
+    FLAG_INITIALIZED,
+    FLAG_MAG_USED,
+    Frame,
+    Kind,
+    Status,
+)
+
+__version__ = version()
+
+__all__ = [
+    "BatchResult",
+    "Complementary",
+    "DIAGNOSTICS_DTYPE",
+    "Ekf",
+    "FLAG_ACCEL_USED",
+    "FLAG_GAP",
+    "FLAG_INITIALIZED",
+    "FLAG_MAG_USED",
+    "Filter",
+    "Frame",
+    "Gmvdk",
+    "Kind",
+    "Madgwick",
+    "Mahony",
+    "OrientError",
+    "ParamInfo",
+    "Robust",
+    "Status",
+    "params",
+    "status_message",
+    "version",
+]

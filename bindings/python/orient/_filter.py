@@ -1,0 +1,544 @@
+"""The filter objects: one class per kind over the C API's opaque handle."""
+
+from __future__ import annotations
+
+from ctypes import byref, c_double, c_int32, c_size_t, c_uint8, c_uint32, c_void_p
+from dataclasses import dataclass
+from typing import Any, ClassVar, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _native as n
+from ._native import DIAGNOSTICS_DTYPE, Frame, Init, Kind, Status, lib
+
+ArrayLike = Union[np.ndarray, Sequence[float], Sequence[Sequence[float]], float]
+
+
+class OrientError(Exception):
+    """A call the library refused. It changed nothing (a batch keeps the samples before
+    ``index``).
+
+    Attributes:
+        status: the library's :class:`Status`.
+        message: the library's detail (``orient_last_error``), or the fixed message of
+            the status when there is no detail.
+        index: for a batch, the index of the sample that was refused; else ``None``.
+    """
+
+    def __init__(self, status: int, message: str, index: Optional[int] = None) -> None:
+        self.status = Status(status)
+        self.message = message
+        self.index = index
+        super().__init__(f"{self.status.name}: {message}")
+
+
+def status_message(status: int) -> str:
+    """The library's fixed English message for a status code."""
+    return lib.orient_status_message(int(status)).decode()
+
+
+def _check(status: int, index: Optional[int] = None) -> None:
+    if status != Status.OK:
+        detail = lib.orient_last_error().decode() or status_message(status)
+        raise OrientError(status, detail, index)
+
+
+def version() -> str:
+    """The loaded library's version, e.g. ``"0.1.0"``."""
+    return lib.orient_version().decode()
+
+
+@dataclass(frozen=True)
+class ParamInfo:
+    """One setting as the library's parameter table describes it (``orient_param_info``)."""
+
+    name: str
+    id: int
+    unit: str
+    description: str
+    default: float
+    min: float
+    max: float
+
+
+KIND_NAMES: Dict[str, Kind] = {k.name.lower(): k for k in Kind}
+FRAME_NAMES: Dict[str, Frame] = {f.name.lower(): f for f in Frame}
+
+
+def _kind(kind: Union[str, int, Kind]) -> Kind:
+    if isinstance(kind, str):
+        try:
+            return KIND_NAMES[kind.lower()]
+        except KeyError:
+            raise OrientError(
+                Status.INVALID_ARGUMENT, f"unknown filter kind '{kind}' (one of: {', '.join(KIND_NAMES)})"
+            ) from None
+    try:
+        return Kind(int(kind))
+    except ValueError:
+        raise OrientError(Status.INVALID_ARGUMENT, f"unknown filter kind {kind}") from None
+
+
+def params(kind: Union[str, int, Kind]) -> List[ParamInfo]:
+    """The settings of a kind (common ones first), read from the library's table."""
+    k = _kind(kind)
+    count = c_uint32()
+    _check(lib.orient_param_count(k, byref(count)))
+    out = []
+    for i in range(count.value):
+        info = n.OrientParamInfo()
+        _check(lib.orient_param_info(k, i, byref(info)))
+        out.append(
+            ParamInfo(
+                name=info.name.decode(),
+                id=info.id,
+                unit=info.unit.decode(),
+                description=info.description.decode(),
+                default=info.default_value,
+                min=info.min,
+                max=info.max,
+            )
+        )
+    return out
+
+
+def _param_id(kind: Kind, name: str) -> int:
+    pid = c_uint32()
+    _check(lib.orient_param_find(kind, name.encode(), byref(pid)))
+    return pid.value
+
+
+def _rows(x: Any, what: str, n: Optional[int] = None) -> np.ndarray:
+    """``x`` as a C-contiguous float64 (N, 3) array; the same object when it already is one."""
+    a = np.ascontiguousarray(x, dtype=np.float64)
+    if a.ndim != 2 or a.shape[1] != 3 or (n is not None and a.shape[0] != n):
+        want = f"({n}, 3)" if n is not None else "(N, 3)"
+        raise ValueError(f"{what} must have shape {want}, got {a.shape}")
+    return a
+
+
+def _vec3(v: Any, what: str) -> n.OrientVec3:
+    a = np.asarray(v, dtype=np.float64)
+    if a.shape != (3,):
+        raise ValueError(f"{what} must have 3 values, got shape {a.shape}")
+    return n.OrientVec3(float(a[0]), float(a[1]), float(a[2]))
+
+
+def _ptr(a: Optional[np.ndarray], offset_rows: int = 0) -> Optional[int]:
+    if a is None:
+        return None
+    return a.ctypes.data + offset_rows * a.strides[0] if a.ndim else a.ctypes.data
+
+
+@dataclass
+class BatchResult:
+    """What :meth:`Filter.update_batch` returns, one row per sample.
+
+    Attributes:
+        quaternion: (N, 4) float64, w, x, y, z after each sample (configured frame).
+        flags: (N,) uint32, ``FLAG_*`` bits after each sample.
+        diagnostics: (N,) records of :data:`DIAGNOSTICS_DTYPE` (``gyro_bias`` (N, 3),
+            ``rest``, ``alpha``, ``mu_ka``, ``mu_km``, ``mu_k``, ``rate`` (N, 3),
+            ``covariance`` (N, 10), ``present``); a field the kind does not report is NaN.
+        status: (N,) int32, 0 for an accepted sample, else the :class:`Status` that
+            refused it (only with ``errors="skip"``; the row then repeats the outputs
+            from before it).
+    """
+
+    quaternion: np.ndarray
+    flags: np.ndarray
+    diagnostics: np.ndarray
+    status: np.ndarray
+
+    @property
+    def accel_used(self) -> np.ndarray:
+        """(N,) bool: the sample's update used the accelerometer."""
+        return (self.flags & n.FLAG_ACCEL_USED) != 0
+
+    @property
+    def mag_used(self) -> np.ndarray:
+        """(N,) bool: the sample's update used the magnetometer."""
+        return (self.flags & n.FLAG_MAG_USED) != 0
+
+    @property
+    def gap(self) -> np.ndarray:
+        """(N,) bool: the sample followed a gap (dt above ``gap_dt``)."""
+        return (self.flags & n.FLAG_GAP) != 0
+
+    @property
+    def rest(self) -> np.ndarray:
+        """(N,) bool: the filter reported rest (kinds with a rest detector; else all False)."""
+        return self.diagnostics["rest"] == 1.0
+
+
+class Filter:
+    """An orientation filter. Use a kind's class (:class:`Madgwick`, :class:`Robust`, ...)
+    or ``Filter("robust", ...)``.
+
+    Args:
+        kind: only for ``Filter`` itself: a kind name (``"madgwick"``, ``"mahony"``,
+            ``"complementary"``, ``"ekf"``, ``"gmvdk"``, ``"robust"``) or :class:`Kind`.
+        frame: earth frame of every output: ``"enu"`` (default), ``"ned"`` or ``"nwu"``.
+        initial: ``None`` (default: from the first accelerometer/magnetometer sample),
+            ``"identity"``, or a quaternion (w, x, y, z) in the configured frame.
+        **settings: parameters by name (see :meth:`params`); each is checked against
+            the library's range.
+
+    Raises:
+        OrientError: an unknown setting (``UNKNOWN_PARAM``), a value out of range
+            (``PARAM_OUT_OF_RANGE``), an unknown kind or frame (``INVALID_ARGUMENT``).
+
+    A filter must not be used from two threads at once; distinct filters are independent.
+    """
+
+    KIND: ClassVar[Optional[Kind]] = None
+
+    def __init__(
+        self,
+        kind: Union[str, int, Kind, None] = None,
+        *,
+        frame: str = "enu",
+        initial: Union[None, str, Sequence[float], np.ndarray] = None,
+        **settings: float,
+    ) -> None:
+        self._handle: Optional[int] = None
+        if self.KIND is not None:
+            if kind is not None:
+                raise TypeError(f"{type(self).__name__} takes no kind argument")
+            k = self.KIND
+        elif kind is None:
+            raise TypeError("Filter needs a kind, e.g. Filter('robust'), or use a kind's class")
+        else:
+            k = _kind(kind)
+        config = n.OrientConfig()
+        _check(lib.orient_config_default(k, byref(config)))
+        try:
+            config.frame = FRAME_NAMES[frame.lower()]
+        except (KeyError, AttributeError):
+            raise OrientError(Status.INVALID_ARGUMENT, f"unknown frame '{frame}' (enu, ned, nwu)") from None
+        if initial is None:
+            config.init = Init.ACC_MAG
+        elif isinstance(initial, str):
+            if initial != "identity":
+                raise OrientError(Status.INVALID_ARGUMENT, "initial must be None, 'identity' or (w, x, y, z)")
+            config.init = Init.IDENTITY
+        else:
+            q = np.asarray(initial, dtype=np.float64)
+            if q.shape != (4,):
+                raise ValueError(f"initial must be (w, x, y, z), got shape {q.shape}")
+            config.init = Init.GIVEN
+            config.initial = n.OrientQuaternion(*map(float, q))
+        for name, value in settings.items():
+            try:
+                _check(lib.orient_config_set_param(byref(config), _param_id(k, name), float(value)))
+            except OrientError as e:
+                raise OrientError(e.status, f"{k.name.lower()} setting '{name}': {e.message}") from None
+        handle = c_void_p()
+        _check(lib.orient_filter_new(byref(config), byref(handle)))
+        self._handle = handle.value
+        self._kind_value = k
+
+    # -- lifecycle ---------------------------------------------------------------------
+
+    def close(self) -> None:
+        """Releases the native filter now (also done when the object is collected)."""
+        if self._handle is not None:
+            lib.orient_filter_free(self._handle)
+            self._handle = None
+
+    def __del__(self) -> None:
+        self.close()
+
+    def __enter__(self) -> "Filter":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+    @property
+    def _h(self) -> int:
+        if self._handle is None:
+            raise OrientError(Status.INVALID_HANDLE, "the filter was closed")
+        return self._handle
+
+    def __repr__(self) -> str:
+        return f"<orient.{type(self).__name__} kind={self.kind!r}>"
+
+    # -- settings ----------------------------------------------------------------------
+
+    @property
+    def kind(self) -> str:
+        """The kind's name, e.g. ``"robust"``."""
+        k = c_int32()
+        _check(lib.orient_filter_kind(self._h, byref(k)))
+        return Kind(k.value).name.lower()
+
+    @classmethod
+    def params(cls, kind: Union[str, int, Kind, None] = None) -> List[ParamInfo]:
+        """The settings of this kind, from the library's parameter table."""
+        k = cls.KIND if cls.KIND is not None else kind
+        if k is None:
+            raise TypeError("Filter.params needs a kind")
+        return params(k)
+
+    def __getitem__(self, name: str) -> float:
+        """The current value of a setting, by name."""
+        v = c_double()
+        _check(lib.orient_filter_get_param(self._h, _param_id(self._kind_value, name), byref(v)))
+        return v.value
+
+    def __setitem__(self, name: str, value: float) -> None:
+        """Changes a setting of the running filter (range-checked); the orientation is kept."""
+        _check(lib.orient_filter_set_param(self._h, _param_id(self._kind_value, name), float(value)))
+
+    # -- updates -----------------------------------------------------------------------
+
+    def update(self, gyr: ArrayLike, acc: Optional[ArrayLike] = None, mag: Optional[ArrayLike] = None, *, dt: float) -> np.ndarray:
+        """One sample: gyroscope (rad/s), accelerometer (m/s^2) and magnetometer (any
+        unit) as 3 values each, ``acc`` and ``mag`` optional; ``dt`` in seconds.
+
+        Returns the orientation after it, (4,) float64 w, x, y, z.
+
+        Raises:
+            OrientError: a refused sample (NaN or Inf, bad dt, zero or huge vector,
+                saturated reading, not initialised); the filter is unchanged.
+        """
+        s = n.OrientSample()
+        s.dt = float(dt)
+        s.gyro = _vec3(gyr, "gyr")
+        s.flags = n.SAMPLE_GYRO
+        if acc is not None:
+            s.accel = _vec3(acc, "acc")
+            s.flags |= n.SAMPLE_ACCEL
+        if mag is not None:
+            s.mag = _vec3(mag, "mag")
+            s.flags |= n.SAMPLE_MAG
+        _check(lib.orient_filter_update(self._h, byref(s)))
+        return self.quaternion
+
+    def update_batch(
+        self,
+        gyr: ArrayLike,
+        acc: Optional[ArrayLike] = None,
+        mag: Optional[ArrayLike] = None,
+        *,
+        dt: ArrayLike,
+        errors: str = "raise",
+    ) -> BatchResult:
+        """Many samples in one native call (``orient_filter_update_arrays``).
+
+        Args:
+            gyr: (N, 3) rad/s. ``acc`` (N, 3) m/s^2 and ``mag`` (N, 3) are optional.
+                C-contiguous float64 arrays are read in place, not copied; anything
+                else is converted once.
+            dt: seconds, one value for every sample or (N,) one per sample.
+            errors: ``"raise"`` (default): stop at the first refused sample and raise
+                :class:`OrientError` with its ``index`` (the samples before it stay
+                applied). ``"skip"``: leave refused samples out and go on, as the replay
+                tool does; their rows in ``status`` say why.
+
+        Returns:
+            :class:`BatchResult` with the quaternions, flags and diagnostics after each sample.
+        """
+        if errors not in ("raise", "skip"):
+            raise ValueError("errors must be 'raise' or 'skip'")
+        g = _rows(gyr, "gyr")
+        count = g.shape[0]
+        a = None if acc is None else _rows(acc, "acc", count)
+        m = None if mag is None else _rows(mag, "mag", count)
+        d = np.ascontiguousarray(dt, dtype=np.float64)
+        if d.ndim == 0:
+            d = d.reshape(1)
+        if d.shape not in ((1,), (count,)):
+            raise ValueError(f"dt must be one value or shape ({count},), got {d.shape}")
+        per_sample_dt = d.shape[0] == count and count != 1
+        q = np.empty((count, 4), dtype=np.float64)
+        flags = np.empty(count, dtype=np.uint32)
+        diag = np.empty(count, dtype=DIAGNOSTICS_DTYPE)
+        status = np.zeros(count, dtype=np.int32)
+        start = 0
+        processed = c_size_t()
+        h = self._h
+        while True:
+            rest = count - start
+            st = lib.orient_filter_update_arrays(
+                h,
+                rest,
+                _ptr(d, start if per_sample_dt else 0),
+                rest if per_sample_dt else 1,
+                _ptr(g, start),
+                _ptr(a, start),
+                _ptr(m, start),
+                _ptr(q, start),
+                _ptr(flags, start),
+                _ptr(diag, start),
+                byref(processed),
+            )
+            if st == Status.OK:
+                return BatchResult(q, flags, diag, status)
+            bad = start + processed.value
+            if errors == "raise":
+                _check(st, bad)
+            # A refused sample changes nothing: its row repeats the filter's outputs.
+            status[bad] = st
+            q[bad] = self.quaternion
+            flags[bad] = self.flags
+            lib.orient_filter_diagnostics(h, _ptr(diag, bad))
+            start = bad + 1
+            if start == count:
+                return BatchResult(q, flags, diag, status)
+
+    # -- outputs -----------------------------------------------------------------------
+
+    @property
+    def quaternion(self) -> np.ndarray:
+        """(4,) w, x, y, z: sensor to earth in the configured frame (identity before
+        initialisation)."""
+        q = n.OrientQuaternion()
+        _check(lib.orient_filter_quaternion(self._h, byref(q)))
+        return np.array([q.w, q.x, q.y, q.z])
+
+    @property
+    def euler(self) -> Tuple[float, float, float]:
+        """(yaw, pitch, roll) in radians, intrinsic Z-Y'-X''."""
+        e = n.OrientEuler()
+        _check(lib.orient_filter_euler(self._h, byref(e)))
+        return (e.yaw, e.pitch, e.roll)
+
+    @property
+    def rotation_matrix(self) -> np.ndarray:
+        """(3, 3) R with v_earth = R @ v_sensor."""
+        m = (c_double * 9)()
+        _check(lib.orient_filter_rotation_matrix(self._h, m))
+        return np.array(m[:]).reshape(3, 3)
+
+    def _vec_output(self, fn: Any) -> np.ndarray:
+        v = n.OrientVec3()
+        _check(fn(self._h, byref(v)))
+        return np.array([v.x, v.y, v.z])
+
+    @property
+    def gravity(self) -> np.ndarray:
+        """(3,) what the accelerometer reads at rest now, sensor frame, m/s^2."""
+        return self._vec_output(lib.orient_filter_gravity)
+
+    @property
+    def linear_accel(self) -> np.ndarray:
+        """(3,) last accelerometer reading minus gravity, sensor frame, m/s^2.
+
+        Raises OrientError (NO_DATA) before the first accelerometer reading."""
+        return self._vec_output(lib.orient_filter_linear_accel)
+
+    @property
+    def linear_accel_earth(self) -> np.ndarray:
+        """(3,) :attr:`linear_accel` in the earth frame, m/s^2."""
+        return self._vec_output(lib.orient_filter_linear_accel_earth)
+
+    @property
+    def flags(self) -> int:
+        """``FLAG_*`` bits of the filter's state."""
+        f = c_uint32()
+        _check(lib.orient_filter_flags(self._h, byref(f)))
+        return f.value
+
+    @property
+    def diagnostics(self) -> Dict[str, Any]:
+        """The kind's internal states that hold values now, by name (``gyro_bias``,
+        ``rest``, ``alpha``, ``mu_ka``, ``mu_km``, ``mu_k``, ``rate``, ``covariance``)."""
+        d = np.empty(1, dtype=DIAGNOSTICS_DTYPE)
+        _check(lib.orient_filter_diagnostics(self._h, d.ctypes.data))
+        present = int(d["present"][0])
+        bits = [
+            ("gyro_bias", n.DIAG_GYRO_BIAS),
+            ("rest", n.DIAG_REST),
+            ("alpha", n.DIAG_ALPHA),
+            ("mu_ka", n.DIAG_MU_KA),
+            ("mu_km", n.DIAG_MU_KM),
+            ("mu_k", n.DIAG_MU_K),
+            ("rate", n.DIAG_RATE),
+            ("covariance", n.DIAG_COVARIANCE),
+        ]
+        out: Dict[str, Any] = {}
+        for name, bit in bits:
+            if present & bit:
+                v = d[name][0]
+                out[name] = float(v) if np.ndim(v) == 0 else np.array(v)
+        return out
+
+    # -- state -------------------------------------------------------------------------
+
+    @property
+    def state_size(self) -> int:
+        """Size in bytes of :meth:`save`'s blob (constant per kind)."""
+        size = c_size_t()
+        _check(lib.orient_filter_state_size(self._h, byref(size)))
+        return size.value
+
+    def save(self) -> bytes:
+        """The configuration and the whole state as a versioned, checksummed blob; a filter
+        that loads it continues bit for bit as this one would."""
+        size = self.state_size
+        buf = (c_uint8 * size)()
+        written = c_size_t()
+        _check(lib.orient_filter_save(self._h, buf, size, byref(written)))
+        return bytes(buf[: written.value])
+
+    def load(self, blob: bytes) -> None:
+        """Restores a blob from :meth:`save` of a filter of the same kind.
+
+        Raises OrientError (INVALID_STATE) for a truncated, corrupted, foreign-kind or
+        foreign-version blob; the filter is unchanged."""
+        data = bytes(blob)
+        buf = (c_uint8 * max(len(data), 1)).from_buffer_copy(data or b"\0")
+        _check(lib.orient_filter_load(self._h, buf, len(data)))
+
+    def reset(self) -> None:
+        """Back to the state right after creation; settings changed since are kept."""
+        _check(lib.orient_filter_reset(self._h))
+
+    def set_quaternion(self, q: ArrayLike) -> None:
+        """Sets the orientation (w, x, y, z, configured frame; normalised).
+
+        Raises OrientError (NON_FINITE, ZERO_VECTOR, TOO_LARGE) for an unusable one."""
+        a = np.asarray(q, dtype=np.float64)
+        if a.shape != (4,):
+            raise ValueError(f"a quaternion has 4 values, got shape {a.shape}")
+        _check(lib.orient_filter_set_quaternion(self._h, byref(n.OrientQuaternion(*map(float, a)))))
+
+
+class Madgwick(Filter):
+    """Madgwick 2010 gradient descent, IMU and MARG."""
+
+    KIND = Kind.MADGWICK
+
+
+class Mahony(Filter):
+    """Mahony nonlinear complementary filter, optional bias integrator."""
+
+    KIND = Kind.MAHONY
+
+
+class Complementary(Filter):
+    """McGinnis 2014 PI complementary filter: gains at rest only, start-up period (IMU)."""
+
+    KIND = Kind.COMPLEMENTARY
+
+
+class Ekf(Filter):
+    """Kim & Golnaraghi 2004 quaternion EKF [q, omega, drift], magnetometer heading update."""
+
+    KIND = Kind.EKF
+
+
+class Gmvdk(Filter):
+    """GMVDK 2024 double-SLERP filter with accelerometer trust alpha and magnetometer trust mu_K."""
+
+    KIND = Kind.GMVDK
+
+
+class Robust(Filter):
+    """orient's recommended kind: accelerometer low-passed in a gyro-following frame, gyro
+    bias learned at rest and in motion, magnetometer used only while undisturbed, attached
+    magnets compensated."""
+
+    KIND = Kind.ROBUST

@@ -1,0 +1,173 @@
+//! The replay tool's picture (`--svg`): orientation error over time against the ground
+//! truth, one panel per angle (total, heading, inclination) with a line per filter, and
+//! below them a lane per filter with a band wherever it reported
+//! - rest: diagnostics.rest (the kinds with a rest detector: complementary, robust),
+//! - mag unused: a magnetometer reading was given but ORIENT_FLAG_MAG_USED is clear
+//!   (a disturbance was rejected, or the kind does not use it),
+//! - accel unused: likewise for ORIENT_FLAG_ACCEL_USED (acceleration rejection),
+//! - gap: ORIENT_FLAG_GAP.
+//!
+//! No kind reports more than this today (robust's disturbance detector shows only as
+//! "mag unused"), so there is no other band. Drawn with `plotters` (SVG backend only);
+//! each line is the maximum over the samples of one pixel column, so no peak is lost.
+
+use orient::eval::{error_angles, Recording};
+use orient::{flags, Quat};
+use plotters::prelude::*;
+use std::path::Path;
+
+/// One filter's run.
+pub struct Series<'a> {
+    pub label: &'a str,
+    /// ENU estimates, one per recording row.
+    pub estimates: &'a [Quat],
+    /// Flags after each row (0 where the sample was rejected).
+    pub flags: &'a [u32],
+    /// Rest reported after each row.
+    pub rest: &'a [bool],
+}
+
+const WIDTH: u32 = 1200;
+const PANEL: u32 = 230;
+const ANGLES: [&str; 3] = ["total", "heading", "inclination"];
+const COLORS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(140, 86, 75),
+];
+const BANDS: [(&str, RGBColor); 4] = [
+    ("rest", RGBColor(44, 160, 44)),
+    ("mag unused", RGBColor(214, 39, 40)),
+    ("accel unused", RGBColor(255, 127, 14)),
+    ("gap", RGBColor(90, 90, 90)),
+];
+
+/// `(t, max error in degrees)` per pixel column, for one angle; rows without truth are
+/// left out.
+fn columns(t: &[f64], err: &[Option<f64>], t0: f64, t1: f64) -> Vec<(f64, f64)> {
+    let mut best: Vec<Option<(f64, f64)>> = vec![None; WIDTH as usize];
+    for (ti, e) in t.iter().zip(err) {
+        let Some(e) = e else { continue };
+        let col = (((ti - t0) / (t1 - t0)) * (WIDTH - 1) as f64) as usize;
+        let slot = &mut best[col.min(WIDTH as usize - 1)];
+        if slot.map_or(true, |(_, m)| *e > m) {
+            *slot = Some((*ti, *e));
+        }
+    }
+    best.into_iter().flatten().collect()
+}
+
+/// Runs of rows where `on` holds, as time spans.
+fn spans(t: &[f64], on: impl Fn(usize) -> bool) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    let mut start = None;
+    for (i, ti) in t.iter().enumerate() {
+        match (on(i), start) {
+            (true, None) => start = Some(*ti),
+            (false, Some(s)) => {
+                out.push((s, *ti));
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    if let Some(s) = start {
+        out.push((s, t[t.len() - 1]));
+    }
+    out
+}
+
+pub fn write_svg(
+    path: &Path,
+    title: &str,
+    rec: &Recording,
+    series: &[Series],
+    with_mag: bool,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let lanes = series.len() * BANDS.len();
+    let lane_h = 14u32;
+    let height = 40 + 3 * PANEL + 60 + lanes as u32 * lane_h;
+    let root = SVGBackend::new(path, (WIDTH, height)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root =
+        root.titled(&format!("orientation error against ground truth: {title}"), ("sans-serif", 18))?;
+    let (panels, lanes_area) = root.split_vertically(3 * PANEL);
+    let areas = panels.split_evenly((3, 1));
+    let (t0, t1) = (rec.t[0], rec.t[rec.t.len() - 1].max(rec.t[0] + 1e-9));
+
+    // Error angles in degrees per series: [angle][row].
+    let errors: Vec<[Vec<Option<f64>>; 3]> = series
+        .iter()
+        .map(|s| {
+            let mut e: [Vec<Option<f64>>; 3] = Default::default();
+            for (q, g) in s.estimates.iter().zip(&rec.truth) {
+                let a = (g.is_finite() && q.is_finite()).then(|| error_angles(*q, *g));
+                e[0].push(a.map(|a| a.0.to_degrees()));
+                e[1].push(a.map(|a| a.1.to_degrees()));
+                e[2].push(a.map(|a| a.2.to_degrees()));
+            }
+            e
+        })
+        .collect();
+
+    for (k, area) in areas.iter().enumerate() {
+        let lines: Vec<Vec<(f64, f64)>> = errors.iter().map(|e| columns(&rec.t, &e[k], t0, t1)).collect();
+        let top = lines.iter().flatten().map(|p| p.1).fold(1.0f64, f64::max) * 1.05;
+        let mut chart = ChartBuilder::on(area)
+            .margin(8)
+            .x_label_area_size(if k == 2 { 30 } else { 5 })
+            .y_label_area_size(120)
+            .build_cartesian_2d(t0..t1, 0.0..top)?;
+        let mut mesh = chart.configure_mesh();
+        mesh.y_desc(format!("{} [deg]", ANGLES[k])).light_line_style(WHITE.mix(0.0));
+        if k == 2 {
+            mesh.x_desc("time [s]");
+        }
+        mesh.draw()?;
+        for (s, (line, color)) in series.iter().zip(lines.into_iter().zip(COLORS.iter().cycle())) {
+            chart
+                .draw_series(LineSeries::new(line, color.stroke_width(1)))?
+                .label(format!("{} {}", s.label, ANGLES[k]))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+        }
+        chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
+    }
+
+    // The bands: one lane per filter and condition.
+    let mut chart = ChartBuilder::on(&lanes_area)
+        .margin(8)
+        .y_label_area_size(120)
+        .x_label_area_size(20)
+        .build_cartesian_2d(t0..t1, 0.0..lanes as f64)?;
+    chart.configure_mesh().disable_mesh().disable_y_axis().x_labels(0).draw()?;
+    for (j, s) in series.iter().enumerate() {
+        for (b, (name, color)) in BANDS.iter().enumerate() {
+            let lane = (lanes - 1 - (j * BANDS.len() + b)) as f64;
+            let on = |i: usize| match b {
+                0 => s.rest[i],
+                1 => with_mag && s.flags[i] & flags::MAG_USED == 0,
+                2 => s.flags[i] & flags::ACCEL_USED == 0,
+                _ => s.flags[i] & flags::GAP != 0,
+            };
+            let bands = spans(&rec.t, on);
+            chart.draw_series(
+                bands
+                    .iter()
+                    .map(|(a, z)| Rectangle::new([(*a, lane + 0.15), (*z, lane + 0.85)], color.filled())),
+            )?;
+            chart.draw_series(std::iter::once(Text::new(
+                format!("{} {name}", s.label),
+                (t0, lane + 0.5),
+                ("sans-serif", 11).into_font().color(&BLACK).pos(plotters::style::text_anchor::Pos::new(
+                    plotters::style::text_anchor::HPos::Right,
+                    plotters::style::text_anchor::VPos::Center,
+                )),
+            )))?;
+        }
+    }
+    root.present()?;
+    Ok(())
+}
