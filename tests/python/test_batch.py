@@ -12,6 +12,9 @@ GYR = rng.normal(0.0, 0.3, (N, 3))
 ACC = np.array([0.3, -0.2, 9.8]) + rng.normal(0.0, 0.5, (N, 3))
 MAG = np.array([5.0, 20.0, -40.0]) + rng.normal(0.0, 2.0, (N, 3))
 DT = 0.01 + rng.uniform(-0.002, 0.002, N)
+# Still for the first 2.5 s: McGinnis' and GMVDK's start-up periods need a still sensor.
+GYR[:250] = rng.normal(0.0, 0.002, (250, 3))
+ACC[:250] = np.array([0.3, -0.2, 9.8]) + rng.normal(0.0, 0.01, (250, 3))
 
 KINDS = [orient.Madgwick, orient.Mahony, orient.Complementary, orient.Ekf, orient.Gmvdk, orient.Robust]
 

@@ -57,8 +57,11 @@ class ParamInfo:
     unit: str
     description: str
     default: float
+    #: Smallest accepted value, besides 0 where ``zero_off``.
     min: float
     max: float
+    #: 0 is also accepted and turns the feature off.
+    zero_off: bool
 
 
 KIND_NAMES: Dict[str, Kind] = {k.name.lower(): k for k in Kind}
@@ -97,6 +100,7 @@ def params(kind: Union[str, int, Kind]) -> List[ParamInfo]:
                 default=info.default_value,
                 min=info.min,
                 max=info.max,
+                zero_off=bool(info.flags & n.PARAM_FLAG_ZERO_OFF),
             )
         )
     return out

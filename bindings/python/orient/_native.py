@@ -27,6 +27,10 @@ FLAG_INITIALIZED = 1
 FLAG_ACCEL_USED = 2
 FLAG_MAG_USED = 4
 FLAG_GAP = 8
+FLAG_REACQUIRED = 16
+FLAG_REACQUIRE_PENDING = 32
+
+PARAM_FLAG_ZERO_OFF = 1
 
 DIAG_GYRO_BIAS = 1
 DIAG_REST = 2
@@ -113,7 +117,7 @@ class OrientConfig(Structure):
 class OrientParamInfo(Structure):
     _fields_ = [
         ("id", c_uint32),
-        ("reserved", c_uint32),
+        ("flags", c_uint32),
         ("name", c_char_p),
         ("unit", c_char_p),
         ("description", c_char_p),
