@@ -502,7 +502,8 @@ enum OrientStatus
    */
   ORIENT_STATUS_NO_DATA = 14,
   /**
-   * The update would have produced a non-finite orientation (e.g. an enormous dt).
+   * The update would have produced a non-finite state. A guard: the bounds on dt and
+   * the readings keep accepted samples from reaching it.
    */
   ORIENT_STATUS_NUMERIC = 15,
   /**
@@ -913,7 +914,9 @@ OrientStatus orient_filter_free(OrientFilter *filter);
 OrientStatus orient_filter_kind(const OrientFilter *filter, int32_t *kind);
 
 /**
- * Changes parameter slot `id` of a running filter; the orientation is kept.
+ * Changes parameter slot `id` of a running filter; the estimate is kept. One setting
+ * changes what the output means, and so the output: GMVDK's relative_output switches
+ * between the earth frame and the start-up pose.
  */
 OrientStatus orient_filter_set_param(OrientFilter *filter, uint32_t id, double value);
 
@@ -941,8 +944,9 @@ OrientStatus orient_filter_get_param(const OrientFilter *filter, uint32_t id, do
  * packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
  * ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
  * magnetometer parallel to gravity gives no heading, so that step is an IMU update
- * (ORIENT_FLAG_MAG_USED clear). A step whose result would not be finite returns
- * NUMERIC (only reachable with ORIENT_PARAM_GAP_DT = 0).
+ * (ORIENT_FLAG_MAG_USED clear). NUMERIC guards a step whose result would not be
+ * finite; the bounds on dt and on the readings keep every accepted sample from reaching
+ * it, and no test has found one that does.
  */
 OrientStatus orient_filter_update(OrientFilter *filter, const struct OrientSample *sample);
 

@@ -78,12 +78,13 @@ fn damaged_blobs_are_refused_and_change_nothing() {
             assert!(target.load(&bad).is_err(), "{kind:?}: flipped bit in byte {i} accepted");
         }
         // Another version (checksum redone so that only the version is wrong).
+        let other = orient::filters::state::VERSION + 1;
         let mut v2 = blob.clone();
-        v2[4] = 2;
+        v2[4..6].copy_from_slice(&other.to_le_bytes());
         let end = v2.len() - 8;
         let sum = orient::filters::state::checksum(&v2[..end]);
         v2[end..].copy_from_slice(&sum.to_le_bytes());
-        assert_eq!(target.load(&v2), Err(StateError::Version(2)));
+        assert_eq!(target.load(&v2), Err(StateError::Version(other)));
         assert_eq!(target, before, "{kind:?}: a refused load changed the filter");
         // Another kind.
         for other in Kind::ALL.into_iter().filter(|k| *k != kind) {
@@ -168,6 +169,110 @@ fn split_runs_through_the_c_abi() {
             }
             orient_filter_free(whole);
             orient_filter_free(second);
+        }
+    }
+}
+
+/// The blob with one 8-byte payload value replaced and the checksum made valid again:
+/// what a forger (or a bug writing blobs elsewhere) could hand to `load`.
+fn forged(blob: &[u8], value_index: usize, bits: u64) -> Vec<u8> {
+    use orient::filters::state::{checksum, HEADER, TRAILER};
+    let mut b = blob.to_vec();
+    let at = HEADER + 8 * value_index;
+    b[at..at + 8].copy_from_slice(&bits.to_le_bytes());
+    let end = b.len() - TRAILER;
+    let sum = checksum(&b[..end]);
+    b[end..].copy_from_slice(&sum.to_le_bytes());
+    b
+}
+
+/// Whatever a blob with a valid checksum says, `load` either refuses it (and changes
+/// nothing) or gives a filter that works: every one of its values replaced in turn by
+/// values no filter could hold (a bias of 1e300, a covariance entry of -1, a quaternion
+/// component of 7, ...), and the filter that loads it must take 300 good samples with a
+/// finite unit quaternion and save a blob that loads again.
+#[test]
+#[cfg_attr(miri, ignore = "long loops")]
+fn forged_blobs_with_a_valid_checksum_load_only_as_a_working_filter() {
+    use orient::filters::state::{HEADER, TRAILER};
+    let s = samples();
+    let forgeries: [f64; 9] = [1e300, -1e300, 7.0, -1.0, 0.0, 0.5, 1e12, -3e-5, 4.0];
+    let (mut refused, mut loaded) = (0, 0);
+    for kind in Kind::ALL {
+        let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
+        for x in &s[..600] {
+            f.update(x).unwrap();
+        }
+        let mut blob = vec![0u8; f.state_size()];
+        f.save(&mut blob).unwrap();
+        let values = (blob.len() - HEADER - TRAILER) / 8;
+        // The configuration comes first (frame, init, initial quaternion, 128 slots): a
+        // forged one that passes the range checks is a configuration a host could set,
+        // with samples refused for its reasons (a sensor range of 7, say). The state
+        // follows: every value, for the small kinds; a spread for GMVDK's long μ window.
+        let config_values = 2 + 4 + orient::MAX_PARAMS;
+        let step = if values > 400 { 7 } else { 1 };
+        for i in (config_values..values).step_by(step) {
+            for v in forgeries {
+                let b = forged(&blob, i, v.to_bits());
+                let mut g = f.clone();
+                match g.load(&b) {
+                    Err(_) => {
+                        assert_eq!(g, f, "{kind:?} value {i} = {v}: refused, yet changed");
+                        refused += 1;
+                    }
+                    Ok(()) => {
+                        loaded += 1;
+                        for (k, x) in s[600..900].iter().enumerate() {
+                            g.update(x)
+                                .unwrap_or_else(|e| panic!("{kind:?} value {i} = {v}: sample {k}: {e}"));
+                            let q = g.quaternion();
+                            assert!(
+                                q.is_finite() && (q.norm() - 1.0).abs() < 1e-9,
+                                "{kind:?} value {i} = {v}: {q:?}"
+                            );
+                        }
+                        let mut again = vec![0u8; g.state_size()];
+                        g.save(&mut again).unwrap();
+                        Filter::new(g.config())
+                            .unwrap()
+                            .load(&again)
+                            .unwrap_or_else(|e| panic!("{kind:?} value {i} = {v}: own blob refused: {e:?}"));
+                    }
+                }
+            }
+        }
+    }
+    println!("forged blobs: {refused} refused, {loaded} loaded and worked");
+    assert!(refused > 0 && loaded > 0);
+}
+
+/// A blob of one kind relabelled as another (kind byte changed, checksum made valid) is
+/// refused, even where the two kinds' payloads have the same length.
+#[test]
+fn a_blob_relabelled_as_another_kind_is_refused() {
+    use orient::filters::state::{checksum, TRAILER};
+    let s = samples();
+    for from in Kind::ALL {
+        let mut f = Filter::new(&Config::new(from).unwrap()).unwrap();
+        for x in &s[..400] {
+            f.update(x).unwrap();
+        }
+        let mut blob = vec![0u8; f.state_size()];
+        f.save(&mut blob).unwrap();
+        for (to_index, to) in Kind::ALL.iter().enumerate() {
+            if *to == from {
+                continue;
+            }
+            let mut b = blob.clone();
+            b[6] = to_index as u8 + 1;
+            let end = b.len() - TRAILER;
+            let sum = checksum(&b[..end]);
+            b[end..].copy_from_slice(&sum.to_le_bytes());
+            let mut g = Filter::new(&Config::new(*to).unwrap()).unwrap();
+            let before = g.clone();
+            assert!(g.load(&b).is_err(), "a {from:?} blob loads as {to:?}");
+            assert_eq!(g, before);
         }
     }
 }

@@ -430,7 +430,9 @@ pub unsafe extern "C" fn orient_filter_kind(filter: *const OrientFilter, kind: *
     guard(|| put(kind, kind_to(handle(filter)?.filter.kind())))
 }
 
-/// Changes parameter slot `id` of a running filter; the orientation is kept.
+/// Changes parameter slot `id` of a running filter; the estimate is kept. One setting
+/// changes what the output means, and so the output: GMVDK's relative_output switches
+/// between the earth frame and the start-up pose.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_set_param(
     filter: *mut OrientFilter,
@@ -468,8 +470,9 @@ pub unsafe extern "C" fn orient_filter_get_param(
 /// packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
 /// ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
 /// magnetometer parallel to gravity gives no heading, so that step is an IMU update
-/// (ORIENT_FLAG_MAG_USED clear). A step whose result would not be finite returns
-/// NUMERIC (only reachable with ORIENT_PARAM_GAP_DT = 0).
+/// (ORIENT_FLAG_MAG_USED clear). NUMERIC guards a step whose result would not be
+/// finite; the bounds on dt and on the readings keep every accepted sample from reaching
+/// it, and no test has found one that does.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_update(
     filter: *mut OrientFilter,

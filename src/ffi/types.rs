@@ -220,7 +220,8 @@ pub enum OrientStatus {
     /// The output needs data the filter has not received yet (linear acceleration
     /// before the first accelerometer sample).
     NoData = 14,
-    /// The update would have produced a non-finite orientation (e.g. an enormous dt).
+    /// The update would have produced a non-finite state. A guard: the bounds on dt and
+    /// the readings keep accepted samples from reaching it.
     Numeric = 15,
     /// A count so large that the buffers it describes cannot exist.
     CountTooLarge = 16,

@@ -212,6 +212,16 @@ impl Complementary {
         used_mag
     }
 
+    /// Values an update could leave (see `filters::holds`).
+    pub(crate) fn valid(&self) -> bool {
+        use super::holds;
+        holds::unit(self.q)
+            && holds::rate(self.bias)
+            && holds::rate(self.b0)
+            && holds::within(self.g0, 0.0, super::MAX_ACCEL * 2.0)
+            && self.startup.as_ref().map_or(true, StartupMeans::valid)
+    }
+
     pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
         c.quat(&mut self.q);
         c.vec3(&mut self.bias);
@@ -287,16 +297,16 @@ impl Complementary {
             return self.commit(self.q * rotation_of(gyro - self.bias, dt), self.bias, step);
         };
         step.used_accel = true;
-        if self.g0 == 0.0 {
-            self.g0 = a.norm();
-        }
+        // A known initial attitude skipped the start-up period: g₀ from the first reading.
+        // Kept local until the step commits: a refused step changes nothing.
+        let g0 = if self.g0 == 0.0 { a.norm() } else { self.g0 };
         // Rest: |ω_m| and |a_m| near their stationary values (the start-up means). It
         // depends on the readings alone, not on the estimate.
         // |ω_m − ω̄| < gyro_rest compared squared: no square root for the usual case, a
         // moving sensor, whose test ends there.
         let gyro_rest = self.settings.gyro_rest;
         let rest = (gyro - self.b0).norm_squared() < gyro_rest * gyro_rest
-            && (a.norm() - self.g0).abs() < self.settings.accel_rest;
+            && (a.norm() - g0).abs() < self.settings.accel_rest;
         let omega_tilde = gyro - self.bias; // (7)
         let q_tilde = self.q * rotation_of(omega_tilde, dt);
         let (q, bias) = if rest {
@@ -317,6 +327,7 @@ impl Complementary {
         let committed = self.commit(q, bias, step);
         if committed.is_some() {
             self.rest = rest;
+            self.g0 = g0;
         }
         committed
     }

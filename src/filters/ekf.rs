@@ -146,7 +146,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         doc: "Stationary standard deviation of the angular rate ('limit of the magnitude of the \
               motion', section III.A); default 3.",
         default: 3.0,
-        min: 1e-6,
+        min: 1e-3,
         max: 1e3,
         zero_off: false,
     },
@@ -167,7 +167,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         unit: "rad/s",
         doc: "Stationary standard deviation of the gyro drift; default 0.02.",
         default: 0.02,
-        min: 1e-9,
+        min: 1e-6,
         max: 10.0,
         zero_off: false,
     },
@@ -177,7 +177,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         unit: "rad/s/sqrt(Hz)",
         doc: "Gyroscope noise density; default 0.05 deg/s/sqrt(Hz) (paper, section IV).",
         default: 8.726_646_259_971_648e-4,
-        min: 1e-9,
+        min: 1e-5,
         max: 10.0,
         zero_off: false,
     },
@@ -187,7 +187,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         unit: "m/s^2/sqrt(Hz)",
         doc: "Accelerometer noise density; default 32 ug/sqrt(Hz) (paper, section IV).",
         default: 32e-6 * 9.80665,
-        min: 1e-9,
+        min: 1e-5,
         max: 100.0,
         zero_off: false,
     },
@@ -209,7 +209,7 @@ pub(crate) const PARAMS: [ParamSpec; 13] = [
         doc: "Standard deviation of the magnetometer heading measurement (the paper's proposed \
               extension); default 0.1.",
         default: 0.1,
-        min: 1e-6,
+        min: 1e-4,
         max: 10.0,
         zero_off: false,
     },
@@ -640,6 +640,36 @@ pub struct Ekf {
     adapt_h: f64,
 }
 
+/// True for a symmetric positive semi-definite matrix, to rounding: the Cholesky
+/// factorisation of `m + ε I` with `ε = 1e-9 · max(diag m)` succeeds.
+#[allow(clippy::needless_range_loop)] // index notation, as in the textbook algorithm
+fn covariance(m: &[[f64; 10]; 10]) -> bool {
+    let scale = (0..10).map(|i| m[i][i]).fold(0.0, f64::max);
+    let eps = 1e-9 * scale.max(f64::MIN_POSITIVE);
+    if (0..10).any(|i| m[i][i] < -eps) || scale > 1e200 {
+        return false;
+    }
+    for i in 0..10 {
+        for j in 0..i {
+            if (m[i][j] - m[j][i]).abs() > 1e-9 * scale {
+                return false;
+            }
+        }
+    }
+    let mut l = [[0.0; 10]; 10];
+    for j in 0..10 {
+        let d = m[j][j] + eps - (0..j).map(|k| l[j][k] * l[j][k]).sum::<f64>();
+        if d.is_nan() || d <= 0.0 {
+            return false;
+        }
+        l[j][j] = d.sqrt();
+        for i in j + 1..10 {
+            l[i][j] = (m[i][j] - (0..j).map(|k| l[i][k] * l[j][k]).sum::<f64>()) / l[j][j];
+        }
+    }
+    true
+}
+
 /// `L(q)`: `q ⊗ e = L(q) e`.
 fn left(q: Quat) -> Matrix4<f64> {
     Matrix4::new(q.w, -q.x, -q.y, -q.z, q.x, q.w, -q.z, q.y, q.y, q.z, q.w, -q.x, q.z, -q.y, q.x, q.w)
@@ -747,6 +777,27 @@ impl Ekf {
         self.adapt = 0.0;
         self.adapt_h = 0.0;
         used_mag
+    }
+
+    /// Values an update could leave (see `filters::holds`): a unit q, bounded ω and δ,
+    /// and a covariance that is a covariance: symmetric, positive semi-definite (a
+    /// Cholesky factorisation of P + 1e-9·max(diag P)·I succeeds).
+    pub(crate) fn valid(&self) -> bool {
+        use super::holds;
+        let mut p = self.p.clone();
+        let mut m = [[0.0; 10]; 10];
+        for (r, row) in m.iter_mut().enumerate() {
+            for (c, v) in row.iter_mut().enumerate() {
+                *v = *p.entry_mut(r, c);
+            }
+        }
+        holds::unit(self.quaternion())
+            && holds::rate(self.rate())
+            && holds::rate(self.drift())
+            && covariance(&m)
+            && self.rest.valid()
+            && self.adapt >= 0.0
+            && self.adapt_h >= 0.0
     }
 
     /// Visits the state as ten values [q, ω, δ], then P as a full 10×10 matrix in

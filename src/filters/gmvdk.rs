@@ -422,6 +422,11 @@ impl Gmvdk {
         }
     }
 
+    /// The start-up pose (ENU) that a relative output is relative to.
+    pub fn start_pose(&self) -> Quat {
+        self.q_start
+    }
+
     /// The orientation in ENU, whatever `relative_output` says.
     pub fn absolute_quaternion(&self) -> Quat {
         self.q
@@ -446,6 +451,32 @@ impl Gmvdk {
         self.q = q;
         self.q_start = q;
         self.startup = None;
+    }
+
+    /// Values an update could leave (see `filters::holds`).
+    pub(crate) fn valid(&self) -> bool {
+        use super::holds;
+        let r = &self.regression;
+        let w = &*self.window;
+        let t = &self.trust;
+        let unit_interval = |x: f64| holds::within(x, 0.0, 1.0);
+        holds::unit(self.q)
+            && holds::unit(self.q_start)
+            && holds::rate(self.bias)
+            && self.a_init.map_or(true, |a| holds::accel(a) && a.norm_squared() > 0.0)
+            && self.m_init.map_or(true, |m| holds::mag(m) && m.norm_squared() > 0.0)
+            && holds::within(self.g0, 0.0, 2.0 * super::MAX_ACCEL)
+            && self.ms_gyro >= 0.0
+            && self.ms_accel >= 0.0
+            && self.time >= 0.0
+            && self.startup.as_ref().map_or(true, StartupMeans::valid)
+            && r.n >= 0.0
+            && w.len <= WINDOW_SLOTS
+            && w.head < WINDOW_SLOTS
+            && unit_interval(t.alpha)
+            && unit_interval(t.mu_ka)
+            && unit_interval(t.mu_km)
+            && unit_interval(t.mu_k)
     }
 
     pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {

@@ -361,6 +361,11 @@ impl Madgwick {
         self.rest.codec(c);
     }
 
+    /// Values an update could leave (see `filters::holds`).
+    pub(crate) fn valid(&self) -> bool {
+        super::holds::unit(self.q) && super::holds::rate(self.bias) && self.rest.valid()
+    }
+
     /// The gyroscope bias being subtracted (learned at rest when `rest_bias_tau` is set).
     pub fn bias(&self) -> Vec3 {
         self.bias

@@ -116,6 +116,11 @@ impl Mahony {
         self.rest.codec(c);
     }
 
+    /// Values an update could leave (see `filters::holds`).
+    pub(crate) fn valid(&self) -> bool {
+        super::holds::unit(self.q) && super::holds::rate(self.bias) && self.rest.valid()
+    }
+
     /// True when the last sample counted as rest (only tracked with `rest_bias_tau` set).
     pub fn at_rest(&self) -> bool {
         self.rest.at_rest()

@@ -618,6 +618,12 @@ impl Core {
         each!(self, f => f.codec(c))
     }
 
+    /// True when every value is one the kind's updates could have left (a decoded
+    /// snapshot is checked with it).
+    fn valid(&self) -> bool {
+        each!(self, f => f.valid())
+    }
+
     fn kind(&self) -> Kind {
         match self {
             Core::Madgwick(_) => Kind::Madgwick,
@@ -1175,8 +1181,18 @@ impl Filter {
         r.u32(&mut fresh.flags);
         r.opt_vec3(&mut fresh.last_accel);
         fresh.core.codec(&mut r);
-        let q = fresh.core.quaternion();
-        if !r.ok || r.pos != payload.len() || fresh.flags & !flags::ALL != 0 || (q.norm() - 1.0).abs() > 1e-9
+        // Slots this kind does not use are zero in every snapshot it writes: a blob of
+        // another kind relabelled (with a fresh checksum) has its own kind's slots set.
+        let kind = self.kind();
+        let foreign =
+            head.params.iter().enumerate().any(|(i, v)| *v != 0.0 && kind.param(i as u32).is_none());
+        let accel_ok = fresh.last_accel.map_or(true, holds::accel);
+        if !r.ok
+            || r.pos != payload.len()
+            || foreign
+            || fresh.flags & !flags::ALL != 0
+            || !accel_ok
+            || !fresh.core.valid()
         {
             return Err(StateError::Corrupt);
         }
@@ -1273,6 +1289,53 @@ impl ConfigFields {
             _ => return None,
         };
         Config::from_slots(kind, frame, init, &self.params).ok()
+    }
+}
+
+/// What a decoded snapshot may hold (see [`Filter::load`]): the checks each kind's
+/// `valid` is built from. The codec already refuses NaN and infinities.
+pub(crate) mod holds {
+    use super::{MAX_ACCEL, MAX_GYRO, MAX_MAG};
+    use crate::math::{Quat, Vec3};
+
+    /// A unit quaternion, as every update leaves one (normalised to rounding).
+    pub fn unit(q: Quat) -> bool {
+        (q.norm_squared() - 1.0).abs() <= 1e-9
+    }
+
+    /// Estimates follow the readings, and a blend of bounded readings and predictions
+    /// may overshoot them a little: a decoded estimate must stay within ten times the
+    /// readings' physical bound (a forged 1e300 is refused).
+    const MARGIN: f64 = 10.0;
+
+    /// A rate: a bias or a rate estimate.
+    pub fn rate(v: Vec3) -> bool {
+        v.max_abs() < MARGIN * MAX_GYRO
+    }
+
+    /// An accelerometer-like value (a low-pass of readings, a reference).
+    pub fn accel(v: Vec3) -> bool {
+        v.max_abs() < MARGIN * MAX_ACCEL
+    }
+
+    /// A magnetometer-like value.
+    pub fn mag(v: Vec3) -> bool {
+        v.max_abs() < MARGIN * MAX_MAG
+    }
+
+    /// A mean of magnetometer norms: no more than a reading's largest norm, √3 · bound.
+    pub fn mag_norm(x: f64) -> bool {
+        (0.0..=3f64.sqrt() * MAX_MAG).contains(&x)
+    }
+
+    /// A squared deviation between magnetometer-like values.
+    pub fn mag_spread(x: f64) -> bool {
+        (0.0..(2.0 * MARGIN * MAX_MAG).powi(2)).contains(&x)
+    }
+
+    /// A value in `[lo, hi]`.
+    pub fn within(x: f64, lo: f64, hi: f64) -> bool {
+        (lo..=hi).contains(&x)
     }
 }
 
@@ -1395,6 +1458,76 @@ mod tests {
                 assert!(q.is_finite() && (q.norm() - 1.0).abs() < 1e-9, "{kind:?}: {q:?}");
             }
         }
+    }
+
+    /// The cores' own rule, shared by every kind: an update that returns `None` has
+    /// changed nothing (each computes into locals and commits at the end; the Filter
+    /// restores nothing but an initialisation). Driven past the Filter's checks with
+    /// values that overflow, fresh and warmed. (The complementary filter once kept the
+    /// g₀ of a step it refused.)
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn a_core_update_that_fails_changes_nothing() {
+        let mut failures = 0;
+        for kind in Kind::ALL {
+            for warm in [0, 300] {
+                let config = Config::new(kind).unwrap();
+                let mut core = Core::new(&config);
+                core.set_quaternion(Quat::IDENTITY);
+                for i in 0..warm {
+                    let s = rig_sample(0, i, true);
+                    core.update(s.dt, s.gyro.unwrap(), s.accel, s.mag);
+                }
+                let still = Vec3::new(0.0, 0.0, 9.81);
+                let field = Some(Vec3::new(0.0, 20.0, -40.0));
+                let cases = [
+                    (1e300, Vec3::ZERO, Some(still), field),
+                    (f64::MAX, Vec3::ZERO, Some(still), None),
+                    (0.01, Vec3::new(1e300, -1e300, 1e300), Some(still), field),
+                    (0.01, Vec3::new(0.0, f64::MAX, 0.0), None, None),
+                    (1e300, Vec3::new(3.0, 0.0, 0.0), None, None),
+                    (0.01, Vec3::ZERO, Some(Vec3::new(1e300, 1e300, 0.0)), field),
+                    // McGinnis at rest, tilted: the bias step (10) overflows.
+                    (1e300, Vec3::ZERO, Some(Vec3::new(1.0, 0.0, 9.75)), None),
+                ];
+                for (dt, gyro, accel, mag) in cases {
+                    let before = core.clone();
+                    if core.update(dt, gyro, accel, mag).is_none() {
+                        failures += 1;
+                        assert_eq!(core, before, "{kind:?} (warm {warm}) dt {dt} {gyro:?} {accel:?}");
+                    }
+                    core = before;
+                }
+            }
+        }
+        // Not vacuous: these inputs do make cores fail.
+        assert!(failures >= 6, "{failures}");
+    }
+
+    /// set_param keeps the estimate; GMVDK's relative_output changes what the output is
+    /// relative to (the header says so), and switching back gives the same bits.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn set_param_keeps_the_estimate_and_relative_output_changes_the_reference() {
+        let mut f = Filter::new(&Config::new(Kind::Gmvdk).unwrap()).unwrap();
+        for i in 0..400 {
+            let s = Sample { gyro: Some(Vec3::ZERO), ..rig_sample(0, 0, true) };
+            let s = if i < 150 { s } else { rig_sample(0, i, true) };
+            f.update(&s).unwrap();
+        }
+        assert!(f.is_initialized());
+        let absolute = f.quaternion();
+        f.set_param(id::GMVDK_RELATIVE_OUTPUT, 1.0).unwrap();
+        let relative = f.quaternion();
+        let Core::Gmvdk(g) = &f.core else { unreachable!() };
+        assert!(relative.angle_to(g.start_pose().conj() * absolute) < 1e-12);
+        assert!(relative.angle_to(absolute) > 1e-3, "the start-up pose is not the earth frame here");
+        f.set_param(id::GMVDK_RELATIVE_OUTPUT, 0.0).unwrap();
+        assert_eq!(f.quaternion(), absolute);
+        // Any other setting keeps the output as it was.
+        f.set_param(id::GMVDK_SLOPE_ALPHA, 0.5).unwrap();
+        f.set_param(id::GAP_DT, 2.0).unwrap();
+        assert_eq!(f.quaternion(), absolute);
     }
 
     #[test]

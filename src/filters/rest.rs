@@ -45,6 +45,15 @@ pub struct RestDetector {
 }
 
 impl RestDetector {
+    /// Values an update could leave (see `filters::holds`).
+    pub(crate) fn valid(&self) -> bool {
+        use super::holds;
+        holds::rate(self.gyro_lp)
+            && holds::accel(self.acc_lp)
+            && holds::accel(self.acc_ref)
+            && self.clock >= 0.0
+    }
+
     /// True when the sensor counts as resting after this sample. Without an
     /// accelerometer reading rest cannot be told, and the period starts over.
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, th: &RestThresholds) -> bool {
@@ -127,6 +136,10 @@ impl RestBias {
 
     pub fn at_rest(&self) -> bool {
         self.detector.at_rest()
+    }
+
+    pub(crate) fn valid(&self) -> bool {
+        self.detector.valid()
     }
 
     pub fn codec(&mut self, c: &mut dyn Codec) {

@@ -319,6 +319,18 @@ impl Butterworth {
         self.tau = tau;
     }
 
+    /// Coefficients that belong to their dt and τ (or none yet) and a bounded state.
+    fn valid(&self) -> bool {
+        let mut fresh = Butterworth { dt: f64::NAN, ..self.clone() };
+        let coefficients = if self.dt == 0.0 && self.tau == 0.0 {
+            [self.ee, self.ev, self.ve, self.vv] == [0.0; 4]
+        } else {
+            fresh.coefficients(self.dt, self.tau);
+            self.dt > 0.0 && self.tau > 0.0 && fresh == *self
+        };
+        coefficients && super::holds::accel(self.y) && self.v.max_abs() < 1e12
+    }
+
     /// Sets the state to the steady state of a constant input `x`.
     fn settle(&mut self, x: Vec3) {
         self.y = x;
@@ -464,6 +476,25 @@ impl Robust {
     /// The hard-iron offset being subtracted from the magnetometer, if any.
     pub fn hard_iron(&self) -> Option<Vec3> {
         self.hard_iron_on.then_some(self.hard_iron)
+    }
+
+    /// Values an update could leave (see `filters::holds`).
+    pub(crate) fn valid(&self) -> bool {
+        use super::holds;
+        use core::f64::consts::PI;
+        holds::unit(self.q_gyr)
+            && holds::unit(self.q_inc)
+            && holds::unit(self.q)
+            && holds::within(self.delta, -PI, PI)
+            && holds::rate(self.bias)
+            && self.acc_lp.valid()
+            && self.rest.valid()
+            && holds::mag_norm(self.ref_norm)
+            && holds::within(self.ref_dip, -PI, PI)
+            && holds::mag(self.hi_lp)
+            && holds::mag_spread(self.hi_spread)
+            && self.hi_clock >= 0.0
+            && holds::mag(self.hard_iron)
     }
 
     pub(crate) fn codec(&mut self, c: &mut dyn Codec) {

@@ -72,6 +72,19 @@ impl StartupMeans {
         self.time + 1e-12 >= duration
     }
 
+    /// Values `add` could leave: sums of bounded readings, counts that match.
+    pub fn valid(&self) -> bool {
+        use super::{holds, MAX_ACCEL, MAX_GYRO, MAX_MAG};
+        let n = f64::from(self.n).max(1.0);
+        self.time >= 0.0
+            && self.elapsed >= self.time
+            && self.n_mag <= self.n
+            && self.gyro.max_abs() <= MAX_GYRO * n
+            && self.accel.max_abs() <= MAX_ACCEL * n
+            && holds::within(self.accel_norm, 0.0, 2.0 * MAX_ACCEL * n)
+            && self.mag.max_abs() <= MAX_MAG * n
+    }
+
     pub fn gyro(&self) -> Vec3 {
         self.gyro * (1.0 / self.n as f64)
     }

@@ -21,7 +21,7 @@
 use crate::math::{Quat, Vec3};
 
 pub const MAGIC: [u8; 4] = *b"ORST";
-pub const VERSION: u16 = 1;
+pub const VERSION: u16 = 2;
 pub const HEADER: usize = 12;
 pub const TRAILER: usize = 8;
 

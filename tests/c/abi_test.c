@@ -513,6 +513,8 @@ static void bad_input(int32_t kind) {
     BAD(bad.flags = ORIENT_SAMPLE_ACCEL, ORIENT_STATUS_MISSING_SENSOR);
     BAD(bad.flags |= 8u, ORIENT_STATUS_INVALID_ARGUMENT);
     BAD(bad.reserved = 1, ORIENT_STATUS_INVALID_ARGUMENT);
+    /* Flags are checked before dt. */
+    BAD((bad.flags |= 8u, bad.dt = -1.0), ORIENT_STATUS_INVALID_ARGUMENT);
     BAD(bad.dt = 1e300, ORIENT_STATUS_INVALID_DT);
     BAD(bad.dt = 2e6, ORIENT_STATUS_INVALID_DT);
     BAD(bad.gyro.y = 1e4, ORIENT_STATUS_SATURATED);
