@@ -916,7 +916,8 @@ OrientStatus orient_filter_update(OrientFilter *filter, const struct OrientSampl
 
 /**
  * Updates with `n` samples in order. When `quaternions` is not NULL it receives the
- * orientation after each sample (room for `n`). Stops at the first bad sample: the
+ * orientation after each sample (room for `n`; on failure the entries before
+ * `*processed` are written and the others are not). Stops at the first bad sample: the
  * samples before it stay applied, the bad one changes nothing, and `*processed` (when
  * not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
  * when `n` is 0.
@@ -931,8 +932,10 @@ OrientStatus orient_filter_update_batch(OrientFilter *filter,
  * One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
  * for i < n (say the 16-20 bones of a hand). The filters may be of any kinds; each
  * behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
- * receives each filter's orientation after its sample (room for `n`). Every handle is
- * checked before any filter changes, so a NULL or foreign handle changes nothing. A bad
+ * receives each filter's orientation after its sample (room for `n`; on failure the
+ * entries of the filters before the bad sample are written and the others are not).
+ * Every handle is checked before any filter changes, so a NULL or foreign handle
+ * changes nothing. A bad
  * sample stops the call: the filters before it stay updated, its filter and those
  * after it are unchanged, and `*processed` (when not NULL) is its index; on success it
  * is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive

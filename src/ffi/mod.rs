@@ -511,7 +511,8 @@ unsafe fn fail_item(processed: *mut usize, what: &str, i: usize, status: OrientS
 }
 
 /// Updates with `n` samples in order. When `quaternions` is not NULL it receives the
-/// orientation after each sample (room for `n`). Stops at the first bad sample: the
+/// orientation after each sample (room for `n`; on failure the entries before
+/// `*processed` are written and the others are not). Stops at the first bad sample: the
 /// samples before it stay applied, the bad one changes nothing, and `*processed` (when
 /// not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
 /// when `n` is 0.
@@ -552,8 +553,10 @@ pub unsafe extern "C" fn orient_filter_update_batch(
 /// One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
 /// for i < n (say the 16-20 bones of a hand). The filters may be of any kinds; each
 /// behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
-/// receives each filter's orientation after its sample (room for `n`). Every handle is
-/// checked before any filter changes, so a NULL or foreign handle changes nothing. A bad
+/// receives each filter's orientation after its sample (room for `n`; on failure the
+/// entries of the filters before the bad sample are written and the others are not).
+/// Every handle is checked before any filter changes, so a NULL or foreign handle
+/// changes nothing. A bad
 /// sample stops the call: the filters before it stay updated, its filter and those
 /// after it are unchanged, and `*processed` (when not NULL) is its index; on success it
 /// is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
@@ -592,28 +595,37 @@ pub unsafe extern "C" fn orient_filters_update(
             if distinct {
                 // Four different filters: their steps may run side by side.
                 let mut converted = [Sample::default(); LANES];
+                let mut bad = None;
                 for (k, c) in converted.iter_mut().enumerate() {
                     match sample_from(&samples[i + k]) {
                         Ok(s) => *c = s,
                         Err(status) => {
-                            // The ones before the bad sample still get their update.
-                            for j in 0..k {
-                                let f = &mut (*group[j]).filter;
-                                f.update(&converted[j]).map_err(|e| failed(i + j, from_core(e)))?;
-                            }
-                            return Err(failed(i + k, status));
+                            bad = Some((k, status));
+                            break;
                         }
                     }
                 }
                 let ptrs: [*mut OrientFilter; LANES] = [group[0], group[1], group[2], group[3]];
                 let mut fs = ptrs.map(|p| &mut (*p).filter);
-                let refs = [0, 1, 2, 3].map(|k| &converted[k]);
-                Filter::update_group(&mut fs, refs).map_err(|(k, e)| failed(i + k, from_core(e)))?;
+                let result = match bad {
+                    None => {
+                        let refs = [0, 1, 2, 3].map(|k| &converted[k]);
+                        Filter::update_group(&mut fs, refs).map_err(|(k, e)| (k, from_core(e)))
+                    }
+                    // The ones before the bad sample still get their update.
+                    Some((k, status)) => (0..k)
+                        .try_for_each(|j| fs[j].update(&converted[j]).map_err(|e| (j, from_core(e))))
+                        .and(Err((k, status))),
+                };
+                // Every filter the group updated has its output written, also when a
+                // later one in the group refused its sample.
+                let updated = result.map_or_else(|(k, _)| k, |()| LANES);
                 if !quaternions.is_null() {
-                    for (k, f) in fs.iter().enumerate() {
+                    for (k, f) in fs[..updated].iter().enumerate() {
                         quaternions.add(i + k).write(quat_to(f.quaternion()));
                     }
                 }
+                result.map_err(|(k, status)| failed(i + k, status))?;
                 i += LANES;
                 continue;
             }
@@ -936,6 +948,7 @@ mod tests {
             let mut n = 0;
             let status = orient_filter_update_batch(f, batch.as_ptr(), 40, out.as_mut_ptr(), &mut n);
             assert_eq!((status, n), (OrientStatus::NonFinite, 21));
+            assert!(out[21..].iter().all(|q| *q == OrientQuaternion::default()), "entries past 21 written");
             let detail = CStr::from_ptr(orient_last_error()).to_str().unwrap();
             assert!(detail.starts_with("sample 21: "), "{detail}");
             let mut q = OrientQuaternion::default();
@@ -949,6 +962,57 @@ mod tests {
             assert_eq!((a.x.to_bits(), a.z.to_bits()), (q.x.to_bits(), q.z.to_bits()));
             assert_eq!(orient_filter_free(f), OrientStatus::Ok);
             assert_eq!(orient_filter_free(twin), OrientStatus::Ok);
+        }
+    }
+
+    /// The sample every FFI unit test feeds (MARG, moving).
+    fn moving_sample() -> OrientSample {
+        OrientSample {
+            dt: 0.01,
+            gyro: OrientVec3 { x: 0.1, y: -0.2, z: 0.3 },
+            accel: OrientVec3 { x: 0.5, y: 0.2, z: 9.7 },
+            mag: OrientVec3 { x: 10.0, y: 20.0, z: -40.0 },
+            flags: SAMPLE_ALL,
+            reserved: 0,
+        }
+    }
+
+    fn quat_bits(q: OrientQuaternion) -> [u64; 4] {
+        [q.w.to_bits(), q.x.to_bits(), q.y.to_bits(), q.z.to_bits()]
+    }
+
+    #[test]
+    fn a_rig_call_writes_the_output_of_every_filter_it_updated() {
+        // A lane group of four distinct Madgwick filters whose third sample is refused,
+        // once by the flag check and once by the reading checks.
+        let unwritten = OrientQuaternion { w: f64::NAN, x: 7.0, y: 7.0, z: 7.0 };
+        let spoil: [fn(&mut OrientSample); 2] = [|s| s.reserved = 1, |s| s.gyro.y = f64::NAN];
+        for spoil in spoil {
+            unsafe {
+                let hs: Vec<*mut OrientFilter> = (0..4).map(|_| new_madgwick()).collect();
+                let twins: Vec<*mut OrientFilter> = (0..4).map(|_| new_madgwick()).collect();
+                let mut frame = [moving_sample(); 4];
+                spoil(&mut frame[2]);
+                let mut out = [unwritten; 4];
+                let mut n = 99;
+                let status = orient_filters_update(hs.as_ptr(), frame.as_ptr(), 4, out.as_mut_ptr(), &mut n);
+                assert_ne!(status, OrientStatus::Ok);
+                assert_eq!(n, 2);
+                for k in 0..2 {
+                    assert_eq!(orient_filter_update(twins[k], &frame[k]), OrientStatus::Ok);
+                    let mut q = OrientQuaternion::default();
+                    assert_eq!(orient_filter_quaternion(twins[k], &mut q), OrientStatus::Ok);
+                    assert_eq!(quat_bits(out[k]), quat_bits(q), "filter {k}: output not written");
+                    assert_eq!(orient_filter_quaternion(hs[k], &mut q), OrientStatus::Ok);
+                    assert_eq!(quat_bits(out[k]), quat_bits(q), "filter {k}");
+                }
+                for o in &out[2..] {
+                    assert_eq!(quat_bits(*o), quat_bits(unwritten), "an unprocessed entry was written");
+                }
+                for h in hs.into_iter().chain(twins) {
+                    assert_eq!(orient_filter_free(h), OrientStatus::Ok);
+                }
+            }
         }
     }
 

@@ -581,9 +581,10 @@ static void madgwick_rig(void) {
     enum { N = 20 };
     OrientFilter *rig[N], *twins[N];
     OrientSample frame[N];
-    OrientQuaternion out[N], q;
+    OrientQuaternion out[N], q, unwritten;
     size_t processed = 0;
     int i, k, mismatches = 0;
+    unwritten.w = unwritten.x = unwritten.y = unwritten.z = 7.0;
     for (k = 0; k < N; k++) {
         rig[k] = new_madgwick();
         twins[k] = new_madgwick();
@@ -610,8 +611,11 @@ static void madgwick_rig(void) {
     } else {
         passed++;
     }
+    /* The bad sample is the third of the group 4-7: filters 4 and 5 are updated in that
+     * group and their outputs written; from 6 on nothing is written. */
     frame[6].accel.y = INFINITY;
-    CHECK_STATUS(orient_filters_update(rig, frame, N, NULL, &processed), ORIENT_STATUS_NON_FINITE);
+    for (k = 0; k < N; k++) out[k] = unwritten;
+    CHECK_STATUS(orient_filters_update(rig, frame, N, out, &processed), ORIENT_STATUS_NON_FINITE);
     CHECK(processed == 6);
     CHECK_STATUS(orient_filters_update(twins, frame, 6, NULL, NULL), ORIENT_STATUS_OK);
     for (k = 0; k < N; k++) {
@@ -619,6 +623,18 @@ static void madgwick_rig(void) {
         CHECK_STATUS(orient_filter_quaternion(rig[k], &a), ORIENT_STATUS_OK);
         CHECK_STATUS(orient_filter_quaternion(twins[k], &q), ORIENT_STATUS_OK);
         CHECK(same_quaternion(a, q));
+        CHECK(same_quaternion(out[k], k < 6 ? q : unwritten));
+    }
+    /* The same when the flag check refuses the sample (before any reading is looked at). */
+    frame[6] = good_sample();
+    frame[7].reserved = 1;
+    for (k = 0; k < N; k++) out[k] = unwritten;
+    CHECK_STATUS(orient_filters_update(rig, frame, N, out, &processed), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK(processed == 7);
+    CHECK_STATUS(orient_filters_update(twins, frame, 7, NULL, NULL), ORIENT_STATUS_OK);
+    for (k = 0; k < N; k++) {
+        CHECK_STATUS(orient_filter_quaternion(twins[k], &q), ORIENT_STATUS_OK);
+        CHECK(same_quaternion(out[k], k < 7 ? q : unwritten));
     }
     for (k = 0; k < N; k++) {
         CHECK_STATUS(orient_filter_free(rig[k]), ORIENT_STATUS_OK);
