@@ -14,6 +14,7 @@
 #![allow(clippy::missing_safety_doc)]
 
 mod error;
+mod strings;
 mod types;
 
 pub use types::*;
@@ -22,8 +23,6 @@ use crate::filters::{Config, Filter, Init, Kind, Sample, SampleView};
 use crate::math::{Frame, Quat, Vec3};
 use core::ffi::{c_char, CStr};
 use error::{detail_ptr, fail, from_core, from_state, guard, guard_value, status_message};
-use once_cell::sync::Lazy;
-use std::ffi::CString;
 
 const MAGIC_LIVE: u64 = 0x4f52_4945_4e54_2e31; // "ORIENT.1"
 const MAGIC_DEAD: u64 = 0xdead_f11e_dead_f11e;
@@ -227,27 +226,6 @@ unsafe fn config_from(c: *const OrientConfig) -> Result<Config, OrientStatus> {
     Config::from_slots(kind, frame, init, &c.params).map_err(from_core)
 }
 
-/// C strings for the parameter tables, built once.
-struct ParamStrings {
-    name: CString,
-    unit: CString,
-    doc: CString,
-}
-
-static PARAM_STRINGS: Lazy<Vec<(Kind, Vec<ParamStrings>)>> = Lazy::new(|| {
-    let c = |s: &str| CString::new(s).unwrap_or_default();
-    Kind::ALL
-        .into_iter()
-        .map(|k| {
-            let strings = k
-                .params()
-                .map(|p| ParamStrings { name: c(p.name), unit: c(p.unit), doc: c(p.doc) })
-                .collect();
-            (k, strings)
-        })
-        .collect()
-});
-
 /// The library version, e.g. "0.1.0" (static, NUL-terminated).
 #[no_mangle]
 pub extern "C" fn orient_version() -> *const c_char {
@@ -349,19 +327,17 @@ pub unsafe extern "C" fn orient_param_info(
                 format_args!("parameter index {index} out of range"),
             ));
         };
-        let strings = PARAM_STRINGS
-            .iter()
-            .find(|(kk, _)| *kk == k)
-            .and_then(|(_, s)| s.get(index as usize))
-            .ok_or_else(|| fail(OrientStatus::Panic, format_args!("parameter string table out of step")))?;
+        let text = strings::param_text(spec.id).ok_or_else(|| {
+            fail(OrientStatus::Panic, format_args!("no strings for parameter slot {}", spec.id))
+        })?;
         put(
             info,
             OrientParamInfo {
                 id: spec.id,
                 reserved: 0,
-                name: strings.name.as_ptr(),
-                unit: strings.unit.as_ptr(),
-                description: strings.doc.as_ptr(),
+                name: text.name,
+                unit: text.unit,
+                description: text.doc,
                 default_value: spec.default,
                 min: spec.min,
                 max: spec.max,
