@@ -21,10 +21,14 @@
  *   but not from two threads at once; distinct handles never share state.
  *
  * Handles
- *   OrientFilter is opaque and tagged. orient_filter_free(NULL) is a no-op; a freed or
- *   foreign pointer is reported as ORIENT_STATUS_INVALID_HANDLE as long as its memory
- *   is still readable and has not been reused for a new handle: a tag check cannot make
- *   reading unmapped memory safe.
+ *   OrientFilter is opaque. orient_filter_free(NULL) is a no-op. Every call looks its
+ *   handle up in the library's registry of live handles before it reads anything
+ *   through it: a freed handle, a copy of a handle's bytes and any other pointer that
+ *   orient_filter_new did not return are reported as ORIENT_STATUS_INVALID_HANDLE, and
+ *   their memory is not read. The limit: once orient_filter_new returns a freed
+ *   handle's address again, that address is the new filter's handle. At most 24576
+ *   filters are live at once; orient_filter_new returns ORIENT_STATUS_COUNT_TOO_LARGE
+ *   beyond that.
  */
 
 #ifndef ORIENT_H
@@ -419,7 +423,8 @@ enum OrientStatus
    */
   ORIENT_STATUS_NULL_POINTER = 1,
   /**
-   * The handle is not a live OrientFilter (freed, foreign or misaligned pointer).
+   * The handle is not a live OrientFilter: freed, or never returned by
+   * orient_filter_new (a copy of a handle's bytes included).
    */
   ORIENT_STATUS_INVALID_HANDLE = 2,
   /**
@@ -478,7 +483,8 @@ enum OrientStatus
    */
   ORIENT_STATUS_NUMERIC = 15,
   /**
-   * A count so large that the buffers it describes cannot exist.
+   * A count so large that the buffers it describes cannot exist; from
+   * orient_filter_new: 24576 filters are live already, the most the library holds.
    */
   ORIENT_STATUS_COUNT_TOO_LARGE = 16,
   /**
@@ -874,7 +880,8 @@ OrientStatus orient_filter_new(const struct OrientConfig *config, OrientFilter *
 
 /**
  * Releases a filter. NULL is a no-op (ORIENT_STATUS_OK); a handle that was already
- * freed is reported with ORIENT_STATUS_INVALID_HANDLE (see the handle-check limits).
+ * freed, or any pointer orient_filter_new did not return, is reported with
+ * ORIENT_STATUS_INVALID_HANDLE and nothing is read or freed through it.
  */
 OrientStatus orient_filter_free(OrientFilter *filter);
 

@@ -1,19 +1,21 @@
 //! The C ABI. It only translates: pointer and handle checks, conversions between C and
 //! core types, status codes, and a panic boundary inside every exported body.
 //!
-//! Handle checks rely on a magic tag in each OrientFilter that orient_filter_free
-//! overwrites. A freed handle is reported as long as its memory has not been handed out
-//! again, and a pointer that never was a handle is reported if it is readable and
-//! aligned; no tag can make reading an unmapped address safe.
+//! Handle checks look the address up in the registry of live handles
+//! ([`registry`]) before anything is read through it: a freed handle, a copy of a
+//! handle's bytes and a pointer that never was a handle are refused without their
+//! memory being read.
 //!
 //! # Safety
-//! One contract covers every `unsafe extern "C"` function here, and the header states
-//! it: each pointer argument is NULL (reported as ORIENT_STATUS_NULL_POINTER unless the
+//! One contract covers every `unsafe extern "C"` function here: each pointer argument
+//! other than a handle is NULL (reported as ORIENT_STATUS_NULL_POINTER unless the
 //! function says NULL is allowed) or valid for the reads and writes its documentation
-//! names, and a handle is not used from two threads at once.
+//! names; a handle may hold any value (it is looked up before it is read), and a live
+//! handle is not used from two threads at once (freeing it included).
 #![allow(clippy::missing_safety_doc)]
 
 mod error;
+mod registry;
 mod strings;
 mod types;
 
@@ -24,16 +26,10 @@ use crate::math::{Frame, Quat, Vec3};
 use core::ffi::{c_char, CStr};
 use error::{detail_ptr, fail, from_core, from_state, guard, guard_value, status_message};
 
-const MAGIC_LIVE: u64 = 0x4f52_4945_4e54_2e31; // "ORIENT.1"
-const MAGIC_DEAD: u64 = 0xdead_f11e_dead_f11e;
-
 /// An orientation filter. Opaque to C (the header declares it with cbindgen.toml's
 /// `after_includes`): create with orient_filter_new(), release with orient_filter_free().
-/// `repr(C)` keeps the tag at offset 0, so checking a foreign pointer reads only its
-/// first 8 bytes, and glibc's free list overwrites the tag of a freed handle.
-#[repr(C)]
+/// Its address is its identity in the registry of live handles.
 pub struct OrientFilter {
-    magic: u64,
     filter: Filter,
 }
 
@@ -43,18 +39,23 @@ fn null() -> OrientStatus {
     fail(OrientStatus::NullPointer, format_args!("a required pointer argument is NULL"))
 }
 
-/// Checks a handle and borrows it.
+/// Checks a handle and borrows it. Nothing is read through `h` unless the registry
+/// holds it as a live handle.
 ///
 /// # Safety
-/// `h` is NULL or points to readable memory of at least `size_of::<OrientFilter>()` bytes.
+/// A live handle is not freed, nor used mutably by another thread, while the borrow lasts.
 unsafe fn handle<'a>(h: *const OrientFilter) -> Result<&'a OrientFilter, OrientStatus> {
     if h.is_null() {
         return Err(null());
     }
-    if (h as usize) % core::mem::align_of::<OrientFilter>() != 0 || (*h).magic != MAGIC_LIVE {
-        return Err(fail(OrientStatus::InvalidHandle, format_args!("not a live OrientFilter handle: {h:p}")));
+    if !registry::HANDLES.contains(h as usize) {
+        return Err(invalid_handle(h));
     }
     Ok(&*h)
+}
+
+fn invalid_handle(h: *const OrientFilter) -> OrientStatus {
+    fail(OrientStatus::InvalidHandle, format_args!("not a live OrientFilter handle: {h:p}"))
 }
 
 /// Checks a handle and borrows it mutably. Same contract as [`handle`].
@@ -376,23 +377,33 @@ pub unsafe extern "C" fn orient_filter_new(
         out.write(core::ptr::null_mut());
         let c = config_from(config)?;
         let filter = Filter::new(&c).map_err(from_core)?;
-        out.write(Box::into_raw(Box::new(OrientFilter { magic: MAGIC_LIVE, filter })));
+        let h = Box::into_raw(Box::new(OrientFilter { filter }));
+        if !registry::HANDLES.insert(h as usize) {
+            drop(Box::from_raw(h));
+            return Err(fail(
+                OrientStatus::CountTooLarge,
+                format_args!("{} filters are live, the most this library holds at once", registry::CAPACITY),
+            ));
+        }
+        out.write(h);
         Ok(())
     })
 }
 
 /// Releases a filter. NULL is a no-op (ORIENT_STATUS_OK); a handle that was already
-/// freed is reported with ORIENT_STATUS_INVALID_HANDLE (see the handle-check limits).
+/// freed, or any pointer orient_filter_new did not return, is reported with
+/// ORIENT_STATUS_INVALID_HANDLE and nothing is read or freed through it.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_free(filter: *mut OrientFilter) -> OrientStatus {
     guard(|| {
         if filter.is_null() {
             return Ok(());
         }
-        let h = handle_mut(filter)?;
-        // Volatile: a plain store right before the deallocation is a dead store that
-        // the optimiser removes, and the tag would survive the free.
-        core::ptr::write_volatile(&mut h.magic, MAGIC_DEAD);
+        // Taken out of the registry first: of two frees of one handle, even from two
+        // threads, exactly one gets here.
+        if !registry::HANDLES.remove(filter as usize) {
+            return Err(invalid_handle(filter));
+        }
         drop(Box::from_raw(filter));
         Ok(())
     })
@@ -1058,6 +1069,47 @@ mod tests {
             let fake_h = fake.as_mut_ptr() as *mut OrientFilter;
             assert_eq!(orient_filter_reset(fake_h), OrientStatus::InvalidHandle);
             assert_eq!(orient_filter_free(h), OrientStatus::Ok);
+        }
+    }
+
+    #[test]
+    fn freed_copied_and_forged_handles_are_refused_without_being_read() {
+        unsafe {
+            let h = new_madgwick();
+            assert_eq!(orient_filter_update(h, &moving_sample()), OrientStatus::Ok);
+            // A byte copy of a live handle, and a block that starts with the old tag.
+            let size = core::mem::size_of::<OrientFilter>();
+            let mut copy = vec![0u64; size / 8 + 1];
+            core::ptr::copy_nonoverlapping(h as *const u8, copy.as_mut_ptr() as *mut u8, size);
+            let copy_h = copy.as_mut_ptr() as *mut OrientFilter;
+            let mut forged = vec![0u64; size / 8 + 1];
+            forged[0] = 0x4f52_4945_4e54_2e31; // "ORIENT.1"
+            let forged_h = forged.as_mut_ptr() as *mut OrientFilter;
+            let mut k = 0;
+            for bad in [copy_h, forged_h] {
+                assert_eq!(orient_filter_kind(bad, &mut k), OrientStatus::InvalidHandle);
+                assert_eq!(orient_filter_update(bad, &moving_sample()), OrientStatus::InvalidHandle);
+                assert_eq!(orient_filter_free(bad), OrientStatus::InvalidHandle);
+            }
+            let detail = CStr::from_ptr(orient_last_error()).to_str().unwrap();
+            assert!(detail.starts_with("not a live OrientFilter handle"), "{detail}");
+            // The original is untouched by the refused free of its copy.
+            assert_eq!(orient_filter_kind(h, &mut k), OrientStatus::Ok);
+            assert_eq!(k, OrientKind::Madgwick as i32);
+            // A freed handle: refused by every call, its memory never read (Miri and
+            // valgrind would report the read).
+            assert_eq!(orient_filter_free(h), OrientStatus::Ok);
+            let mut q = OrientQuaternion::default();
+            assert_eq!(orient_filter_quaternion(h, &mut q), OrientStatus::InvalidHandle);
+            assert_eq!(orient_filter_update(h, &moving_sample()), OrientStatus::InvalidHandle);
+            assert_eq!(orient_filter_free(h), OrientStatus::InvalidHandle);
+            let frame = [moving_sample()];
+            let mut n = 9;
+            assert_eq!(
+                orient_filters_update([h].as_ptr(), frame.as_ptr(), 1, core::ptr::null_mut(), &mut n),
+                OrientStatus::InvalidHandle
+            );
+            assert_eq!(n, 0);
         }
     }
 

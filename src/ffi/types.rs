@@ -171,7 +171,8 @@ pub enum OrientStatus {
     Ok = 0,
     /// A required pointer argument is NULL.
     NullPointer = 1,
-    /// The handle is not a live OrientFilter (freed, foreign or misaligned pointer).
+    /// The handle is not a live OrientFilter: freed, or never returned by
+    /// orient_filter_new (a copy of a handle's bytes included).
     InvalidHandle = 2,
     /// The kind is known but not built in this version of the library (reserved: every
     /// kind is built in this version).
@@ -202,7 +203,8 @@ pub enum OrientStatus {
     NoData = 14,
     /// The update would have produced a non-finite orientation (e.g. an enormous dt).
     Numeric = 15,
-    /// A count so large that the buffers it describes cannot exist.
+    /// A count so large that the buffers it describes cannot exist; from
+    /// orient_filter_new: 24576 filters are live already, the most the library holds.
     CountTooLarge = 16,
     /// `struct_size` does not match a configuration layout this library knows.
     VersionMismatch = 17,
