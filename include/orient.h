@@ -13,6 +13,8 @@
  * Errors
  *   Every fallible function returns an OrientStatus. On anything but ORIENT_STATUS_OK
  *   the call changed nothing: a rejected sample leaves the filter's state bit-identical.
+ *   A NULL required pointer is ORIENT_STATUS_NULL_POINTER, checked before anything else
+ *   (the handle, the other arguments, the filter's data).
  *   orient_status_message() gives a fixed message per code and orient_last_error() the
  *   detail of the last failure on the calling thread. No panic crosses this boundary.
  *
@@ -419,7 +421,7 @@ enum OrientStatus
    */
   ORIENT_STATUS_OK = 0,
   /**
-   * A required pointer argument is NULL.
+   * A required pointer argument is NULL (checked before anything else).
    */
   ORIENT_STATUS_NULL_POINTER = 1,
   /**
@@ -978,7 +980,8 @@ OrientStatus orient_filter_gravity(const OrientFilter *filter, struct OrientVec3
 
 /**
  * Last accelerometer reading minus orient_filter_gravity(), sensor frame, m/s^2.
- * ORIENT_STATUS_NO_DATA before the first accelerometer reading.
+ * ORIENT_STATUS_NO_DATA before the first accelerometer reading (NULL_POINTER, as
+ * always, when `accel` is NULL).
  */
 OrientStatus orient_filter_linear_accel(const OrientFilter *filter, struct OrientVec3 *accel);
 

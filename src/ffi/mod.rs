@@ -64,19 +64,28 @@ unsafe fn handle_mut<'a>(h: *mut OrientFilter) -> Result<&'a mut OrientFilter, O
     Ok(&mut *h)
 }
 
-/// Writes through an out-pointer after a NULL check.
-unsafe fn put<T>(out: *mut T, value: T) -> Res {
+/// Writes through an out-pointer: checks it for NULL before anything else, then
+/// computes the value (handle checks included) and writes it.
+unsafe fn put<T>(out: *mut T, value: impl FnOnce() -> Result<T, OrientStatus>) -> Res {
     if out.is_null() {
         return Err(null());
     }
-    out.write(value);
+    out.write(value()?);
     Ok(())
 }
 
-/// Writes an output that needs an accelerometer reading, or reports NO_DATA.
-unsafe fn put_measured(out: *mut OrientVec3, value: Option<Vec3>) -> Res {
+/// NULL_POINTER when any of a call's required pointers is NULL.
+fn need(any_null: bool) -> Res {
+    if any_null {
+        return Err(null());
+    }
+    Ok(())
+}
+
+/// An output that needs an accelerometer reading, or NO_DATA.
+fn measured(value: Option<Vec3>) -> Result<OrientVec3, OrientStatus> {
     let v = value.ok_or_else(|| fail(OrientStatus::NoData, format_args!("no accelerometer reading yet")))?;
-    put(out, vec_to(v))
+    Ok(vec_to(v))
 }
 
 fn kind_from(kind: i32) -> Result<Kind, OrientStatus> {
@@ -270,9 +279,10 @@ pub extern "C" fn orient_madgwick_beta(gyro_error: f64) -> f64 {
 #[no_mangle]
 pub unsafe extern "C" fn orient_config_default(kind: i32, config: *mut OrientConfig) -> OrientStatus {
     guard(|| {
-        let k = kind_from(kind)?;
-        let c = Config::new(k).map_err(from_core)?;
-        put(config, config_to(&c))
+        put(config, || {
+            let c = Config::new(kind_from(kind)?).map_err(from_core)?;
+            Ok(config_to(&c))
+        })
     })
 }
 
@@ -299,18 +309,15 @@ pub unsafe extern "C" fn orient_config_get_param(
     value: *mut f64,
 ) -> OrientStatus {
     guard(|| {
-        let c = config_from(config)?;
-        put(value, c.param(id).map_err(from_core)?)
+        need(config.is_null())?;
+        put(value, || config_from(config)?.param(id).map_err(from_core))
     })
 }
 
 /// Number of parameters of `kind` (common ones included), for orient_param_info().
 #[no_mangle]
 pub unsafe extern "C" fn orient_param_count(kind: i32, count: *mut u32) -> OrientStatus {
-    guard(|| {
-        let k = kind_from(kind)?;
-        put(count, k.params().count() as u32)
-    })
+    guard(|| put(count, || Ok(kind_from(kind)?.params().count() as u32)))
 }
 
 /// Describes parameter number `index` (0 <= index < orient_param_count) of `kind`.
@@ -321,6 +328,7 @@ pub unsafe extern "C" fn orient_param_info(
     info: *mut OrientParamInfo,
 ) -> OrientStatus {
     guard(|| {
+        need(info.is_null())?;
         let k = kind_from(kind)?;
         let Some(spec) = k.params().nth(index as usize) else {
             return Err(fail(
@@ -331,9 +339,8 @@ pub unsafe extern "C" fn orient_param_info(
         let text = strings::param_text(spec.id).ok_or_else(|| {
             fail(OrientStatus::Panic, format_args!("no strings for parameter slot {}", spec.id))
         })?;
-        put(
-            info,
-            OrientParamInfo {
+        put(info, || {
+            Ok(OrientParamInfo {
                 id: spec.id,
                 reserved: 0,
                 name: text.name,
@@ -342,8 +349,8 @@ pub unsafe extern "C" fn orient_param_info(
                 default_value: spec.default,
                 min: spec.min,
                 max: spec.max,
-            },
-        )
+            })
+        })
     })
 }
 
@@ -351,15 +358,13 @@ pub unsafe extern "C" fn orient_param_info(
 #[no_mangle]
 pub unsafe extern "C" fn orient_param_find(kind: i32, name: *const c_char, id: *mut u32) -> OrientStatus {
     guard(|| {
+        need(name.is_null() || id.is_null())?;
         let k = kind_from(kind)?;
-        if name.is_null() {
-            return Err(null());
-        }
         let name = CStr::from_ptr(name).to_str().unwrap_or("");
         let spec = k.param_by_name(name).ok_or_else(|| {
             fail(OrientStatus::UnknownParam, format_args!("no parameter '{name}' for this kind"))
         })?;
-        put(id, spec.id)
+        put(id, || Ok(spec.id))
     })
 }
 
@@ -412,7 +417,7 @@ pub unsafe extern "C" fn orient_filter_free(filter: *mut OrientFilter) -> Orient
 /// The kind (ORIENT_KIND_*) of a filter.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_kind(filter: *const OrientFilter, kind: *mut i32) -> OrientStatus {
-    guard(|| put(kind, kind_to(handle(filter)?.filter.kind())))
+    guard(|| put(kind, || Ok(kind_to(handle(filter)?.filter.kind()))))
 }
 
 /// Changes parameter slot `id` of a running filter; the orientation is kept.
@@ -432,7 +437,7 @@ pub unsafe extern "C" fn orient_filter_get_param(
     id: u32,
     value: *mut f64,
 ) -> OrientStatus {
-    guard(|| put(value, handle(filter)?.filter.param(id).map_err(from_core)?))
+    guard(|| put(value, || handle(filter)?.filter.param(id).map_err(from_core)))
 }
 
 /// One update. On any status but OK the filter's state is exactly as before.
@@ -458,10 +463,8 @@ pub unsafe extern "C" fn orient_filter_update(
     sample: *const OrientSample,
 ) -> OrientStatus {
     guard(|| {
+        need(sample.is_null())?;
         let h = handle_mut(filter)?;
-        if sample.is_null() {
-            return Err(null());
-        }
         let s = host_sample(&*sample)?;
         h.filter.update_inline(&s).map_err(from_core)
     })
@@ -515,11 +518,11 @@ pub unsafe extern "C" fn orient_filter_update_batch(
         if !processed.is_null() {
             processed.write(0);
         }
+        let samples = items(samples, n, "samples")?;
         let h = handle_mut(filter)?;
         if n == 0 {
             return Ok(());
         }
-        let samples = items(samples, n, "samples")?;
         let failed = |i: usize, status: OrientStatus| fail_item(processed, "sample", i, status);
         // Each update reads the host's sample in place (see SampleView): nothing is
         // copied, so nothing is read back right after it was written.
@@ -566,6 +569,9 @@ pub unsafe extern "C" fn orient_filters_update(
         }
         let samples = items(samples, n, "samples")?;
         let handles = items(filters, n, "filters")?;
+        if let Some(i) = handles.iter().position(|h| h.is_null()) {
+            return Err(fail(OrientStatus::NullPointer, format_args!("filter {i} is NULL")));
+        }
         for (i, h) in handles.iter().enumerate() {
             if let Err(status) = handle(*h) {
                 return Err(fail(status, format_args!("filter {i}: not a live OrientFilter handle")));
@@ -640,7 +646,7 @@ pub unsafe extern "C" fn orient_filter_quaternion(
     filter: *const OrientFilter,
     q: *mut OrientQuaternion,
 ) -> OrientStatus {
-    guard(|| put(q, quat_to(handle(filter)?.filter.quaternion())))
+    guard(|| put(q, || Ok(quat_to(handle(filter)?.filter.quaternion()))))
 }
 
 /// Euler angles (yaw, pitch, roll; Z-Y'-X'') of the orientation, radians.
@@ -650,8 +656,10 @@ pub unsafe extern "C" fn orient_filter_euler(
     euler: *mut OrientEuler,
 ) -> OrientStatus {
     guard(|| {
-        let e = handle(filter)?.filter.euler();
-        put(euler, OrientEuler { yaw: e.yaw, pitch: e.pitch, roll: e.roll })
+        put(euler, || {
+            let e = handle(filter)?.filter.euler();
+            Ok(OrientEuler { yaw: e.yaw, pitch: e.pitch, roll: e.roll })
+        })
     })
 }
 
@@ -662,10 +670,8 @@ pub unsafe extern "C" fn orient_filter_rotation_matrix(
     matrix: *mut f64,
 ) -> OrientStatus {
     guard(|| {
+        need(matrix.is_null())?;
         let m = handle(filter)?.filter.rotation_matrix();
-        if matrix.is_null() {
-            return Err(null());
-        }
         for (i, v) in m.iter().flatten().enumerate() {
             matrix.add(i).write(*v);
         }
@@ -680,17 +686,18 @@ pub unsafe extern "C" fn orient_filter_gravity(
     filter: *const OrientFilter,
     gravity: *mut OrientVec3,
 ) -> OrientStatus {
-    guard(|| put(gravity, vec_to(handle(filter)?.filter.gravity())))
+    guard(|| put(gravity, || Ok(vec_to(handle(filter)?.filter.gravity()))))
 }
 
 /// Last accelerometer reading minus orient_filter_gravity(), sensor frame, m/s^2.
-/// ORIENT_STATUS_NO_DATA before the first accelerometer reading.
+/// ORIENT_STATUS_NO_DATA before the first accelerometer reading (NULL_POINTER, as
+/// always, when `accel` is NULL).
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_linear_accel(
     filter: *const OrientFilter,
     accel: *mut OrientVec3,
 ) -> OrientStatus {
-    guard(|| put_measured(accel, handle(filter)?.filter.linear_accel()))
+    guard(|| put(accel, || measured(handle(filter)?.filter.linear_accel())))
 }
 
 /// orient_filter_linear_accel() rotated into the earth frame, m/s^2.
@@ -699,7 +706,7 @@ pub unsafe extern "C" fn orient_filter_linear_accel_earth(
     filter: *const OrientFilter,
     accel: *mut OrientVec3,
 ) -> OrientStatus {
-    guard(|| put_measured(accel, handle(filter)?.filter.linear_accel_earth()))
+    guard(|| put(accel, || measured(handle(filter)?.filter.linear_accel_earth())))
 }
 
 /// Internal states (bias, trust values, rest flag, covariance), the same struct for
@@ -710,10 +717,9 @@ pub unsafe extern "C" fn orient_filter_diagnostics(
     diagnostics: *mut OrientDiagnostics,
 ) -> OrientStatus {
     guard(|| {
-        let d = handle(filter)?.filter.diagnostics();
-        put(
-            diagnostics,
-            OrientDiagnostics {
+        put(diagnostics, || {
+            let d = handle(filter)?.filter.diagnostics();
+            Ok(OrientDiagnostics {
                 present: d.present,
                 reserved: 0,
                 gyro_bias: vec_to(d.gyro_bias),
@@ -724,8 +730,8 @@ pub unsafe extern "C" fn orient_filter_diagnostics(
                 mu_k: d.mu_k,
                 rate: vec_to(d.rate),
                 covariance: d.covariance,
-            },
-        )
+            })
+        })
     })
 }
 
@@ -735,7 +741,7 @@ pub unsafe extern "C" fn orient_filter_state_size(
     filter: *const OrientFilter,
     size: *mut usize,
 ) -> OrientStatus {
-    guard(|| put(size, handle(filter)?.filter.state_size()))
+    guard(|| put(size, || Ok(handle(filter)?.filter.state_size())))
 }
 
 /// Saves the configuration and state as a versioned, checksummed blob into `buffer`
@@ -750,10 +756,8 @@ pub unsafe extern "C" fn orient_filter_save(
     written: *mut usize,
 ) -> OrientStatus {
     guard(|| {
+        need(buffer.is_null() || written.is_null())?;
         let h = handle(filter)?;
-        if buffer.is_null() || written.is_null() {
-            return Err(null());
-        }
         if capacity > isize::MAX as usize {
             return Err(fail(
                 OrientStatus::CountTooLarge,
@@ -777,10 +781,8 @@ pub unsafe extern "C" fn orient_filter_load(
     size: usize,
 ) -> OrientStatus {
     guard(|| {
+        need(buffer.is_null())?;
         let h = handle_mut(filter)?;
-        if buffer.is_null() {
-            return Err(null());
-        }
         if size > isize::MAX as usize {
             return Err(fail(OrientStatus::CountTooLarge, format_args!("size {size} cannot be a buffer")));
         }
@@ -791,7 +793,7 @@ pub unsafe extern "C" fn orient_filter_load(
 /// ORIENT_FLAG_* bits of the filter's state.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_flags(filter: *const OrientFilter, flags: *mut u32) -> OrientStatus {
-    guard(|| put(flags, handle(filter)?.filter.flags()))
+    guard(|| put(flags, || Ok(handle(filter)?.filter.flags())))
 }
 
 /// Back to the state right after orient_filter_new(); parameters set since are kept.
@@ -811,10 +813,8 @@ pub unsafe extern "C" fn orient_filter_set_quaternion(
     q: *const OrientQuaternion,
 ) -> OrientStatus {
     guard(|| {
+        need(q.is_null())?;
         let h = handle_mut(filter)?;
-        if q.is_null() {
-            return Err(null());
-        }
         h.filter.set_quaternion(quat_from(*q)).map_err(from_core)
     })
 }

@@ -169,7 +169,7 @@ pub const ORIENT_DIAG_COVARIANCE: u32 = 128;
 pub enum OrientStatus {
     /// Success.
     Ok = 0,
-    /// A required pointer argument is NULL.
+    /// A required pointer argument is NULL (checked before anything else).
     NullPointer = 1,
     /// The handle is not a live OrientFilter: freed, or never returned by
     /// orient_filter_new (a copy of a handle's bytes included).

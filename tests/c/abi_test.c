@@ -425,6 +425,71 @@ static void handle_paths(void) {
     }
 }
 
+/* A NULL required pointer is NULL_POINTER before any other check: with a pointer that
+ * is not a handle, an unknown kind, or a filter that has no data for the output yet. */
+static void null_pointers_come_first(void) {
+    OrientFilter *f = new_madgwick();
+    uint64_t fake[32];
+    OrientFilter *bad = (OrientFilter *)(void *)fake;
+    OrientConfig c;
+    const uint8_t blob[4] = {0, 0, 0, 0};
+    uint32_t id = 0;
+    size_t n = 0;
+    memset(fake, 0, sizeof fake);
+    CHECK(f != NULL);
+    if (!f) return;
+    /* No accelerometer reading yet: NO_DATA with an out-pointer, NULL_POINTER without. */
+    {
+        OrientVec3 v;
+        CHECK_STATUS(orient_filter_linear_accel(f, &v), ORIENT_STATUS_NO_DATA);
+        CHECK_STATUS(orient_filter_linear_accel_earth(f, &v), ORIENT_STATUS_NO_DATA);
+    }
+    CHECK_STATUS(orient_filter_linear_accel(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_linear_accel_earth(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_linear_accel(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_linear_accel_earth(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_quaternion(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_euler(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_rotation_matrix(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_gravity(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_diagnostics(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_flags(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_kind(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_get_param(bad, 9999, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_state_size(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_save(bad, NULL, 0, &n), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_save(bad, (uint8_t *)fake, 8, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_load(bad, NULL, 4), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_set_quaternion(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_update(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_config_default(99, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_param_count(99, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_param_info(99, 9999, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_param_find(99, NULL, &id), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_param_find(99, "beta_imu", NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_config_get_param(NULL, 9999, NULL), ORIENT_STATUS_NULL_POINTER);
+    memset(&c, 0, sizeof c); /* struct_size 0: VERSION_MISMATCH once the pointers pass */
+    CHECK_STATUS(orient_config_get_param(&c, 9999, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_new(&c, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_load(bad, blob, sizeof blob), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_update_batch(bad, NULL, 3, NULL, &n), ORIENT_STATUS_NULL_POINTER);
+    {
+        OrientFilter *rig[3];
+        OrientSample frame[3];
+        rig[0] = f;
+        rig[1] = bad;
+        rig[2] = NULL;
+        frame[0] = frame[1] = frame[2] = good_sample();
+        CHECK_STATUS(orient_filters_update(rig, NULL, 3, NULL, &n), ORIENT_STATUS_NULL_POINTER);
+        CHECK_STATUS(orient_filters_update(rig, frame, 3, NULL, &n), ORIENT_STATUS_NULL_POINTER);
+        CHECK(strstr(orient_last_error(), "filter 2") != NULL);
+        rig[2] = f;
+        CHECK_STATUS(orient_filters_update(rig, frame, 3, NULL, &n), ORIENT_STATUS_INVALID_HANDLE);
+        CHECK(strstr(orient_last_error(), "filter 1") != NULL);
+    }
+    CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
+}
+
 /* Every rejected sample leaves the state bit-identical: a twin that never saw the bad
  * samples must produce the same bits afterwards. */
 /* Feeds still samples until the filter has an orientation (start-up periods). */
@@ -738,6 +803,7 @@ int main(int argc, char **argv) {
     status_messages();
     config_paths();
     handle_paths();
+    null_pointers_come_first();
     for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_ROBUST; k++) {
         bad_input(k);
         diagnostics(k);
