@@ -6,7 +6,7 @@ mod common;
 
 use common::sim::{c_sample, simulate, Moment};
 use orient::ffi::*;
-use orient::{Quat, Vec3};
+use orient::{Kind, Quat, Vec3};
 
 struct Handle(*mut OrientFilter);
 // The C contract: a handle may move between threads, never be used by two at once.
@@ -31,7 +31,8 @@ fn inputs(seed: usize) -> Vec<OrientSample> {
 fn new_handle(i: usize) -> Handle {
     unsafe {
         let mut c = std::mem::MaybeUninit::<OrientConfig>::uninit();
-        assert_eq!(orient_config_default((i % 5) as i32 + 1, c.as_mut_ptr()), OrientStatus::Ok);
+        let kind = OrientKind::from(Kind::ALL[i % Kind::ALL.len()]);
+        assert_eq!(orient_config_default(kind as i32, c.as_mut_ptr()), OrientStatus::Ok);
         let mut c = c.assume_init();
         c.frame = (i % 3) as i32;
         let mut h = std::ptr::null_mut();

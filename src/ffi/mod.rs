@@ -89,27 +89,14 @@ fn measured(value: Option<Vec3>) -> Result<OrientVec3, OrientStatus> {
 }
 
 fn kind_from(kind: i32) -> Result<Kind, OrientStatus> {
-    let k = match kind {
-        1 => Kind::Madgwick,
-        2 => Kind::Mahony,
-        3 => Kind::Complementary,
-        4 => Kind::Ekf,
-        5 => Kind::Gmvdk,
-        6 => Kind::Robust,
-        _ => return Err(fail(OrientStatus::InvalidArgument, format_args!("unknown filter kind {kind}"))),
-    };
-    Ok(k)
+    Kind::ALL
+        .into_iter()
+        .find(|k| OrientKind::from(*k) as i32 == kind)
+        .ok_or_else(|| fail(OrientStatus::InvalidArgument, format_args!("unknown filter kind {kind}")))
 }
 
 fn kind_to(kind: Kind) -> i32 {
-    (match kind {
-        Kind::Madgwick => OrientKind::Madgwick,
-        Kind::Mahony => OrientKind::Mahony,
-        Kind::Complementary => OrientKind::Complementary,
-        Kind::Ekf => OrientKind::Ekf,
-        Kind::Gmvdk => OrientKind::Gmvdk,
-        Kind::Robust => OrientKind::Robust,
-    }) as i32
+    OrientKind::from(kind) as i32
 }
 
 fn frame_from(frame: i32) -> Result<Frame, OrientStatus> {

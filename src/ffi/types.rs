@@ -237,6 +237,22 @@ pub enum OrientKind {
     Robust = 6,
 }
 
+/// The one mapping between the core's kinds and the C numbers: code that iterates the
+/// C kinds takes them from `Kind::ALL` through it, so a new kind is never left out.
+impl From<crate::filters::Kind> for OrientKind {
+    fn from(kind: crate::filters::Kind) -> OrientKind {
+        use crate::filters::Kind;
+        match kind {
+            Kind::Madgwick => OrientKind::Madgwick,
+            Kind::Mahony => OrientKind::Mahony,
+            Kind::Complementary => OrientKind::Complementary,
+            Kind::Ekf => OrientKind::Ekf,
+            Kind::Gmvdk => OrientKind::Gmvdk,
+            Kind::Robust => OrientKind::Robust,
+        }
+    }
+}
+
 /// Earth frames, as `OrientConfig.frame`.
 #[repr(i32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
