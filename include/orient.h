@@ -12,7 +12,9 @@
  *
  * Errors
  *   Every fallible function returns an OrientStatus. On anything but ORIENT_STATUS_OK
- *   the call changed nothing: a rejected sample leaves the filter's state bit-identical.
+ *   the call changed nothing: a rejected sample leaves the filter's state bit-identical
+ *   (a batch or rig call keeps the items before the bad one, and the out-pointers its
+ *   documentation names are written as it says).
  *   A NULL required pointer is ORIENT_STATUS_NULL_POINTER, checked before anything else
  *   (the handle, the other arguments, the filter's data).
  *   orient_status_message() gives a fixed message per code and orient_last_error() the
@@ -845,7 +847,8 @@ double orient_madgwick_beta(double gyro_error);
 /**
  * Fills `config` with the defaults of `kind` (one of ORIENT_KIND_*): ENU, initial
  * orientation from the first accelerometer/magnetometer sample, every parameter at its
- * documented default. ORIENT_STATUS_UNSUPPORTED_KIND for kinds not built yet.
+ * documented default. ORIENT_STATUS_INVALID_ARGUMENT for a number that is not an
+ * ORIENT_KIND_*.
  */
 OrientStatus orient_config_default(int32_t kind, struct OrientConfig *config);
 
@@ -948,8 +951,8 @@ OrientStatus orient_filter_update_batch(OrientFilter *filter,
  * sample stops the call: the filters before it stay updated, its filter and those
  * after it are unchanged, and `*processed` (when not NULL) is its index; on success it
  * is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
- * distinct Madgwick filters with the same sensors present are updated side by side
- * (about half the time of separate calls), with the same bits as separate calls.
+ * distinct Madgwick filters with the same sensors present are updated side by side,
+ * with the same bits as separate calls.
  */
 OrientStatus orient_filters_update(OrientFilter *const *filters,
                                    const struct OrientSample *samples,

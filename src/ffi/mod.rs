@@ -262,7 +262,8 @@ pub extern "C" fn orient_madgwick_beta(gyro_error: f64) -> f64 {
 
 /// Fills `config` with the defaults of `kind` (one of ORIENT_KIND_*): ENU, initial
 /// orientation from the first accelerometer/magnetometer sample, every parameter at its
-/// documented default. ORIENT_STATUS_UNSUPPORTED_KIND for kinds not built yet.
+/// documented default. ORIENT_STATUS_INVALID_ARGUMENT for a number that is not an
+/// ORIENT_KIND_*.
 #[no_mangle]
 pub unsafe extern "C" fn orient_config_default(kind: i32, config: *mut OrientConfig) -> OrientStatus {
     guard(|| {
@@ -537,8 +538,8 @@ pub unsafe extern "C" fn orient_filter_update_batch(
 /// sample stops the call: the filters before it stay updated, its filter and those
 /// after it are unchanged, and `*processed` (when not NULL) is its index; on success it
 /// is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
-/// distinct Madgwick filters with the same sensors present are updated side by side
-/// (about half the time of separate calls), with the same bits as separate calls.
+/// distinct Madgwick filters with the same sensors present are updated side by side,
+/// with the same bits as separate calls.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filters_update(
     filters: *const *mut OrientFilter,
@@ -901,6 +902,26 @@ mod tests {
         let all: std::collections::BTreeSet<u32> =
             Kind::ALL.iter().flat_map(|k| k.params().map(|p| p.id)).collect();
         assert_eq!(all.len(), slots.len() + 6);
+    }
+
+    #[test]
+    fn every_kind_keeps_to_its_block_of_parameter_slots() {
+        // ORIENT_MAX_PARAMS' documentation: 0-7 common, then one block per kind.
+        let blocks = [
+            (Kind::Madgwick, 8..16),
+            (Kind::Mahony, 16..24),
+            (Kind::Complementary, 24..40),
+            (Kind::Ekf, 40..56),
+            (Kind::Gmvdk, 56..80),
+            (Kind::Robust, 80..104),
+        ];
+        assert_eq!(blocks.len(), Kind::ALL.len());
+        assert!(params::COMMON.iter().all(|p| p.id < 8));
+        for (kind, block) in blocks {
+            for p in kind.params().skip(params::COMMON.len()) {
+                assert!(block.contains(&p.id), "{kind:?}: {} in slot {}", p.name, p.id);
+            }
+        }
     }
 
     #[test]

@@ -486,6 +486,12 @@ static void null_pointers_come_first(void) {
         rig[2] = f;
         CHECK_STATUS(orient_filters_update(rig, frame, 3, NULL, &n), ORIENT_STATUS_INVALID_HANDLE);
         CHECK(strstr(orient_last_error(), "filter 1") != NULL);
+        /* Every handle is checked before any filter changes: f took no sample. */
+        {
+            uint32_t flags = 99;
+            CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
+            CHECK(flags == 0);
+        }
     }
     CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
 }
@@ -504,6 +510,89 @@ static int warm_up(OrientFilter *f) {
         if (flags & ORIENT_FLAG_INITIALIZED) return i + 1;
     }
     return -1;
+}
+
+/* Sentences of the header about the C layer that no other check covers. */
+static void header_promises(void) {
+    int32_t k;
+    /* orient_madgwick_beta: NaN for a negative or non-finite input. */
+    CHECK(isnan(orient_madgwick_beta(NAN)) && isnan(orient_madgwick_beta(INFINITY)));
+    CHECK(orient_madgwick_beta(0.0) == 0.0);
+    for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_ROBUST; k++) {
+        OrientConfig c;
+        OrientFilter *f = NULL, *g = NULL;
+        OrientQuaternion q;
+        OrientParamInfo info;
+        OrientDiagnostics d;
+        uint32_t flags = 0, i, count = 0;
+        size_t size_f = 0, size_g = 0;
+        double v = 0.0;
+        OrientSample s = good_sample(), hidden = good_sample(), shown;
+        CHECK_STATUS(orient_config_default(k, &c), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_config_set_param(&c, ORIENT_PARAM_GRAVITY, 9.7), ORIENT_STATUS_OK);
+        c.frame = ORIENT_FRAME_NED;
+        CHECK_STATUS(orient_filter_new(&c, &g), ORIENT_STATUS_OK);
+        if (!f || !g) return;
+        /* Strings and reserved fields. */
+        CHECK_STATUS(orient_param_count(k, &count), ORIENT_STATUS_OK);
+        for (i = 0; i < count; i++) {
+            CHECK_STATUS(orient_param_info(k, i, &info), ORIENT_STATUS_OK);
+            CHECK(info.reserved == 0 && info.min <= info.default_value && info.default_value <= info.max);
+        }
+        CHECK_STATUS(orient_filter_diagnostics(f, &d), ORIENT_STATUS_OK);
+        CHECK(d.reserved == 0);
+        /* set_quaternion: unusable quaternions are refused; afterwards initialised. */
+        q.w = q.x = q.y = q.z = 0.0;
+        CHECK_STATUS(orient_filter_set_quaternion(f, &q), ORIENT_STATUS_ZERO_VECTOR);
+        q.w = q.x = 1e300;
+        CHECK_STATUS(orient_filter_set_quaternion(f, &q), ORIENT_STATUS_TOO_LARGE);
+        CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
+        CHECK((flags & ORIENT_FLAG_INITIALIZED) == 0);
+        q.w = 0.5;
+        q.x = 0.5;
+        CHECK_STATUS(orient_filter_set_quaternion(f, &q), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
+        CHECK((flags & ORIENT_FLAG_INITIALIZED) != 0);
+        /* The state size is one per kind, whatever the configuration or the state. */
+        CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_state_size(f, &size_f), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_state_size(g, &size_g), ORIENT_STATUS_OK);
+        CHECK(size_f == size_g && size_f > 0);
+        /* reset keeps the parameters set since creation. */
+        CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_GRAVITY, 9.6), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_reset(f), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_get_param(f, ORIENT_PARAM_GRAVITY, &v), ORIENT_STATUS_OK);
+        CHECK(v == 9.6);
+        /* Fields whose bit is clear are not read: NaN there changes nothing. */
+        CHECK_STATUS(orient_filter_reset(f), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_free(g), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_config_default(k, &c), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_new(&c, &g), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_set_param(g, ORIENT_PARAM_GRAVITY, 9.6), ORIENT_STATUS_OK);
+        CHECK(warm_up(f) > 0 && warm_up(g) > 0);
+        hidden.flags = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL;
+        hidden.mag.x = NAN;
+        hidden.mag.z = INFINITY;
+        shown = hidden;
+        shown.mag.x = shown.mag.y = shown.mag.z = 0.0;
+        CHECK_STATUS(orient_filter_update(f, &hidden), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_update(g, &shown), ORIENT_STATUS_OK);
+        hidden.flags = ORIENT_SAMPLE_GYRO;
+        hidden.accel.y = NAN;
+        shown = hidden;
+        shown.accel.x = shown.accel.y = shown.accel.z = 0.0;
+        CHECK_STATUS(orient_filter_update(f, &hidden), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_update(g, &shown), ORIENT_STATUS_OK);
+        {
+            OrientQuaternion a, b;
+            CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
+            CHECK_STATUS(orient_filter_quaternion(g, &b), ORIENT_STATUS_OK);
+            CHECK(same_quaternion(a, b));
+        }
+        CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_free(g), ORIENT_STATUS_OK);
+    }
 }
 
 static void bad_input(int32_t kind) {
@@ -804,6 +893,7 @@ int main(int argc, char **argv) {
     config_paths();
     handle_paths();
     null_pointers_come_first();
+    header_promises();
     for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_ROBUST; k++) {
         bad_input(k);
         diagnostics(k);
