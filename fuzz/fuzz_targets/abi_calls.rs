@@ -12,6 +12,9 @@
 //!   `GOOD` plausible samples later that copy has updated OK every time and holds a
 //!   finite unit quaternion;
 //! - freed (and not handed out again), copied and forged handles are refused.
+//!
+//! Blobs are loaded as saved (into filters of any kind), damaged, cut, and forged
+//! with a recomputed checksum.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -397,12 +400,23 @@ fuzz_target!(|data: &[u8]| {
                     assert_eq!(s, OrientStatus::BufferTooSmall);
                 }
                 8 if any => {
-                    // Load the last blob (of any kind), often damaged or cut.
+                    // Load the last blob (of any kind), often damaged or cut, sometimes
+                    // forged: bytes changed and the checksum recomputed, so that only the
+                    // decoded values can tell.
                     let mut data = saved.clone();
-                    match b.u8() % 4 {
+                    match b.u8() % 5 {
                         0 if !data.is_empty() => {
                             let i = (b.u64() as usize) % data.len();
                             data[i] ^= b.u8() | 1;
+                        }
+                        4 if data.len() > 8 => {
+                            let end = data.len() - 8;
+                            for _ in 0..1 + b.u8() % 4 {
+                                let i = (b.u64() as usize) % end;
+                                data[i] = b.u8();
+                            }
+                            let sum = orient::filters::state::checksum(&data[..end]);
+                            data[end..].copy_from_slice(&sum.to_le_bytes());
                         }
                         1 => data.truncate((b.u64() as usize) % (data.len() + 1)),
                         2 => data.extend((0..b.u8() % 32).map(|_| b.u8())),
