@@ -12,7 +12,11 @@
  *
  * Errors
  *   Every fallible function returns an OrientStatus. On anything but ORIENT_STATUS_OK
- *   the call changed nothing: a rejected sample leaves the filter's state bit-identical.
+ *   the call changed nothing: a rejected sample leaves the filter's state bit-identical
+ *   (a batch or rig call keeps the items before the bad one, and the out-pointers its
+ *   documentation names are written as it says).
+ *   A NULL required pointer is ORIENT_STATUS_NULL_POINTER, checked before anything else
+ *   (the handle, the other arguments, the filter's data).
  *   orient_status_message() gives a fixed message per code and orient_last_error() the
  *   detail of the last failure on the calling thread. No panic crosses this boundary.
  *
@@ -21,10 +25,14 @@
  *   but not from two threads at once; distinct handles never share state.
  *
  * Handles
- *   OrientFilter is opaque and tagged. orient_filter_free(NULL) is a no-op; a freed or
- *   foreign pointer is reported as ORIENT_STATUS_INVALID_HANDLE as long as its memory
- *   is still readable and has not been reused for a new handle: a tag check cannot make
- *   reading unmapped memory safe.
+ *   OrientFilter is opaque. orient_filter_free(NULL) is a no-op. Every call looks its
+ *   handle up in the library's registry of live handles before it reads anything
+ *   through it: a freed handle, a copy of a handle's bytes and any other pointer that
+ *   orient_filter_new did not return are reported as ORIENT_STATUS_INVALID_HANDLE, and
+ *   their memory is not read. The limit: once orient_filter_new returns a freed
+ *   handle's address again, that address is the new filter's handle. At most 24576
+ *   filters are live at once; orient_filter_new returns ORIENT_STATUS_COUNT_TOO_LARGE
+ *   beyond that.
  */
 
 #ifndef ORIENT_H
@@ -441,11 +449,12 @@ enum OrientStatus
    */
   ORIENT_STATUS_OK = 0,
   /**
-   * A required pointer argument is NULL.
+   * A required pointer argument is NULL (checked before anything else).
    */
   ORIENT_STATUS_NULL_POINTER = 1,
   /**
-   * The handle is not a live OrientFilter (freed, foreign or misaligned pointer).
+   * The handle is not a live OrientFilter: freed, or never returned by
+   * orient_filter_new (a copy of a handle's bytes included).
    */
   ORIENT_STATUS_INVALID_HANDLE = 2,
   /**
@@ -507,7 +516,8 @@ enum OrientStatus
    */
   ORIENT_STATUS_NUMERIC = 15,
   /**
-   * A count so large that the buffers it describes cannot exist.
+   * A count so large that the buffers it describes cannot exist; from
+   * orient_filter_new: 24576 filters are live already, the most the library holds.
    */
   ORIENT_STATUS_COUNT_TOO_LARGE = 16,
   /**
@@ -867,7 +877,8 @@ double orient_madgwick_beta(double gyro_error);
 /**
  * Fills `config` with the defaults of `kind` (one of ORIENT_KIND_*): ENU, initial
  * orientation from the first accelerometer/magnetometer sample, every parameter at its
- * documented default. ORIENT_STATUS_UNSUPPORTED_KIND for kinds not built yet.
+ * documented default. ORIENT_STATUS_INVALID_ARGUMENT for a number that is not an
+ * ORIENT_KIND_*.
  */
 OrientStatus orient_config_default(int32_t kind, struct OrientConfig *config);
 
@@ -904,7 +915,8 @@ OrientStatus orient_filter_new(const struct OrientConfig *config, OrientFilter *
 
 /**
  * Releases a filter. NULL is a no-op (ORIENT_STATUS_OK); a handle that was already
- * freed is reported with ORIENT_STATUS_INVALID_HANDLE (see the handle-check limits).
+ * freed, or any pointer orient_filter_new did not return, is reported with
+ * ORIENT_STATUS_INVALID_HANDLE and nothing is read or freed through it.
  */
 OrientStatus orient_filter_free(OrientFilter *filter);
 
@@ -952,7 +964,8 @@ OrientStatus orient_filter_update(OrientFilter *filter, const struct OrientSampl
 
 /**
  * Updates with `n` samples in order. When `quaternions` is not NULL it receives the
- * orientation after each sample (room for `n`). Stops at the first bad sample: the
+ * orientation after each sample (room for `n`; on failure the entries before
+ * `*processed` are written and the others are not). Stops at the first bad sample: the
  * samples before it stay applied, the bad one changes nothing, and `*processed` (when
  * not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
  * when `n` is 0.
@@ -967,13 +980,15 @@ OrientStatus orient_filter_update_batch(OrientFilter *filter,
  * One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
  * for i < n (say the 16-20 bones of a hand). The filters may be of any kinds; each
  * behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
- * receives each filter's orientation after its sample (room for `n`). Every handle is
- * checked before any filter changes, so a NULL or foreign handle changes nothing. A bad
+ * receives each filter's orientation after its sample (room for `n`; on failure the
+ * entries of the filters before the bad sample are written and the others are not).
+ * Every handle is checked before any filter changes, so a NULL or foreign handle
+ * changes nothing. A bad
  * sample stops the call: the filters before it stay updated, its filter and those
  * after it are unchanged, and `*processed` (when not NULL) is its index; on success it
  * is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
- * distinct Madgwick filters with the same sensors present are updated side by side
- * (about half the time of separate calls), with the same bits as separate calls.
+ * distinct Madgwick filters with the same sensors present are updated side by side,
+ * with the same bits as separate calls.
  */
 OrientStatus orient_filters_update(OrientFilter *const *filters,
                                    const struct OrientSample *samples,
@@ -1004,7 +1019,8 @@ OrientStatus orient_filter_gravity(const OrientFilter *filter, struct OrientVec3
 
 /**
  * Last accelerometer reading minus orient_filter_gravity(), sensor frame, m/s^2.
- * ORIENT_STATUS_NO_DATA before the first accelerometer reading.
+ * ORIENT_STATUS_NO_DATA before the first accelerometer reading (NULL_POINTER, as
+ * always, when `accel` is NULL).
  */
 OrientStatus orient_filter_linear_accel(const OrientFilter *filter, struct OrientVec3 *accel);
 

@@ -100,7 +100,7 @@ fn damaged_blobs_are_refused_and_change_nothing() {
 #[test]
 fn split_runs_through_the_c_abi() {
     let s: Vec<OrientSample> = samples().iter().map(c_sample).collect();
-    for kind in 1..=5 {
+    for kind in Kind::ALL.map(|k| OrientKind::from(k) as i32) {
         unsafe {
             let mut c = std::mem::MaybeUninit::<OrientConfig>::uninit();
             assert_eq!(orient_config_default(kind, c.as_mut_ptr()), OrientStatus::Ok);

@@ -6,7 +6,7 @@ mod common;
 
 use common::sim::{c_sample, simulate, Moment};
 use orient::ffi::*;
-use orient::{Quat, Vec3};
+use orient::{Kind, Quat, Vec3};
 
 struct Handle(*mut OrientFilter);
 // The C contract: a handle may move between threads, never be used by two at once.
@@ -31,7 +31,8 @@ fn inputs(seed: usize) -> Vec<OrientSample> {
 fn new_handle(i: usize) -> Handle {
     unsafe {
         let mut c = std::mem::MaybeUninit::<OrientConfig>::uninit();
-        assert_eq!(orient_config_default((i % 5) as i32 + 1, c.as_mut_ptr()), OrientStatus::Ok);
+        let kind = OrientKind::from(Kind::ALL[i % Kind::ALL.len()]);
+        assert_eq!(orient_config_default(kind as i32, c.as_mut_ptr()), OrientStatus::Ok);
         let mut c = c.assume_init();
         c.frame = (i % 3) as i32;
         let mut h = std::ptr::null_mut();
@@ -103,4 +104,42 @@ fn eight_threads_and_64_handles_match_one_thread_bit_for_bit() {
     for (i, out) in parallel {
         assert_eq!(out, serial[i], "handle {i} differs between threaded and serial runs");
     }
+}
+
+/// The functions without a handle are thread-safe, and orient_last_error() is per
+/// thread: "" on a thread that has not failed yet, and each thread's own detail after
+/// its failures, whatever the others do meanwhile.
+#[test]
+fn handle_free_functions_and_error_details_are_per_thread() {
+    std::thread::scope(|scope| {
+        for t in 0..8usize {
+            scope.spawn(move || unsafe {
+                let last = || std::ffi::CStr::from_ptr(orient_last_error()).to_str().unwrap().to_owned();
+                assert_eq!(last(), "", "thread {t} starts with a detail");
+                let kinds: Vec<i32> = Kind::ALL.iter().map(|k| OrientKind::from(*k) as i32).collect();
+                for round in 0..200 {
+                    let kind = kinds[(t + round) % kinds.len()];
+                    let mut c = std::mem::MaybeUninit::<OrientConfig>::uninit();
+                    assert_eq!(orient_config_default(kind, c.as_mut_ptr()), OrientStatus::Ok);
+                    let mut n = 0;
+                    assert_eq!(orient_param_count(kind, &mut n), OrientStatus::Ok);
+                    let mut info = std::mem::MaybeUninit::<OrientParamInfo>::uninit();
+                    assert_eq!(
+                        orient_param_info(kind, round as u32 % n, info.as_mut_ptr()),
+                        OrientStatus::Ok
+                    );
+                    let mut id = 0;
+                    assert_eq!(orient_param_find(kind, info.assume_init().name, &mut id), OrientStatus::Ok);
+                    // A failure of this thread's own, with its own number in the detail.
+                    let bad = 1000 + t as u32;
+                    assert_eq!(
+                        orient_param_info(kind, bad, info.as_mut_ptr()),
+                        OrientStatus::InvalidArgument
+                    );
+                    assert_eq!(last(), format!("parameter index {bad} out of range"), "thread {t}");
+                    assert!(!orient_status_message(round as i32 % 24).is_null());
+                }
+            });
+        }
+    });
 }

@@ -51,8 +51,8 @@ int main(int argc, char** argv) {
     }
 
     const orient::Kind kinds[] = {orient::Kind::Madgwick, orient::Kind::Mahony, orient::Kind::Complementary,
-                                  orient::Kind::Ekf, orient::Kind::Gmvdk};
-    const char* labels[] = {"madgwick", "mahony", "complementary", "ekf", "gmvdk"};
+                                  orient::Kind::Ekf,      orient::Kind::Gmvdk,  orient::Kind::Robust};
+    const char* labels[] = {"madgwick", "mahony", "complementary", "ekf", "gmvdk", "robust"};
     std::vector<orient::Filter> filters;
     for (orient::Kind k : kinds) {
         auto f = orient::Filter::create(orient::Config::defaults(k).value());

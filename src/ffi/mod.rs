@@ -1,20 +1,23 @@
 //! The C ABI. It only translates: pointer and handle checks, conversions between C and
 //! core types, status codes, and a panic boundary inside every exported body.
 //!
-//! Handle checks rely on a magic tag in each OrientFilter that orient_filter_free
-//! overwrites. A freed handle is reported as long as its memory has not been handed out
-//! again, and a pointer that never was a handle is reported if it is readable and
-//! aligned; no tag can make reading an unmapped address safe.
+//! Handle checks look the address up in the registry of live handles
+//! ([`registry`]) before anything is read through it: a freed handle, a copy of a
+//! handle's bytes and a pointer that never was a handle are refused without their
+//! memory being read.
 //!
 //! # Safety
-//! One contract covers every `unsafe extern "C"` function here, and the header states
-//! it: each pointer argument is NULL (reported as ORIENT_STATUS_NULL_POINTER unless the
+//! One contract covers every `unsafe extern "C"` function here: each pointer argument
+//! other than a handle is NULL (reported as ORIENT_STATUS_NULL_POINTER unless the
 //! function says NULL is allowed) or valid for the reads and writes its documentation
-//! names, and a handle is not used from two threads at once.
+//! names; a handle may hold any value (it is looked up before it is read), and a live
+//! handle is not used from two threads at once (freeing it included).
 #![allow(clippy::missing_safety_doc)]
 
 mod arrays;
 mod error;
+mod registry;
+mod strings;
 mod types;
 
 pub use arrays::*;
@@ -24,19 +27,11 @@ use crate::filters::{Config, Filter, Init, Kind, Sample, SampleView};
 use crate::math::{Frame, Quat, Vec3};
 use core::ffi::{c_char, CStr};
 use error::{detail_ptr, fail, from_core, from_state, guard, guard_value, status_message};
-use once_cell::sync::Lazy;
-use std::ffi::CString;
-
-const MAGIC_LIVE: u64 = 0x4f52_4945_4e54_2e31; // "ORIENT.1"
-const MAGIC_DEAD: u64 = 0xdead_f11e_dead_f11e;
 
 /// An orientation filter. Opaque to C (the header declares it with cbindgen.toml's
 /// `after_includes`): create with orient_filter_new(), release with orient_filter_free().
-/// `repr(C)` keeps the tag at offset 0, so checking a foreign pointer reads only its
-/// first 8 bytes, and glibc's free list overwrites the tag of a freed handle.
-#[repr(C)]
+/// Its address is its identity in the registry of live handles.
 pub struct OrientFilter {
-    magic: u64,
     filter: Filter,
 }
 
@@ -46,18 +41,23 @@ fn null() -> OrientStatus {
     fail(OrientStatus::NullPointer, format_args!("a required pointer argument is NULL"))
 }
 
-/// Checks a handle and borrows it.
+/// Checks a handle and borrows it. Nothing is read through `h` unless the registry
+/// holds it as a live handle.
 ///
 /// # Safety
-/// `h` is NULL or points to readable memory of at least `size_of::<OrientFilter>()` bytes.
+/// A live handle is not freed, nor used mutably by another thread, while the borrow lasts.
 unsafe fn handle<'a>(h: *const OrientFilter) -> Result<&'a OrientFilter, OrientStatus> {
     if h.is_null() {
         return Err(null());
     }
-    if (h as usize) % core::mem::align_of::<OrientFilter>() != 0 || (*h).magic != MAGIC_LIVE {
-        return Err(fail(OrientStatus::InvalidHandle, format_args!("not a live OrientFilter handle: {h:p}")));
+    if !registry::HANDLES.contains(h as usize) {
+        return Err(invalid_handle(h));
     }
     Ok(&*h)
+}
+
+fn invalid_handle(h: *const OrientFilter) -> OrientStatus {
+    fail(OrientStatus::InvalidHandle, format_args!("not a live OrientFilter handle: {h:p}"))
 }
 
 /// Checks a handle and borrows it mutably. Same contract as [`handle`].
@@ -66,43 +66,39 @@ unsafe fn handle_mut<'a>(h: *mut OrientFilter) -> Result<&'a mut OrientFilter, O
     Ok(&mut *h)
 }
 
-/// Writes through an out-pointer after a NULL check.
-unsafe fn put<T>(out: *mut T, value: T) -> Res {
+/// Writes through an out-pointer: checks it for NULL before anything else, then
+/// computes the value (handle checks included) and writes it.
+unsafe fn put<T>(out: *mut T, value: impl FnOnce() -> Result<T, OrientStatus>) -> Res {
     if out.is_null() {
         return Err(null());
     }
-    out.write(value);
+    out.write(value()?);
     Ok(())
 }
 
-/// Writes an output that needs an accelerometer reading, or reports NO_DATA.
-unsafe fn put_measured(out: *mut OrientVec3, value: Option<Vec3>) -> Res {
+/// NULL_POINTER when any of a call's required pointers is NULL.
+fn need(any_null: bool) -> Res {
+    if any_null {
+        return Err(null());
+    }
+    Ok(())
+}
+
+/// An output that needs an accelerometer reading, or NO_DATA.
+fn measured(value: Option<Vec3>) -> Result<OrientVec3, OrientStatus> {
     let v = value.ok_or_else(|| fail(OrientStatus::NoData, format_args!("no accelerometer reading yet")))?;
-    put(out, vec_to(v))
+    Ok(vec_to(v))
 }
 
 fn kind_from(kind: i32) -> Result<Kind, OrientStatus> {
-    let k = match kind {
-        1 => Kind::Madgwick,
-        2 => Kind::Mahony,
-        3 => Kind::Complementary,
-        4 => Kind::Ekf,
-        5 => Kind::Gmvdk,
-        6 => Kind::Robust,
-        _ => return Err(fail(OrientStatus::InvalidArgument, format_args!("unknown filter kind {kind}"))),
-    };
-    Ok(k)
+    Kind::ALL
+        .into_iter()
+        .find(|k| OrientKind::from(*k) as i32 == kind)
+        .ok_or_else(|| fail(OrientStatus::InvalidArgument, format_args!("unknown filter kind {kind}")))
 }
 
 fn kind_to(kind: Kind) -> i32 {
-    (match kind {
-        Kind::Madgwick => OrientKind::Madgwick,
-        Kind::Mahony => OrientKind::Mahony,
-        Kind::Complementary => OrientKind::Complementary,
-        Kind::Ekf => OrientKind::Ekf,
-        Kind::Gmvdk => OrientKind::Gmvdk,
-        Kind::Robust => OrientKind::Robust,
-    }) as i32
+    OrientKind::from(kind) as i32
 }
 
 fn frame_from(frame: i32) -> Result<Frame, OrientStatus> {
@@ -229,27 +225,6 @@ unsafe fn config_from(c: *const OrientConfig) -> Result<Config, OrientStatus> {
     Config::from_slots(kind, frame, init, &c.params).map_err(from_core)
 }
 
-/// C strings for the parameter tables, built once.
-struct ParamStrings {
-    name: CString,
-    unit: CString,
-    doc: CString,
-}
-
-static PARAM_STRINGS: Lazy<Vec<(Kind, Vec<ParamStrings>)>> = Lazy::new(|| {
-    let c = |s: &str| CString::new(s).unwrap_or_default();
-    Kind::ALL
-        .into_iter()
-        .map(|k| {
-            let strings = k
-                .params()
-                .map(|p| ParamStrings { name: c(p.name), unit: c(p.unit), doc: c(p.doc) })
-                .collect();
-            (k, strings)
-        })
-        .collect()
-});
-
 /// The library version, e.g. "0.1.0" (static, NUL-terminated).
 #[no_mangle]
 pub extern "C" fn orient_version() -> *const c_char {
@@ -289,13 +264,15 @@ pub extern "C" fn orient_madgwick_beta(gyro_error: f64) -> f64 {
 
 /// Fills `config` with the defaults of `kind` (one of ORIENT_KIND_*): ENU, initial
 /// orientation from the first accelerometer/magnetometer sample, every parameter at its
-/// documented default. ORIENT_STATUS_UNSUPPORTED_KIND for kinds not built yet.
+/// documented default. ORIENT_STATUS_INVALID_ARGUMENT for a number that is not an
+/// ORIENT_KIND_*.
 #[no_mangle]
 pub unsafe extern "C" fn orient_config_default(kind: i32, config: *mut OrientConfig) -> OrientStatus {
     guard(|| {
-        let k = kind_from(kind)?;
-        let c = Config::new(k).map_err(from_core)?;
-        put(config, config_to(&c))
+        put(config, || {
+            let c = Config::new(kind_from(kind)?).map_err(from_core)?;
+            Ok(config_to(&c))
+        })
     })
 }
 
@@ -322,18 +299,15 @@ pub unsafe extern "C" fn orient_config_get_param(
     value: *mut f64,
 ) -> OrientStatus {
     guard(|| {
-        let c = config_from(config)?;
-        put(value, c.param(id).map_err(from_core)?)
+        need(config.is_null())?;
+        put(value, || config_from(config)?.param(id).map_err(from_core))
     })
 }
 
 /// Number of parameters of `kind` (common ones included), for orient_param_info().
 #[no_mangle]
 pub unsafe extern "C" fn orient_param_count(kind: i32, count: *mut u32) -> OrientStatus {
-    guard(|| {
-        let k = kind_from(kind)?;
-        put(count, k.params().count() as u32)
-    })
+    guard(|| put(count, || Ok(kind_from(kind)?.params().count() as u32)))
 }
 
 /// Describes parameter number `index` (0 <= index < orient_param_count) of `kind`.
@@ -344,6 +318,7 @@ pub unsafe extern "C" fn orient_param_info(
     info: *mut OrientParamInfo,
 ) -> OrientStatus {
     guard(|| {
+        need(info.is_null())?;
         let k = kind_from(kind)?;
         let Some(spec) = k.params().nth(index as usize) else {
             return Err(fail(
@@ -351,24 +326,21 @@ pub unsafe extern "C" fn orient_param_info(
                 format_args!("parameter index {index} out of range"),
             ));
         };
-        let strings = PARAM_STRINGS
-            .iter()
-            .find(|(kk, _)| *kk == k)
-            .and_then(|(_, s)| s.get(index as usize))
-            .ok_or_else(|| fail(OrientStatus::Panic, format_args!("parameter string table out of step")))?;
-        put(
-            info,
-            OrientParamInfo {
+        let text = strings::param_text(spec.id).ok_or_else(|| {
+            fail(OrientStatus::Panic, format_args!("no strings for parameter slot {}", spec.id))
+        })?;
+        put(info, || {
+            Ok(OrientParamInfo {
                 id: spec.id,
                 flags: if spec.zero_off { ORIENT_PARAM_FLAG_ZERO_OFF } else { 0 },
-                name: strings.name.as_ptr(),
-                unit: strings.unit.as_ptr(),
-                description: strings.doc.as_ptr(),
+                name: text.name,
+                unit: text.unit,
+                description: text.doc,
                 default_value: spec.default,
                 min: spec.min,
                 max: spec.max,
-            },
-        )
+            })
+        })
     })
 }
 
@@ -376,15 +348,13 @@ pub unsafe extern "C" fn orient_param_info(
 #[no_mangle]
 pub unsafe extern "C" fn orient_param_find(kind: i32, name: *const c_char, id: *mut u32) -> OrientStatus {
     guard(|| {
+        need(name.is_null() || id.is_null())?;
         let k = kind_from(kind)?;
-        if name.is_null() {
-            return Err(null());
-        }
         let name = CStr::from_ptr(name).to_str().unwrap_or("");
         let spec = k.param_by_name(name).ok_or_else(|| {
             fail(OrientStatus::UnknownParam, format_args!("no parameter '{name}' for this kind"))
         })?;
-        put(id, spec.id)
+        put(id, || Ok(spec.id))
     })
 }
 
@@ -402,23 +372,33 @@ pub unsafe extern "C" fn orient_filter_new(
         out.write(core::ptr::null_mut());
         let c = config_from(config)?;
         let filter = Filter::new(&c).map_err(from_core)?;
-        out.write(Box::into_raw(Box::new(OrientFilter { magic: MAGIC_LIVE, filter })));
+        let h = Box::into_raw(Box::new(OrientFilter { filter }));
+        if !registry::HANDLES.insert(h as usize) {
+            drop(Box::from_raw(h));
+            return Err(fail(
+                OrientStatus::CountTooLarge,
+                format_args!("{} filters are live, the most this library holds at once", registry::CAPACITY),
+            ));
+        }
+        out.write(h);
         Ok(())
     })
 }
 
 /// Releases a filter. NULL is a no-op (ORIENT_STATUS_OK); a handle that was already
-/// freed is reported with ORIENT_STATUS_INVALID_HANDLE (see the handle-check limits).
+/// freed, or any pointer orient_filter_new did not return, is reported with
+/// ORIENT_STATUS_INVALID_HANDLE and nothing is read or freed through it.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_free(filter: *mut OrientFilter) -> OrientStatus {
     guard(|| {
         if filter.is_null() {
             return Ok(());
         }
-        let h = handle_mut(filter)?;
-        // Volatile: a plain store right before the deallocation is a dead store that
-        // the optimiser removes, and the tag would survive the free.
-        core::ptr::write_volatile(&mut h.magic, MAGIC_DEAD);
+        // Taken out of the registry first: of two frees of one handle, even from two
+        // threads, exactly one gets here.
+        if !registry::HANDLES.remove(filter as usize) {
+            return Err(invalid_handle(filter));
+        }
         drop(Box::from_raw(filter));
         Ok(())
     })
@@ -427,7 +407,7 @@ pub unsafe extern "C" fn orient_filter_free(filter: *mut OrientFilter) -> Orient
 /// The kind (ORIENT_KIND_*) of a filter.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_kind(filter: *const OrientFilter, kind: *mut i32) -> OrientStatus {
-    guard(|| put(kind, kind_to(handle(filter)?.filter.kind())))
+    guard(|| put(kind, || Ok(kind_to(handle(filter)?.filter.kind()))))
 }
 
 /// Changes parameter slot `id` of a running filter; the estimate is kept. One setting
@@ -449,7 +429,7 @@ pub unsafe extern "C" fn orient_filter_get_param(
     id: u32,
     value: *mut f64,
 ) -> OrientStatus {
-    guard(|| put(value, handle(filter)?.filter.param(id).map_err(from_core)?))
+    guard(|| put(value, || handle(filter)?.filter.param(id).map_err(from_core)))
 }
 
 /// One update. On any status but OK the filter's state is exactly as before.
@@ -479,10 +459,8 @@ pub unsafe extern "C" fn orient_filter_update(
     sample: *const OrientSample,
 ) -> OrientStatus {
     guard(|| {
+        need(sample.is_null())?;
         let h = handle_mut(filter)?;
-        if sample.is_null() {
-            return Err(null());
-        }
         let s = host_sample(&*sample)?;
         h.filter.update_inline(&s).map_err(from_core)
     })
@@ -519,7 +497,8 @@ unsafe fn fail_item(processed: *mut usize, what: &str, i: usize, status: OrientS
 }
 
 /// Updates with `n` samples in order. When `quaternions` is not NULL it receives the
-/// orientation after each sample (room for `n`). Stops at the first bad sample: the
+/// orientation after each sample (room for `n`; on failure the entries before
+/// `*processed` are written and the others are not). Stops at the first bad sample: the
 /// samples before it stay applied, the bad one changes nothing, and `*processed` (when
 /// not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
 /// when `n` is 0.
@@ -535,11 +514,11 @@ pub unsafe extern "C" fn orient_filter_update_batch(
         if !processed.is_null() {
             processed.write(0);
         }
+        let samples = items(samples, n, "samples")?;
         let h = handle_mut(filter)?;
         if n == 0 {
             return Ok(());
         }
-        let samples = items(samples, n, "samples")?;
         let failed = |i: usize, status: OrientStatus| fail_item(processed, "sample", i, status);
         // Each update reads the host's sample in place (see SampleView): nothing is
         // copied, so nothing is read back right after it was written.
@@ -560,13 +539,15 @@ pub unsafe extern "C" fn orient_filter_update_batch(
 /// One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
 /// for i < n (say the 16-20 bones of a hand). The filters may be of any kinds; each
 /// behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
-/// receives each filter's orientation after its sample (room for `n`). Every handle is
-/// checked before any filter changes, so a NULL or foreign handle changes nothing. A bad
+/// receives each filter's orientation after its sample (room for `n`; on failure the
+/// entries of the filters before the bad sample are written and the others are not).
+/// Every handle is checked before any filter changes, so a NULL or foreign handle
+/// changes nothing. A bad
 /// sample stops the call: the filters before it stay updated, its filter and those
 /// after it are unchanged, and `*processed` (when not NULL) is its index; on success it
 /// is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
-/// distinct Madgwick filters with the same sensors present are updated side by side
-/// (about half the time of separate calls), with the same bits as separate calls.
+/// distinct Madgwick filters with the same sensors present are updated side by side,
+/// with the same bits as separate calls.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filters_update(
     filters: *const *mut OrientFilter,
@@ -584,6 +565,9 @@ pub unsafe extern "C" fn orient_filters_update(
         }
         let samples = items(samples, n, "samples")?;
         let handles = items(filters, n, "filters")?;
+        if let Some(i) = handles.iter().position(|h| h.is_null()) {
+            return Err(fail(OrientStatus::NullPointer, format_args!("filter {i} is NULL")));
+        }
         for (i, h) in handles.iter().enumerate() {
             if let Err(status) = handle(*h) {
                 return Err(fail(status, format_args!("filter {i}: not a live OrientFilter handle")));
@@ -600,28 +584,37 @@ pub unsafe extern "C" fn orient_filters_update(
             if distinct {
                 // Four different filters: their steps may run side by side.
                 let mut converted = [Sample::default(); LANES];
+                let mut bad = None;
                 for (k, c) in converted.iter_mut().enumerate() {
                     match sample_from(&samples[i + k]) {
                         Ok(s) => *c = s,
                         Err(status) => {
-                            // The ones before the bad sample still get their update.
-                            for j in 0..k {
-                                let f = &mut (*group[j]).filter;
-                                f.update(&converted[j]).map_err(|e| failed(i + j, from_core(e)))?;
-                            }
-                            return Err(failed(i + k, status));
+                            bad = Some((k, status));
+                            break;
                         }
                     }
                 }
                 let ptrs: [*mut OrientFilter; LANES] = [group[0], group[1], group[2], group[3]];
                 let mut fs = ptrs.map(|p| &mut (*p).filter);
-                let refs = [0, 1, 2, 3].map(|k| &converted[k]);
-                Filter::update_group(&mut fs, refs).map_err(|(k, e)| failed(i + k, from_core(e)))?;
+                let result = match bad {
+                    None => {
+                        let refs = [0, 1, 2, 3].map(|k| &converted[k]);
+                        Filter::update_group(&mut fs, refs).map_err(|(k, e)| (k, from_core(e)))
+                    }
+                    // The ones before the bad sample still get their update.
+                    Some((k, status)) => (0..k)
+                        .try_for_each(|j| fs[j].update(&converted[j]).map_err(|e| (j, from_core(e))))
+                        .and(Err((k, status))),
+                };
+                // Every filter the group updated has its output written, also when a
+                // later one in the group refused its sample.
+                let updated = result.map_or_else(|(k, _)| k, |()| LANES);
                 if !quaternions.is_null() {
-                    for (k, f) in fs.iter().enumerate() {
+                    for (k, f) in fs[..updated].iter().enumerate() {
                         quaternions.add(i + k).write(quat_to(f.quaternion()));
                     }
                 }
+                result.map_err(|(k, status)| failed(i + k, status))?;
                 i += LANES;
                 continue;
             }
@@ -649,7 +642,7 @@ pub unsafe extern "C" fn orient_filter_quaternion(
     filter: *const OrientFilter,
     q: *mut OrientQuaternion,
 ) -> OrientStatus {
-    guard(|| put(q, quat_to(handle(filter)?.filter.quaternion())))
+    guard(|| put(q, || Ok(quat_to(handle(filter)?.filter.quaternion()))))
 }
 
 /// Euler angles (yaw, pitch, roll; Z-Y'-X'') of the orientation, radians.
@@ -659,8 +652,10 @@ pub unsafe extern "C" fn orient_filter_euler(
     euler: *mut OrientEuler,
 ) -> OrientStatus {
     guard(|| {
-        let e = handle(filter)?.filter.euler();
-        put(euler, OrientEuler { yaw: e.yaw, pitch: e.pitch, roll: e.roll })
+        put(euler, || {
+            let e = handle(filter)?.filter.euler();
+            Ok(OrientEuler { yaw: e.yaw, pitch: e.pitch, roll: e.roll })
+        })
     })
 }
 
@@ -671,10 +666,8 @@ pub unsafe extern "C" fn orient_filter_rotation_matrix(
     matrix: *mut f64,
 ) -> OrientStatus {
     guard(|| {
+        need(matrix.is_null())?;
         let m = handle(filter)?.filter.rotation_matrix();
-        if matrix.is_null() {
-            return Err(null());
-        }
         for (i, v) in m.iter().flatten().enumerate() {
             matrix.add(i).write(*v);
         }
@@ -689,17 +682,18 @@ pub unsafe extern "C" fn orient_filter_gravity(
     filter: *const OrientFilter,
     gravity: *mut OrientVec3,
 ) -> OrientStatus {
-    guard(|| put(gravity, vec_to(handle(filter)?.filter.gravity())))
+    guard(|| put(gravity, || Ok(vec_to(handle(filter)?.filter.gravity()))))
 }
 
 /// Last accelerometer reading minus orient_filter_gravity(), sensor frame, m/s^2.
-/// ORIENT_STATUS_NO_DATA before the first accelerometer reading.
+/// ORIENT_STATUS_NO_DATA before the first accelerometer reading (NULL_POINTER, as
+/// always, when `accel` is NULL).
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_linear_accel(
     filter: *const OrientFilter,
     accel: *mut OrientVec3,
 ) -> OrientStatus {
-    guard(|| put_measured(accel, handle(filter)?.filter.linear_accel()))
+    guard(|| put(accel, || measured(handle(filter)?.filter.linear_accel())))
 }
 
 /// orient_filter_linear_accel() rotated into the earth frame, m/s^2.
@@ -708,7 +702,7 @@ pub unsafe extern "C" fn orient_filter_linear_accel_earth(
     filter: *const OrientFilter,
     accel: *mut OrientVec3,
 ) -> OrientStatus {
-    guard(|| put_measured(accel, handle(filter)?.filter.linear_accel_earth()))
+    guard(|| put(accel, || measured(handle(filter)?.filter.linear_accel_earth())))
 }
 
 /// Internal states (bias, trust values, rest flag, covariance), the same struct for
@@ -718,7 +712,7 @@ pub unsafe extern "C" fn orient_filter_diagnostics(
     filter: *const OrientFilter,
     diagnostics: *mut OrientDiagnostics,
 ) -> OrientStatus {
-    guard(|| put(diagnostics, diagnostics_to(&handle(filter)?.filter.diagnostics())))
+    guard(|| put(diagnostics, || Ok(diagnostics_to(&handle(filter)?.filter.diagnostics()))))
 }
 
 fn diagnostics_to(d: &crate::filters::Diagnostics) -> OrientDiagnostics {
@@ -742,7 +736,7 @@ pub unsafe extern "C" fn orient_filter_state_size(
     filter: *const OrientFilter,
     size: *mut usize,
 ) -> OrientStatus {
-    guard(|| put(size, handle(filter)?.filter.state_size()))
+    guard(|| put(size, || Ok(handle(filter)?.filter.state_size())))
 }
 
 /// Saves the configuration and state as a versioned, checksummed blob into `buffer`
@@ -757,10 +751,8 @@ pub unsafe extern "C" fn orient_filter_save(
     written: *mut usize,
 ) -> OrientStatus {
     guard(|| {
+        need(buffer.is_null() || written.is_null())?;
         let h = handle(filter)?;
-        if buffer.is_null() || written.is_null() {
-            return Err(null());
-        }
         if capacity > isize::MAX as usize {
             return Err(fail(
                 OrientStatus::CountTooLarge,
@@ -784,10 +776,8 @@ pub unsafe extern "C" fn orient_filter_load(
     size: usize,
 ) -> OrientStatus {
     guard(|| {
+        need(buffer.is_null())?;
         let h = handle_mut(filter)?;
-        if buffer.is_null() {
-            return Err(null());
-        }
         if size > isize::MAX as usize {
             return Err(fail(OrientStatus::CountTooLarge, format_args!("size {size} cannot be a buffer")));
         }
@@ -798,7 +788,7 @@ pub unsafe extern "C" fn orient_filter_load(
 /// ORIENT_FLAG_* bits of the filter's state.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_flags(filter: *const OrientFilter, flags: *mut u32) -> OrientStatus {
-    guard(|| put(flags, handle(filter)?.filter.flags()))
+    guard(|| put(flags, || Ok(handle(filter)?.filter.flags())))
 }
 
 /// Back to the state right after orient_filter_new(); parameters set since are kept.
@@ -818,10 +808,8 @@ pub unsafe extern "C" fn orient_filter_set_quaternion(
     q: *const OrientQuaternion,
 ) -> OrientStatus {
     guard(|| {
+        need(q.is_null())?;
         let h = handle_mut(filter)?;
-        if q.is_null() {
-            return Err(null());
-        }
         h.filter.set_quaternion(quat_from(*q)).map_err(from_core)
     })
 }
@@ -926,6 +914,26 @@ mod tests {
     }
 
     #[test]
+    fn every_kind_keeps_to_its_block_of_parameter_slots() {
+        // ORIENT_MAX_PARAMS' documentation: 0-7 common, then one block per kind.
+        let blocks = [
+            (Kind::Madgwick, 8..16),
+            (Kind::Mahony, 16..24),
+            (Kind::Complementary, 24..40),
+            (Kind::Ekf, 40..56),
+            (Kind::Gmvdk, 56..80),
+            (Kind::Robust, 80..104),
+        ];
+        assert_eq!(blocks.len(), Kind::ALL.len());
+        assert!(params::COMMON.iter().all(|p| p.id < 8));
+        for (kind, block) in blocks {
+            for p in kind.params().skip(params::COMMON.len()) {
+                assert!(block.contains(&p.id), "{kind:?}: {} in slot {}", p.name, p.id);
+            }
+        }
+    }
+
+    #[test]
     fn a_batch_stops_at_a_bad_sample_past_the_first_chunk() {
         unsafe {
             let (f, twin) = (new_madgwick(), new_madgwick());
@@ -944,6 +952,7 @@ mod tests {
             let mut n = 0;
             let status = orient_filter_update_batch(f, batch.as_ptr(), 40, out.as_mut_ptr(), &mut n);
             assert_eq!((status, n), (OrientStatus::NonFinite, 21));
+            assert!(out[21..].iter().all(|q| *q == OrientQuaternion::default()), "entries past 21 written");
             let detail = CStr::from_ptr(orient_last_error()).to_str().unwrap();
             assert!(detail.starts_with("sample 21: "), "{detail}");
             let mut q = OrientQuaternion::default();
@@ -957,6 +966,57 @@ mod tests {
             assert_eq!((a.x.to_bits(), a.z.to_bits()), (q.x.to_bits(), q.z.to_bits()));
             assert_eq!(orient_filter_free(f), OrientStatus::Ok);
             assert_eq!(orient_filter_free(twin), OrientStatus::Ok);
+        }
+    }
+
+    /// The sample every FFI unit test feeds (MARG, moving).
+    fn moving_sample() -> OrientSample {
+        OrientSample {
+            dt: 0.01,
+            gyro: OrientVec3 { x: 0.1, y: -0.2, z: 0.3 },
+            accel: OrientVec3 { x: 0.5, y: 0.2, z: 9.7 },
+            mag: OrientVec3 { x: 10.0, y: 20.0, z: -40.0 },
+            flags: SAMPLE_ALL,
+            reserved: 0,
+        }
+    }
+
+    fn quat_bits(q: OrientQuaternion) -> [u64; 4] {
+        [q.w.to_bits(), q.x.to_bits(), q.y.to_bits(), q.z.to_bits()]
+    }
+
+    #[test]
+    fn a_rig_call_writes_the_output_of_every_filter_it_updated() {
+        // A lane group of four distinct Madgwick filters whose third sample is refused,
+        // once by the flag check and once by the reading checks.
+        let unwritten = OrientQuaternion { w: f64::NAN, x: 7.0, y: 7.0, z: 7.0 };
+        let spoil: [fn(&mut OrientSample); 2] = [|s| s.reserved = 1, |s| s.gyro.y = f64::NAN];
+        for spoil in spoil {
+            unsafe {
+                let hs: Vec<*mut OrientFilter> = (0..4).map(|_| new_madgwick()).collect();
+                let twins: Vec<*mut OrientFilter> = (0..4).map(|_| new_madgwick()).collect();
+                let mut frame = [moving_sample(); 4];
+                spoil(&mut frame[2]);
+                let mut out = [unwritten; 4];
+                let mut n = 99;
+                let status = orient_filters_update(hs.as_ptr(), frame.as_ptr(), 4, out.as_mut_ptr(), &mut n);
+                assert_ne!(status, OrientStatus::Ok);
+                assert_eq!(n, 2);
+                for k in 0..2 {
+                    assert_eq!(orient_filter_update(twins[k], &frame[k]), OrientStatus::Ok);
+                    let mut q = OrientQuaternion::default();
+                    assert_eq!(orient_filter_quaternion(twins[k], &mut q), OrientStatus::Ok);
+                    assert_eq!(quat_bits(out[k]), quat_bits(q), "filter {k}: output not written");
+                    assert_eq!(orient_filter_quaternion(hs[k], &mut q), OrientStatus::Ok);
+                    assert_eq!(quat_bits(out[k]), quat_bits(q), "filter {k}");
+                }
+                for o in &out[2..] {
+                    assert_eq!(quat_bits(*o), quat_bits(unwritten), "an unprocessed entry was written");
+                }
+                for h in hs.into_iter().chain(twins) {
+                    assert_eq!(orient_filter_free(h), OrientStatus::Ok);
+                }
+            }
         }
     }
 
@@ -1026,6 +1086,47 @@ mod tests {
             let fake_h = fake.as_mut_ptr() as *mut OrientFilter;
             assert_eq!(orient_filter_reset(fake_h), OrientStatus::InvalidHandle);
             assert_eq!(orient_filter_free(h), OrientStatus::Ok);
+        }
+    }
+
+    #[test]
+    fn freed_copied_and_forged_handles_are_refused_without_being_read() {
+        unsafe {
+            let h = new_madgwick();
+            assert_eq!(orient_filter_update(h, &moving_sample()), OrientStatus::Ok);
+            // A byte copy of a live handle, and a block that starts with the old tag.
+            let size = core::mem::size_of::<OrientFilter>();
+            let mut copy = vec![0u64; size / 8 + 1];
+            core::ptr::copy_nonoverlapping(h as *const u8, copy.as_mut_ptr() as *mut u8, size);
+            let copy_h = copy.as_mut_ptr() as *mut OrientFilter;
+            let mut forged = vec![0u64; size / 8 + 1];
+            forged[0] = 0x4f52_4945_4e54_2e31; // "ORIENT.1"
+            let forged_h = forged.as_mut_ptr() as *mut OrientFilter;
+            let mut k = 0;
+            for bad in [copy_h, forged_h] {
+                assert_eq!(orient_filter_kind(bad, &mut k), OrientStatus::InvalidHandle);
+                assert_eq!(orient_filter_update(bad, &moving_sample()), OrientStatus::InvalidHandle);
+                assert_eq!(orient_filter_free(bad), OrientStatus::InvalidHandle);
+            }
+            let detail = CStr::from_ptr(orient_last_error()).to_str().unwrap();
+            assert!(detail.starts_with("not a live OrientFilter handle"), "{detail}");
+            // The original is untouched by the refused free of its copy.
+            assert_eq!(orient_filter_kind(h, &mut k), OrientStatus::Ok);
+            assert_eq!(k, OrientKind::Madgwick as i32);
+            // A freed handle: refused by every call, its memory never read (Miri and
+            // valgrind would report the read).
+            assert_eq!(orient_filter_free(h), OrientStatus::Ok);
+            let mut q = OrientQuaternion::default();
+            assert_eq!(orient_filter_quaternion(h, &mut q), OrientStatus::InvalidHandle);
+            assert_eq!(orient_filter_update(h, &moving_sample()), OrientStatus::InvalidHandle);
+            assert_eq!(orient_filter_free(h), OrientStatus::InvalidHandle);
+            let frame = [moving_sample()];
+            let mut n = 9;
+            assert_eq!(
+                orient_filters_update([h].as_ptr(), frame.as_ptr(), 1, core::ptr::null_mut(), &mut n),
+                OrientStatus::InvalidHandle
+            );
+            assert_eq!(n, 0);
         }
     }
 

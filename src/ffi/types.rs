@@ -187,9 +187,10 @@ pub const ORIENT_DIAG_COVARIANCE: u32 = 128;
 pub enum OrientStatus {
     /// Success.
     Ok = 0,
-    /// A required pointer argument is NULL.
+    /// A required pointer argument is NULL (checked before anything else).
     NullPointer = 1,
-    /// The handle is not a live OrientFilter (freed, foreign or misaligned pointer).
+    /// The handle is not a live OrientFilter: freed, or never returned by
+    /// orient_filter_new (a copy of a handle's bytes included).
     InvalidHandle = 2,
     /// The kind is known but not built in this version of the library (reserved: every
     /// kind is built in this version).
@@ -223,7 +224,8 @@ pub enum OrientStatus {
     /// The update would have produced a non-finite state. A guard: the bounds on dt and
     /// the readings keep accepted samples from reaching it.
     Numeric = 15,
-    /// A count so large that the buffers it describes cannot exist.
+    /// A count so large that the buffers it describes cannot exist; from
+    /// orient_filter_new: 24576 filters are live already, the most the library holds.
     CountTooLarge = 16,
     /// `struct_size` does not match a configuration layout this library knows.
     VersionMismatch = 17,
@@ -254,6 +256,22 @@ pub enum OrientKind {
     /// Recommended: strapdown with a quasi-inertial accelerometer low-pass, rest and motion
     /// gyro-bias estimation, magnetic disturbance rejection and hard-iron compensation.
     Robust = 6,
+}
+
+/// The one mapping between the core's kinds and the C numbers: code that iterates the
+/// C kinds takes them from `Kind::ALL` through it, so a new kind is never left out.
+impl From<crate::filters::Kind> for OrientKind {
+    fn from(kind: crate::filters::Kind) -> OrientKind {
+        use crate::filters::Kind;
+        match kind {
+            Kind::Madgwick => OrientKind::Madgwick,
+            Kind::Mahony => OrientKind::Mahony,
+            Kind::Complementary => OrientKind::Complementary,
+            Kind::Ekf => OrientKind::Ekf,
+            Kind::Gmvdk => OrientKind::Gmvdk,
+            Kind::Robust => OrientKind::Robust,
+        }
+    }
 }
 
 /// Earth frames, as `OrientConfig.frame`.

@@ -384,6 +384,17 @@ static void handle_paths(void) {
     CHECK_STATUS(orient_filter_quaternion(misaligned, &q), ORIENT_STATUS_INVALID_HANDLE);
     CHECK_STATUS(orient_filter_free(not_a_handle), ORIENT_STATUS_INVALID_HANDLE);
     CHECK(strstr(orient_last_error(), "not a live") != NULL);
+    /* A block that starts with the tag older versions checked, and a byte copy of the
+     * start of a live handle: neither is a handle, and freeing them frees nothing. */
+    memset(fake, 0, sizeof fake);
+    memcpy(fake, "ORIENT.1", 8);
+    CHECK_STATUS(orient_filter_update(not_a_handle, &s), ORIENT_STATUS_INVALID_HANDLE);
+    memcpy(fake, (const void *)f, 64);
+    CHECK_STATUS(orient_filter_update(not_a_handle, &s), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_kind(not_a_handle, &kind), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_free(not_a_handle), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_kind(f, &kind), ORIENT_STATUS_OK);
+    CHECK(kind == ORIENT_KIND_MADGWICK);
 
     /* Before initialisation: identity, flag clear, no linear acceleration yet. */
     CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
@@ -438,12 +449,94 @@ static void handle_paths(void) {
     CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
     CHECK(flags == 0);
 
-    /* Double free is reported, not a crash (the handle's memory is still mapped here). */
+    /* A freed handle is refused by every call and its memory is not read (the valgrind
+     * and sanitizer runs of this program would report the read). */
     CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
-#ifndef ORIENT_TEST_NO_USE_AFTER_FREE
     CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_INVALID_HANDLE);
     CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_INVALID_HANDLE);
-#endif
+    CHECK_STATUS(orient_filter_quaternion(f, &q), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_GRAVITY, 9.8), ORIENT_STATUS_INVALID_HANDLE);
+    {
+        /* The documented limit: an address handed out again names the new filter. */
+        OrientFilter *g = new_filter(ORIENT_KIND_MAHONY);
+        CHECK(g != NULL);
+        if (g == f) {
+            CHECK_STATUS(orient_filter_kind(f, &kind), ORIENT_STATUS_OK);
+            CHECK(kind == ORIENT_KIND_MAHONY);
+        }
+        CHECK_STATUS(orient_filter_free(g), ORIENT_STATUS_OK);
+    }
+}
+
+/* A NULL required pointer is NULL_POINTER before any other check: with a pointer that
+ * is not a handle, an unknown kind, or a filter that has no data for the output yet. */
+static void null_pointers_come_first(void) {
+    OrientFilter *f = new_madgwick();
+    uint64_t fake[32];
+    OrientFilter *bad = (OrientFilter *)(void *)fake;
+    OrientConfig c;
+    const uint8_t blob[4] = {0, 0, 0, 0};
+    uint32_t id = 0;
+    size_t n = 0;
+    memset(fake, 0, sizeof fake);
+    CHECK(f != NULL);
+    if (!f) return;
+    /* No accelerometer reading yet: NO_DATA with an out-pointer, NULL_POINTER without. */
+    {
+        OrientVec3 v;
+        CHECK_STATUS(orient_filter_linear_accel(f, &v), ORIENT_STATUS_NO_DATA);
+        CHECK_STATUS(orient_filter_linear_accel_earth(f, &v), ORIENT_STATUS_NO_DATA);
+    }
+    CHECK_STATUS(orient_filter_linear_accel(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_linear_accel_earth(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_linear_accel(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_linear_accel_earth(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_quaternion(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_euler(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_rotation_matrix(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_gravity(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_diagnostics(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_flags(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_kind(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_get_param(bad, 9999, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_state_size(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_save(bad, NULL, 0, &n), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_save(bad, (uint8_t *)fake, 8, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_load(bad, NULL, 4), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_set_quaternion(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_update(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_config_default(99, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_param_count(99, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_param_info(99, 9999, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_param_find(99, NULL, &id), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_param_find(99, "beta_imu", NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_config_get_param(NULL, 9999, NULL), ORIENT_STATUS_NULL_POINTER);
+    memset(&c, 0, sizeof c); /* struct_size 0: VERSION_MISMATCH once the pointers pass */
+    CHECK_STATUS(orient_config_get_param(&c, 9999, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_new(&c, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_load(bad, blob, sizeof blob), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_update_batch(bad, NULL, 3, NULL, &n), ORIENT_STATUS_NULL_POINTER);
+    {
+        OrientFilter *rig[3];
+        OrientSample frame[3];
+        rig[0] = f;
+        rig[1] = bad;
+        rig[2] = NULL;
+        frame[0] = frame[1] = frame[2] = good_sample();
+        CHECK_STATUS(orient_filters_update(rig, NULL, 3, NULL, &n), ORIENT_STATUS_NULL_POINTER);
+        CHECK_STATUS(orient_filters_update(rig, frame, 3, NULL, &n), ORIENT_STATUS_NULL_POINTER);
+        CHECK(strstr(orient_last_error(), "filter 2") != NULL);
+        rig[2] = f;
+        CHECK_STATUS(orient_filters_update(rig, frame, 3, NULL, &n), ORIENT_STATUS_INVALID_HANDLE);
+        CHECK(strstr(orient_last_error(), "filter 1") != NULL);
+        /* Every handle is checked before any filter changes: f took no sample. */
+        {
+            uint32_t flags = 99;
+            CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
+            CHECK(flags == 0);
+        }
+    }
+    CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
 }
 
 /* Every rejected sample leaves the state bit-identical: a twin that never saw the bad
@@ -460,6 +553,101 @@ static int warm_up(OrientFilter *f) {
         if (flags & ORIENT_FLAG_INITIALIZED) return i + 1;
     }
     return -1;
+}
+
+/* Sentences of the header about the C layer that no other check covers. */
+static void header_promises(void) {
+    int32_t k;
+    /* orient_madgwick_beta: NaN for a negative or non-finite input. */
+    CHECK(isnan(orient_madgwick_beta(NAN)) && isnan(orient_madgwick_beta(INFINITY)));
+    CHECK(orient_madgwick_beta(0.0) == 0.0);
+    for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_ROBUST; k++) {
+        OrientConfig c;
+        OrientFilter *f = NULL, *g = NULL;
+        OrientQuaternion q;
+        OrientParamInfo info;
+        OrientDiagnostics d;
+        uint32_t flags = 0, i, count = 0;
+        size_t size_f = 0, size_g = 0;
+        double v = 0.0;
+        OrientSample s = good_sample(), hidden = good_sample(), shown;
+        CHECK_STATUS(orient_config_default(k, &c), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_config_set_param(&c, ORIENT_PARAM_GRAVITY, 9.7), ORIENT_STATUS_OK);
+        c.frame = ORIENT_FRAME_NED;
+        CHECK_STATUS(orient_filter_new(&c, &g), ORIENT_STATUS_OK);
+        if (!f || !g) return;
+        /* Parameter flags and ranges, reserved fields. */
+        CHECK_STATUS(orient_param_count(k, &count), ORIENT_STATUS_OK);
+        for (i = 0; i < count; i++) {
+            int off_by_default;
+            CHECK_STATUS(orient_param_info(k, i, &info), ORIENT_STATUS_OK);
+            CHECK((info.flags & ~(uint32_t)ORIENT_PARAM_FLAG_ZERO_OFF) == 0);
+            off_by_default = info.default_value == 0.0 && (info.flags & ORIENT_PARAM_FLAG_ZERO_OFF);
+            CHECK(off_by_default || info.min <= info.default_value);
+            CHECK(info.default_value <= info.max);
+            /* Subnormal values are never accepted; 0 exactly where the flag says. */
+            CHECK_STATUS(orient_config_set_param(&c, info.id, 5e-324), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+            if (info.min > 0.0) {
+                CHECK_STATUS(orient_config_set_param(&c, info.id, 0.0),
+                             (info.flags & ORIENT_PARAM_FLAG_ZERO_OFF) ? ORIENT_STATUS_OK
+                                                                       : ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+            }
+            CHECK_STATUS(orient_config_set_param(&c, info.id, info.default_value), ORIENT_STATUS_OK);
+        }
+        CHECK_STATUS(orient_filter_diagnostics(f, &d), ORIENT_STATUS_OK);
+        CHECK(d.reserved == 0);
+        /* set_quaternion: unusable quaternions are refused; afterwards initialised. */
+        q.w = q.x = q.y = q.z = 0.0;
+        CHECK_STATUS(orient_filter_set_quaternion(f, &q), ORIENT_STATUS_ZERO_VECTOR);
+        q.w = q.x = 1e300;
+        CHECK_STATUS(orient_filter_set_quaternion(f, &q), ORIENT_STATUS_TOO_LARGE);
+        CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
+        CHECK((flags & ORIENT_FLAG_INITIALIZED) == 0);
+        q.w = 0.5;
+        q.x = 0.5;
+        CHECK_STATUS(orient_filter_set_quaternion(f, &q), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
+        CHECK((flags & ORIENT_FLAG_INITIALIZED) != 0);
+        /* The state size is one per kind, whatever the configuration or the state. */
+        CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_state_size(f, &size_f), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_state_size(g, &size_g), ORIENT_STATUS_OK);
+        CHECK(size_f == size_g && size_f > 0);
+        /* reset keeps the parameters set since creation. */
+        CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_GRAVITY, 9.6), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_reset(f), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_get_param(f, ORIENT_PARAM_GRAVITY, &v), ORIENT_STATUS_OK);
+        CHECK(v == 9.6);
+        /* Fields whose bit is clear are not read: NaN there changes nothing. */
+        CHECK_STATUS(orient_filter_reset(f), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_free(g), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_config_default(k, &c), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_new(&c, &g), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_set_param(g, ORIENT_PARAM_GRAVITY, 9.6), ORIENT_STATUS_OK);
+        CHECK(warm_up(f) > 0 && warm_up(g) > 0);
+        hidden.flags = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL;
+        hidden.mag.x = NAN;
+        hidden.mag.z = INFINITY;
+        shown = hidden;
+        shown.mag.x = shown.mag.y = shown.mag.z = 0.0;
+        CHECK_STATUS(orient_filter_update(f, &hidden), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_update(g, &shown), ORIENT_STATUS_OK);
+        hidden.flags = ORIENT_SAMPLE_GYRO;
+        hidden.accel.y = NAN;
+        shown = hidden;
+        shown.accel.x = shown.accel.y = shown.accel.z = 0.0;
+        CHECK_STATUS(orient_filter_update(f, &hidden), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_update(g, &shown), ORIENT_STATUS_OK);
+        {
+            OrientQuaternion a, b;
+            CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
+            CHECK_STATUS(orient_filter_quaternion(g, &b), ORIENT_STATUS_OK);
+            CHECK(same_quaternion(a, b));
+        }
+        CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_free(g), ORIENT_STATUS_OK);
+    }
 }
 
 static void bad_input(int32_t kind) {
@@ -675,9 +863,10 @@ static void madgwick_rig(void) {
     enum { N = 20 };
     OrientFilter *rig[N], *twins[N];
     OrientSample frame[N];
-    OrientQuaternion out[N], q;
+    OrientQuaternion out[N], q, unwritten;
     size_t processed = 0;
     int i, k, mismatches = 0;
+    unwritten.w = unwritten.x = unwritten.y = unwritten.z = 7.0;
     for (k = 0; k < N; k++) {
         rig[k] = new_madgwick();
         twins[k] = new_madgwick();
@@ -704,8 +893,11 @@ static void madgwick_rig(void) {
     } else {
         passed++;
     }
+    /* The bad sample is the third of the group 4-7: filters 4 and 5 are updated in that
+     * group and their outputs written; from 6 on nothing is written. */
     frame[6].accel.y = INFINITY;
-    CHECK_STATUS(orient_filters_update(rig, frame, N, NULL, &processed), ORIENT_STATUS_NON_FINITE);
+    for (k = 0; k < N; k++) out[k] = unwritten;
+    CHECK_STATUS(orient_filters_update(rig, frame, N, out, &processed), ORIENT_STATUS_NON_FINITE);
     CHECK(processed == 6);
     CHECK_STATUS(orient_filters_update(twins, frame, 6, NULL, NULL), ORIENT_STATUS_OK);
     for (k = 0; k < N; k++) {
@@ -713,6 +905,18 @@ static void madgwick_rig(void) {
         CHECK_STATUS(orient_filter_quaternion(rig[k], &a), ORIENT_STATUS_OK);
         CHECK_STATUS(orient_filter_quaternion(twins[k], &q), ORIENT_STATUS_OK);
         CHECK(same_quaternion(a, q));
+        CHECK(same_quaternion(out[k], k < 6 ? q : unwritten));
+    }
+    /* The same when the flag check refuses the sample (before any reading is looked at). */
+    frame[6] = good_sample();
+    frame[7].reserved = 1;
+    for (k = 0; k < N; k++) out[k] = unwritten;
+    CHECK_STATUS(orient_filters_update(rig, frame, N, out, &processed), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK(processed == 7);
+    CHECK_STATUS(orient_filters_update(twins, frame, 7, NULL, NULL), ORIENT_STATUS_OK);
+    for (k = 0; k < N; k++) {
+        CHECK_STATUS(orient_filter_quaternion(twins[k], &q), ORIENT_STATUS_OK);
+        CHECK(same_quaternion(out[k], k < 7 ? q : unwritten));
     }
     for (k = 0; k < N; k++) {
         CHECK_STATUS(orient_filter_free(rig[k]), ORIENT_STATUS_OK);
@@ -794,6 +998,8 @@ int main(int argc, char **argv) {
     status_messages();
     config_paths();
     handle_paths();
+    null_pointers_come_first();
+    header_promises();
     for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_ROBUST; k++) {
         bad_input(k);
         diagnostics(k);

@@ -56,11 +56,11 @@ impl Row {
 }
 
 pub fn kind_from(k: i32) -> Kind {
-    Kind::ALL[(k - 1) as usize]
+    Kind::ALL.into_iter().find(|x| kind_to(*x) == k).unwrap()
 }
 
 pub fn kind_to(k: Kind) -> i32 {
-    Kind::ALL.iter().position(|x| *x == k).unwrap() as i32 + 1
+    orient::ffi::OrientKind::from(k) as i32
 }
 
 pub fn frame_from(f: i32) -> Frame {
