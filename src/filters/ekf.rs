@@ -853,11 +853,12 @@ impl Ekf {
     /// later sample. So it is tried once more from a fresh start of the uncertain parts:
     /// P at its initial value and ω at this gyroscope reading less the drift estimate,
     /// the orientation and drift kept. Only if that fails too is the step refused.
+    #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        if let Some(step) = self.step(dt, gyro, accel, mag) {
-            return Some(step);
+        match self.step(dt, gyro, accel, mag) {
+            Some(step) => Some(step),
+            None => self.retry_from_fresh_covariance(dt, gyro, accel, mag),
         }
-        self.retry_from_fresh_covariance(dt, gyro, accel, mag)
     }
 
     #[cold]
@@ -880,7 +881,9 @@ impl Ekf {
         step
     }
 
-    #[inline(always)]
+    /// The step itself, in the widest lanes the CPU has. Not inlined into the retry
+    /// above: one copy of the (large) step serves both calls.
+    #[inline(never)]
     fn step(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         struct Run<'a> {
             ekf: &'a mut Ekf,
