@@ -157,7 +157,7 @@ fn unity_package_assembles_and_compiles_against_the_unityengine_stub() {
         "package.json",
         "Runtime/Orient.Runtime.asmdef",
         "Runtime/Orient.cs",
-        "Samples~/HandBone/OrientBoneDriver.cs",
+        "Samples~/HandRig/OrientHandRig.cs",
     ] {
         assert!(pkg.join(f).exists(), "{f} missing from the package");
     }
@@ -170,7 +170,7 @@ fn unity_package_assembles_and_compiles_against_the_unityengine_stub() {
         .arg(pkg.join("Runtime/Orient.Native.cs"))
         .arg(pkg.join("Runtime/Orient.cs"))
         .arg(pkg.join("Runtime/OrientUnity.cs"))
-        .arg(pkg.join("Samples~/HandBone/OrientBoneDriver.cs"))
+        .arg(pkg.join("Samples~/HandRig/OrientHandRig.cs"))
         .arg(root().join("tests/csharp/UnityEngineStub.cs"));
     check(mcs, "mcs Unity scripts");
 }
