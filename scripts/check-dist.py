@@ -248,7 +248,7 @@ def check_release(rel):
             fail("unexpected platform folder %s" % p)
             continue
         d = os.path.join(rel, "lib", p)
-        for f in files + ["cmake/orient/orientConfig.cmake", "cmake/orient/orientConfigVersion.cmake"]:
+        for f in files + ["cmake/orientConfig.cmake", "cmake/orientConfigVersion.cmake"]:
             if not os.path.exists(os.path.join(d, f.format(full=full, abi=ABI))):
                 fail("%s/%s missing" % (p, f.format(full=full, abi=ABI)))
         archive = os.path.join(rel, "archives", "orient-%s-%s.%s" % (version, p, "zip" if "windows" in p else "tar.gz"))

@@ -7,17 +7,20 @@
 #       --libs "-lpthread ..." --shared FILE --soname NAME --implib FILE --static FILE
 # LIBDIR/pkgconfig/orient.pc          the shared library (when --shared is given)
 # LIBDIR/pkgconfig/orient-static.pc   the static library by path, with its system libraries
-# LIBDIR/cmake/orient/orientConfig.cmake, orientConfigVersion.cmake
+# LIBDIR/CMAKE_DIR/orientConfig.cmake, orientConfigVersion.cmake (--cmake-dir, default
+# cmake/orient as in an installed prefix; a release's platform folder uses cmake, which
+# find_package searches when CMAKE_PREFIX_PATH names the folder itself)
 # --prefix-up: how many folders above LIBDIR the --headers folders are found.
 # The package version is the ABI-keyed ABI.MINOR.PATCH (the shared library's file version),
 # so find_package(orient 1) matches ABI 1 and no other major.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-dir="" up=1 headers=include libs="" shared="" soname="" implib="" static=""
+dir="" cmake_dir=cmake/orient up=1 headers=include libs="" shared="" soname="" implib="" static=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --dir) dir="$2" ;;
     --prefix-up) up="$2" ;;
+    --cmake-dir) cmake_dir="$2" ;;
     --headers) headers="$2" ;;
     --libs) libs="$2" ;;
     --shared) shared="$2" ;;
@@ -33,19 +36,20 @@ version=$(sed -n 's/^version = "\(.*\)"/\1/p' Cargo.toml | head -n 1)
 abi=$(sed -n 's/^#define ORIENT_ABI_VERSION \([0-9]*\)$/\1/p' include/orient.h)
 package_version="$abi.${version#*.}"
 ups=$(for _ in $(seq "$up"); do printf '/..'; done)
+to_libdir=$(printf '%s\n' "$cmake_dir" | tr '/' '\n' | sed 's|.*|/..|' | tr -d '\n')
 cflags=$(printf '%s\n' "${headers//;/ }" | tr ' ' '\n' | sed 's|^|-I${prefix}/|' | paste -sd ' ' -)
 # -lfoo -> foo for CMake; libc is linked anyway.
 cmake_libs=$(printf '%s\n' $libs | sed -n 's/^-l//p' | grep -vx c | paste -sd ';' - || true)
 fill() {
   sed -e "s|@VERSION@|$version|g" -e "s|@PACKAGE_VERSION@|$package_version|g" -e "s|@ABI@|$abi|g" \
     -e "s|@PC_PREFIX@|\${pcfiledir}/..$ups|g" -e "s|@PC_CFLAGS@|$cflags|g" \
-    -e "s|@LIBS_PRIVATE@|$libs|g" -e "s|@CMAKE_PREFIX_UP@|$ups|g" -e "s|@CMAKE_HEADERS@|$headers|g" \
+    -e "s|@LIBS_PRIVATE@|$libs|g" -e "s|@CMAKE_PREFIX_UP@|$ups|g" -e "s|@CMAKE_TO_LIBDIR@|$to_libdir|g" -e "s|@CMAKE_HEADERS@|$headers|g" \
     -e "s|@CMAKE_LIBS@|$cmake_libs|g" -e "s|@SHARED@|$shared|g" -e "s|@SONAME@|$soname|g" \
     -e "s|@IMPLIB@|$implib|g" -e "s|@STATIC@|$static|g" "packaging/$1"
 }
-mkdir -p "$dir/pkgconfig" "$dir/cmake/orient"
+mkdir -p "$dir/pkgconfig" "$dir/$cmake_dir"
 rm -f "$dir/pkgconfig/orient.pc" "$dir/pkgconfig/orient-static.pc"
 if [ -n "$shared" ]; then fill orient.pc.in >"$dir/pkgconfig/orient.pc"; fi
 if [ -n "$static" ]; then fill orient-static.pc.in >"$dir/pkgconfig/orient-static.pc"; fi
-fill orientConfig.cmake.in >"$dir/cmake/orient/orientConfig.cmake"
-fill orientConfigVersion.cmake.in >"$dir/cmake/orient/orientConfigVersion.cmake"
+fill orientConfig.cmake.in >"$dir/$cmake_dir/orientConfig.cmake"
+fill orientConfigVersion.cmake.in >"$dir/$cmake_dir/orientConfigVersion.cmake"

@@ -6,7 +6,7 @@
 # OUT/orient-VERSION/
 #   include/orient.h  bindings/cpp/orient.hpp  LICENSE-MIT  LICENSE-APACHE  CHANGELOG.md
 #   README.md  SHA256SUMS (every other file, archives included)
-#   lib/<platform>/   the libraries, cmake/orient/ (CMake package) and pkgconfig/
+#   lib/<platform>/   the libraries, cmake/ (CMake package) and pkgconfig/
 #   unity/com.orient.filters/   the Unity package (scripts/package-unity.sh)
 #   archives/orient-VERSION-<platform>.tar.gz (.zip for Windows), com.orient.filters-VERSION.tgz
 #
@@ -82,7 +82,7 @@ strip_static() { "$llvm/llvm-strip" --strip-debug -o "$2" "$1"; }
 # libraries of that target (scripts/configure-package.sh fills the templates).
 # configure PLATFORM NATIVE_LIBS SHARED_FILE SONAME IMPLIB STATIC_FILE
 configure() {
-  scripts/configure-package.sh --dir "$rel/lib/$1" --prefix-up 2 --headers "include;bindings/cpp" \
+  scripts/configure-package.sh --dir "$rel/lib/$1" --cmake-dir cmake --prefix-up 2 --headers "include;bindings/cpp" \
     --libs "$2" --shared "$3" --soname "$4" --implib "$5" --static "$6"
 }
 

@@ -52,7 +52,7 @@ if [ "$mode" = "--cross" ]; then
   $sudo apt-get install -y -qq --no-install-recommends \
     gcc-aarch64-linux-gnu g++-aarch64-linux-gnu gcc-arm-linux-gnueabihf g++-arm-linux-gnueabihf \
     libc6-dev-arm64-cross libc6-dev-armhf-cross qemu-user \
-    gcc-mingw-w64-x86-64 wine64 llvm python3 python3-venv >/dev/null
+    gcc-mingw-w64-x86-64 g++-mingw-w64-x86-64 wine64 llvm python3 python3-venv >/dev/null
   targets="aarch64-unknown-linux-gnu armv7-unknown-linux-gnueabihf x86_64-unknown-linux-musl
     aarch64-unknown-linux-musl x86_64-pc-windows-gnu aarch64-apple-darwin x86_64-apple-darwin
     aarch64-apple-ios aarch64-linux-android armv7-linux-androideabi"
