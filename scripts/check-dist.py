@@ -24,6 +24,8 @@ import os
 import re
 import subprocess
 import sys
+import tarfile
+import zipfile
 
 FAILS = []
 
@@ -254,6 +256,20 @@ def check_release(rel):
         archive = os.path.join(rel, "archives", "orient-%s-%s.%s" % (version, p, "zip" if "windows" in p else "tar.gz"))
         if not os.path.isfile(archive):
             fail("archive for %s missing" % p)
+        else:
+            if archive.endswith(".zip"):
+                names = set(zipfile.ZipFile(archive).namelist())
+            else:
+                names = set(n.rstrip("/") for n in tarfile.open(archive).getnames())
+            top = "orient-%s/" % version
+            for f in ["include/orient.h", "bindings/cpp/orient.hpp", "LICENSE-MIT", "LICENSE-APACHE", "CHANGELOG.md", "README.md"]:
+                if top + f not in names:
+                    fail("%s lacks %s" % (os.path.basename(archive), f))
+            for r, _, files in os.walk(d):
+                for f in files:
+                    member = top + os.path.relpath(os.path.join(r, f), rel)
+                    if member not in names:
+                        fail("%s lacks %s" % (os.path.basename(archive), member))
         for f in sorted(os.listdir(d)):
             path = os.path.join(d, f)
             if os.path.isfile(path) and not os.path.islink(path) and re.search(r"\.(a|lib|dll|dylib)$|\.so\.\d+\.\d+\.\d+$", f):

@@ -150,9 +150,8 @@ if [ -n "$libs" ]; then
   plugin Plugins/iOS/liborient.a "$libs/ios-arm64/liborient.a" "" "" "iPhone: iOS" ARM64
 fi
 
-# A .meta for every other file and folder (not inside or for Samples~, which Unity
-# does not import; a sample's own files get theirs when the sample is imported... but
-# shipping them keeps their GUIDs stable, so they get one too).
+# A .meta for every other file and folder. Samples~ itself gets none (Unity imports no
+# folder whose name ends in ~); its files do, so an imported sample keeps stable GUIDs.
 importer() {
   case "$1" in
     *.cs) printf 'MonoImporter:\n  externalObjects: {}\n  serializedVersion: 2\n  defaultReferences: []\n  executionOrder: 0\n  icon: {instanceID: 0}\n  userData:\n  assetBundleName:\n  assetBundleVariant:\n' ;;

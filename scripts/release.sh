@@ -207,6 +207,8 @@ for d in "$rel"/lib/*/; do
     (cd "$out" && python3 -c 'import sys, zipfile, os
 z = zipfile.ZipFile(sys.argv[1], "w", zipfile.ZIP_DEFLATED)
 for top in sys.argv[2:]:
+    if os.path.isfile(top):
+        z.write(top)
     for r, _, fs in os.walk(top):
         for f in sorted(fs):
             z.write(os.path.join(r, f))' "$rel/archives/$name.zip" \

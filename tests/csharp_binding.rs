@@ -73,6 +73,21 @@ fn csharp_declarations_match_the_header() {
         "functions (name -> parameter count) differ between orient.h and Orient.Native.cs"
     );
 
+    // iOS and Android players link the static liborient.a (the only library the Unity
+    // package ships for them), which Unity calls through "__Internal"; the Editor and the
+    // desktop players load the shared library by name.
+    let internal = concat!(
+        "#if (UNITY_IOS || UNITY_ANDROID || UNITY_WEBGL) && !UNITY_EDITOR\n",
+        "        public const string Library = \"__Internal\";\n",
+        "#else\n",
+        "        public const string Library = \"orient\";\n",
+        "#endif",
+    );
+    assert!(
+        cs.contains(internal),
+        "Orient.Native.cs must pick __Internal exactly where the library is static"
+    );
+
     // Every #define ORIENT_X N is `public const uint X = N;` (camel-cased).
     let mut missing = Vec::new();
     for line in header.lines().filter_map(|l| l.strip_prefix("#define ORIENT_")) {
