@@ -34,6 +34,11 @@ cat LICENSE-APACHE >>"$pkg/LICENSE.md"
 cp bindings/unity/Runtime/* "$pkg/Runtime/"
 cp bindings/csharp/Orient.Native.cs bindings/csharp/Orient.cs "$pkg/Runtime/"
 cp -r "bindings/unity/Samples~" "$pkg/"
+if [ -z "$repo" ]; then
+  # No repository URL is recorded yet: the package.json links use a reserved placeholder
+  # host until Cargo.toml's `repository` (or ORIENT_REPOSITORY_URL) names the real one.
+  echo "package-unity.sh: no repository URL (Cargo.toml repository / ORIENT_REPOSITORY_URL); package.json links use https://example.invalid/orient" >&2
+fi
 base="${repo:-https://example.invalid/orient}"
 sed -e "s|@VERSION@|$version|g" -e "s|@REPOSITORY@|$base|g" bindings/unity/package.json.in >"$pkg/package.json"
 
