@@ -9,8 +9,9 @@
 #
 # Layout: PREFIX/lib/liborient.so.1.M.P (ABI 1, crate 0.M.P), liborient.so.1 -> it,
 # liborient.so -> liborient.so.1, liborient.a, lib/pkgconfig/orient.pc,
-# lib/cmake/orient/orientConfig.cmake (targets orient::orient, orient::orient_static),
-# include/orient.h, include/orient.hpp.
+# lib/pkgconfig/orient-static.pc, lib/cmake/orient/orientConfig.cmake (targets
+# orient::orient, orient::orient_static; version ABI.MINOR.PATCH), include/orient.h,
+# include/orient.hpp. (scripts/release.sh builds every other platform.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -47,8 +48,9 @@ ln -sf "liborient.so.$abi" "$prefix/lib/liborient.so"
 install -m 0644 "$libdir/liborient.a" "$prefix/lib/liborient.a"
 install -m 0644 include/orient.h "$prefix/include/orient.h"
 install -m 0644 bindings/cpp/orient.hpp "$prefix/include/orient.hpp"
-subst() { sed -e "s/@VERSION@/$version/g" -e "s/@SOVERSION@/$abi/g" -e "s/@SOVERSION_FULL@/$full/g" "$1" > "$2"; }
-subst packaging/orient.pc.in "$prefix/lib/pkgconfig/orient.pc"
-subst packaging/orientConfig.cmake.in "$prefix/lib/cmake/orient/orientConfig.cmake"
-subst packaging/orientConfigVersion.cmake.in "$prefix/lib/cmake/orient/orientConfigVersion.cmake"
+# What a static link needs besides liborient.a (cargo rustc --print native-static-libs
+# for linux-gnu targets).
+scripts/configure-package.sh --dir "$prefix/lib" --prefix-up 1 --headers include \
+  --libs "-lgcc_s -lutil -lrt -lpthread -lm -ldl -lc" --shared "liborient.so.$full" \
+  --soname "liborient.so.$abi" --static liborient.a
 echo "installed orient $version (ABI $abi) into $prefix"

@@ -9,7 +9,11 @@
 #                                     crates.io; nightly with Miri and cargo-fuzz
 #   scripts/setup-debian.sh --cross   all of that plus the Linux board targets (aarch64,
 #                                     armv7): Rust standard libraries, Debian's cross
-#                                     compilers and qemu-user
+#                                     compilers and qemu-user; and what scripts/release.sh
+#                                     and scripts/test-release.sh use: the Rust standard
+#                                     libraries of every release target, llvm-tools,
+#                                     mingw-w64, Wine, LLVM 14 (lipo, dlltool), and zig
+#                                     with cargo-zigbuild from PyPI (pinned) in a venv
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode="${1:-tests}"
@@ -51,8 +55,20 @@ fi
 if [ "$mode" = "--cross" ]; then
   $sudo apt-get install -y -qq --no-install-recommends \
     gcc-aarch64-linux-gnu g++-aarch64-linux-gnu gcc-arm-linux-gnueabihf g++-arm-linux-gnueabihf \
-    libc6-dev-arm64-cross libc6-dev-armhf-cross qemu-user >/dev/null
-  rustup target add aarch64-unknown-linux-gnu armv7-unknown-linux-gnueabihf >/dev/null 2>&1 ||
-    rustup target add aarch64-unknown-linux-gnu armv7-unknown-linux-gnueabihf
+    libc6-dev-arm64-cross libc6-dev-armhf-cross qemu-user \
+    gcc-mingw-w64-x86-64 g++-mingw-w64-x86-64 wine64 llvm python3 python3-venv >/dev/null
+  targets="aarch64-unknown-linux-gnu armv7-unknown-linux-gnueabihf x86_64-unknown-linux-musl
+    aarch64-unknown-linux-musl x86_64-pc-windows-gnu aarch64-apple-darwin x86_64-apple-darwin
+    aarch64-apple-ios aarch64-linux-android armv7-linux-androideabi"
+  # shellcheck disable=SC2086
+  rustup target add $targets >/dev/null 2>&1 || rustup target add $targets
+  rustup component add llvm-tools >/dev/null 2>&1 || rustup component add llvm-tools
+  # zig links the Linux builds against glibc 2.17 (cargo-zigbuild's .2.17 target suffix)
+  # and provides the macOS libSystem stub; pinned, in a venv of their own.
+  tools="$HOME/.local/orient-tools"
+  if [ ! -x "$tools/bin/cargo-zigbuild" ] || ! "$tools/bin/python3" -m ziglang version 2>/dev/null | grep -qx 0.15.2; then
+    python3 -m venv "$tools"
+    "$tools/bin/pip" install --quiet ziglang==0.15.2 cargo-zigbuild==0.24.1
+  fi
 fi
 echo "setup: $(cargo --version), $(cbindgen --version), $(cc --version | head -n 1)"

@@ -7,7 +7,10 @@
 # pkg-config consumers, golden vectors, and the BROAD recordings in ../shared/data;
 # the Python package built as a wheel and tested with pytest in a fresh venv;
 # then the same suite for aarch64 and armv7 under qemu-user (the golden vectors must
-# match bit for bit there too).
+# match bit for bit there too); then the release for every platform, built with CI's
+# lighter profile and checked: exports, glibc floor, Unity .meta files, the C ABI test
+# under qemu and Wine, CMake and pkg-config, the C# tests under Mono full AOT
+# (scripts/test-release.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup-debian.sh --cross
@@ -35,3 +38,5 @@ for board in aarch64 armv7; do
   echo "== cargo test for $board under qemu"
   scripts/test-cross.sh "$board"
 done
+echo "== release for every platform (CI profile) and its checks"
+scripts/test-release.sh

@@ -73,6 +73,21 @@ fn csharp_declarations_match_the_header() {
         "functions (name -> parameter count) differ between orient.h and Orient.Native.cs"
     );
 
+    // iOS and Android players link the static liborient.a (the only library the Unity
+    // package ships for them), which Unity calls through "__Internal"; the Editor and the
+    // desktop players load the shared library by name.
+    let internal = concat!(
+        "#if (UNITY_IOS || UNITY_ANDROID || UNITY_WEBGL) && !UNITY_EDITOR\n",
+        "        public const string Library = \"__Internal\";\n",
+        "#else\n",
+        "        public const string Library = \"orient\";\n",
+        "#endif",
+    );
+    assert!(
+        cs.contains(internal),
+        "Orient.Native.cs must pick __Internal exactly where the library is static"
+    );
+
     // Every #define ORIENT_X N is `public const uint X = N;` (camel-cased).
     let mut missing = Vec::new();
     for line in header.lines().filter_map(|l| l.strip_prefix("#define ORIENT_")) {
@@ -157,7 +172,7 @@ fn unity_package_assembles_and_compiles_against_the_unityengine_stub() {
         "package.json",
         "Runtime/Orient.Runtime.asmdef",
         "Runtime/Orient.cs",
-        "Samples~/HandBone/OrientBoneDriver.cs",
+        "Samples~/HandRig/OrientHandRig.cs",
     ] {
         assert!(pkg.join(f).exists(), "{f} missing from the package");
     }
@@ -170,7 +185,7 @@ fn unity_package_assembles_and_compiles_against_the_unityengine_stub() {
         .arg(pkg.join("Runtime/Orient.Native.cs"))
         .arg(pkg.join("Runtime/Orient.cs"))
         .arg(pkg.join("Runtime/OrientUnity.cs"))
-        .arg(pkg.join("Samples~/HandBone/OrientBoneDriver.cs"))
+        .arg(pkg.join("Samples~/HandRig/OrientHandRig.cs"))
         .arg(root().join("tests/csharp/UnityEngineStub.cs"));
     check(mcs, "mcs Unity scripts");
 }

@@ -4,7 +4,8 @@
 // with the same value), and the Mono test checks every struct's size and offsets.
 //
 // IL2CPP-safe: blittable structs only (fixed buffers, no bool, no managed arrays or
-// strings in structs), no callbacks, `__Internal` as the library on iOS and WebGL.
+// strings in structs), no callbacks, `__Internal` as the library where the player links
+// the static library (iOS, Android with IL2CPP, WebGL).
 using System;
 using System.Runtime.InteropServices;
 
@@ -218,7 +219,12 @@ namespace Orient.Native
     /// <summary>The C functions. Handles are IntPtr (the wrapper keeps them in a SafeHandle).</summary>
     public static class NativeMethods
     {
-#if (UNITY_IOS || UNITY_WEBGL) && !UNITY_EDITOR
+        // iOS and Android players link the static liborient.a into the app (IL2CPP on
+        // Android: the Mono backend cannot use a static library), and Unity names code
+        // linked into its own binary "__Internal". Everywhere else (the Editor, Windows,
+        // macOS, Linux) the shared library is loaded by name: orient.dll, liborient.dylib,
+        // liborient.so.
+#if (UNITY_IOS || UNITY_ANDROID || UNITY_WEBGL) && !UNITY_EDITOR
         public const string Library = "__Internal";
 #else
         public const string Library = "orient";

@@ -26,9 +26,24 @@ namespace UnityEngine
     public class Object { }
     public class TextAsset : Object { public string text = ""; }
     public class Component : Object { public Transform transform; }
-    public class Transform : Component { public Quaternion localRotation; }
+    public class Transform : Component { public Quaternion localRotation; public Quaternion rotation; }
     public class Behaviour : Component { }
     public class MonoBehaviour : Behaviour { }
+    public class Animator : Behaviour { public Transform GetBoneTransform(HumanBodyBones humanBoneId) { return null; } }
+    public enum HumanBodyBones
+    {
+        LeftHand = 17, RightHand = 18,
+        LeftThumbProximal = 24, LeftThumbIntermediate, LeftThumbDistal,
+        LeftIndexProximal, LeftIndexIntermediate, LeftIndexDistal,
+        LeftMiddleProximal, LeftMiddleIntermediate, LeftMiddleDistal,
+        LeftRingProximal, LeftRingIntermediate, LeftRingDistal,
+        LeftLittleProximal, LeftLittleIntermediate, LeftLittleDistal,
+        RightThumbProximal, RightThumbIntermediate, RightThumbDistal,
+        RightIndexProximal, RightIndexIntermediate, RightIndexDistal,
+        RightMiddleProximal, RightMiddleIntermediate, RightMiddleDistal,
+        RightRingProximal, RightRingIntermediate, RightRingDistal,
+        RightLittleProximal, RightLittleIntermediate, RightLittleDistal,
+    }
     public static class Time { public static float deltaTime; }
     public static class Debug { public static void LogWarning(object message) { } }
 

@@ -1,0 +1,200 @@
+// Drives a whole hand rig from recorded IMU/MARG streams, one sensor per bone (a data
+// glove: one IMU on the back of the hand and one on each finger segment). Each bone has
+// its own filter; every frame, the samples whose time has come are fed to all of them
+// together through OrientRig (one native call per sample step), and each bone's world
+// rotation is set from its sensor's orientation.
+//
+// Setup: put this on any GameObject. Either assign a Humanoid Animator (the wrist and the
+// three joints of each finger, 16 bones, are filled in) or fill Bones by hand. Give each
+// bone a TextAsset recording in orient's CSV layout (header with t, gyr_x..z, acc_x..z
+// and optionally mag_x..z; rad/s, m/s^2, any magnetometer unit), or leave it empty to
+// replay Default Recording (Recordings/broad_01_15s.csv in this sample).
+using System;
+using System.Collections.Generic;
+using System.Globalization;
+using Orient;
+using Orient.Native;
+using UnityEngine;
+
+[Serializable]
+public class OrientRigBone
+{
+    [Tooltip("Name shown in the list (filled from the avatar)")]
+    public string name = "";
+
+    [Tooltip("The bone's Transform")]
+    public Transform bone;
+
+    [Tooltip("This bone's sensor recording; empty: the rig's default recording")]
+    public TextAsset recording;
+
+    [Tooltip("Rotation from the sensor to the bone (how the sensor sits on it)")]
+    public UnityEngine.Quaternion mounting = UnityEngine.Quaternion.identity;
+}
+
+public class OrientHandRig : MonoBehaviour
+{
+    [Tooltip("Optional Humanoid Animator: fills Bones with the wrist and finger joints")]
+    public Animator animator;
+
+    [Tooltip("Which hand of the avatar to fill in")]
+    public bool rightHand = true;
+
+    [Tooltip("Recording for bones without their own")]
+    public TextAsset defaultRecording;
+
+    [Tooltip("Filter kind for every bone (Robust is the recommended one)")]
+    public Kind kind = Kind.Robust;
+
+    [Tooltip("Use the magnetometer columns when present")]
+    public bool useMagnetometer = true;
+
+    [Tooltip("Rotation applied in front of every bone: aligns the recording's north with the scene")]
+    public UnityEngine.Quaternion worldAlignment = UnityEngine.Quaternion.identity;
+
+    public OrientRigBone[] bones = new OrientRigBone[0];
+
+    private OrientFilter[] filters = new OrientFilter[0];
+    private OrientRigBone[] driven = new OrientRigBone[0];
+    private OrientRig rig;
+    private Sample[][] streams = new Sample[0][];
+    private double[] times = new double[0];
+    private Sample[] step = new Sample[0];
+    private Orient.Native.Quaternion[] orientations = new Orient.Native.Quaternion[0];
+    private int next;
+    private int steps;
+    private double clock;
+
+    // The wrist, then each finger's three joints: HumanBodyBones names after "Left"/"Right".
+    private static readonly string[] HandJoints =
+    {
+        "Hand",
+        "ThumbProximal", "ThumbIntermediate", "ThumbDistal",
+        "IndexProximal", "IndexIntermediate", "IndexDistal",
+        "MiddleProximal", "MiddleIntermediate", "MiddleDistal",
+        "RingProximal", "RingIntermediate", "RingDistal",
+        "LittleProximal", "LittleIntermediate", "LittleDistal",
+    };
+
+    void Start()
+    {
+        if (animator != null && bones.Length == 0) bones = FromAvatar(animator, rightHand);
+        var used = new List<OrientRigBone>();
+        var loaded = new List<Sample[]>();
+        double[] clockTimes = null;
+        var cache = new Dictionary<TextAsset, KeyValuePair<Sample[], double[]>>();
+        foreach (var b in bones)
+        {
+            TextAsset rec = b.recording != null ? b.recording : defaultRecording;
+            if (b.bone == null || rec == null) continue;
+            KeyValuePair<Sample[], double[]> data;
+            if (!cache.TryGetValue(rec, out data))
+            {
+                double[] t;
+                Sample[] s = Load(rec.text, useMagnetometer, out t);
+                data = new KeyValuePair<Sample[], double[]>(s, t);
+                cache[rec] = data;
+            }
+            used.Add(b);
+            loaded.Add(data.Key);
+            if (clockTimes == null || data.Value.Length < clockTimes.Length) clockTimes = data.Value;
+        }
+        driven = used.ToArray();
+        streams = loaded.ToArray();
+        times = clockTimes ?? new double[0];
+        steps = times.Length;
+        filters = new OrientFilter[driven.Length];
+        for (int i = 0; i < driven.Length; i++) filters[i] = new OrientFilter(kind);
+        rig = new OrientRig(filters);
+        step = new Sample[driven.Length];
+        orientations = new Orient.Native.Quaternion[driven.Length];
+        if (driven.Length == 0) Debug.LogWarning("orient: no bone has a Transform and a recording");
+    }
+
+    /// <summary>The wrist and finger joints of a Humanoid avatar that the avatar maps.</summary>
+    public static OrientRigBone[] FromAvatar(Animator avatar, bool right)
+    {
+        var list = new List<OrientRigBone>();
+        foreach (var joint in HandJoints)
+        {
+            var id = (HumanBodyBones)Enum.Parse(typeof(HumanBodyBones), (right ? "Right" : "Left") + joint);
+            Transform t = avatar.GetBoneTransform(id);
+            if (t == null) continue;
+            var b = new OrientRigBone();
+            b.name = id.ToString();
+            b.bone = t;
+            list.Add(b);
+        }
+        return list.ToArray();
+    }
+
+    /// <summary>Samples and times from a recording in orient's CSV layout.</summary>
+    public static Sample[] Load(string text, bool useMag, out double[] times)
+    {
+        string[] lines = text.Split('\n');
+        string[] header = lines[0].Trim().Split(',');
+        int t = Array.IndexOf(header, "t");
+        int gx = Array.IndexOf(header, "gyr_x");
+        int ax = Array.IndexOf(header, "acc_x");
+        int mx = useMag ? Array.IndexOf(header, "mag_x") : -1;
+        if (t < 0 || gx < 0 || ax < 0) throw new FormatException("recording needs t, gyr_x..z and acc_x..z columns");
+        var rows = new List<string[]>();
+        var ts = new List<double>();
+        for (int i = 1; i < lines.Length; i++)
+        {
+            string[] c = lines[i].Trim().Split(',');
+            if (c.Length < header.Length) continue;
+            rows.Add(c);
+            ts.Add(double.Parse(c[t], CultureInfo.InvariantCulture));
+        }
+        var samples = new Sample[rows.Count];
+        for (int i = 0; i < rows.Count; i++)
+        {
+            string[] c = rows[i];
+            Func<int, double> get = k => double.Parse(c[k], CultureInfo.InvariantCulture);
+            // dt is the time since the previous sample; the first takes the second's spacing.
+            double dt = i > 0 ? ts[i] - ts[i - 1] : (rows.Count > 1 ? ts[1] - ts[0] : 0.01);
+            var gyro = new Vec3(get(gx), get(gx + 1), get(gx + 2));
+            var accel = new Vec3(get(ax), get(ax + 1), get(ax + 2));
+            samples[i] = mx >= 0
+                ? OrientFilter.Marg(dt, gyro, accel, new Vec3(get(mx), get(mx + 1), get(mx + 2)))
+                : OrientFilter.Imu(dt, gyro, accel);
+        }
+        times = ts.ToArray();
+        return samples;
+    }
+
+    void Update()
+    {
+        if (rig == null || driven.Length == 0 || next >= steps) return;
+        clock += Time.deltaTime;
+        bool moved = false;
+        while (next < steps && times[next] - times[0] <= clock)
+        {
+            for (int i = 0; i < driven.Length; i++) step[i] = streams[i][next];
+            try
+            {
+                rig.Update(step, orientations);
+            }
+            catch (OrientException e)
+            {
+                Debug.LogWarning("orient: sample " + next + ": " + e.Message);
+            }
+            next++;
+            moved = true;
+        }
+        if (!moved) return;
+        for (int i = 0; i < driven.Length; i++)
+        {
+            driven[i].bone.rotation = worldAlignment * orientations[i].ToUnity(filters[i].Frame) * driven[i].mounting;
+        }
+    }
+
+    void OnDestroy()
+    {
+        foreach (var f in filters)
+        {
+            if (f != null) f.Dispose();
+        }
+    }
+}
