@@ -706,6 +706,7 @@ mod tests {
     /// the input held: against a fine fourth-order Runge-Kutta integration of that
     /// equation, over steps of mixed lengths.
     #[test]
+    #[cfg_attr(miri, ignore = "long loops: too slow under Miri")]
     fn the_low_pass_steps_its_differential_equation_exactly() {
         let (zeta, tau) = (core::f64::consts::FRAC_1_SQRT_2, 0.8);
         let omega = core::f64::consts::SQRT_2 / tau;
@@ -734,6 +735,7 @@ mod tests {
     /// A steady input passes unchanged whatever the steps, and a step response stays
     /// bounded for every τ in the parameter's range at any dt and any mix of dt.
     #[test]
+    #[cfg_attr(miri, ignore = "long loops: too slow under Miri")]
     fn the_low_pass_is_stable_for_every_dt_and_tau() {
         let spec = PARAMS.iter().find(|p| p.id == id::ROBUST_TAU_ACC).unwrap();
         let mut taus = vec![spec.min, spec.max, spec.default];
