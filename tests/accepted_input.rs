@@ -104,10 +104,12 @@ fn still(f: &mut Filter, seconds: f64, what: &str) {
 #[test]
 #[cfg_attr(miri, ignore = "long loops")]
 fn accepted_samples_never_leave_a_filter_stuck() {
-    let mut rng = Noise(0x5eed_0017);
     let rounds = if common::native::cross() { 6 } else { 40 };
-    for kind in Kind::ALL {
+    for (k, kind) in Kind::ALL.into_iter().enumerate() {
         for round in 0..rounds {
+            // Seeded per kind and round: a run under emulation (fewer rounds) replays the
+            // first rounds of the native run exactly.
+            let mut rng = Noise(0x5eed_0017 ^ ((k as u64) << 40) ^ ((round as u64) << 20));
             let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
             still(&mut f, 0.5, &format!("{kind:?} round {round} start"));
             for i in 0..60 {
@@ -118,12 +120,15 @@ fn accepted_samples_never_leave_a_filter_stuck() {
                     Err(e) => assert_eq!(f, before, "{kind:?}: refused ({e}) but changed: {s:?}"),
                 }
             }
-            // Defaults: good samples bring the inclination back, at the kind's own rate
-            // (Madgwick's β = 0.041 rad/s turns about 2.3°/s at most).
+            // Defaults: good samples bring the inclination back, at the kind's own rate.
+            // Madgwick's β = 0.041 rad/s turns about 2.3°/s at most, and the gradient
+            // and cross-product corrections of Madgwick and Mahony have saddles away from
+            // the truth: one sequence here left Mahony (MARG, Kp = 0.5) 17.7° off, where
+            // it stayed for 250 s before it escaped and converged (0.8° at 330 s).
             let what = format!("{kind:?} round {round} after");
-            still(&mut f, 300.0, &what);
+            still(&mut f, 600.0, &what);
             let err = inclination_error(f.quaternion(), Frame::Enu.from_enu()).to_degrees();
-            assert!(err < 2.0, "{what}: inclination {err}° after 300 s still and level");
+            assert!(err < 2.0, "{what}: inclination {err}° after 600 s still and level");
         }
     }
 }
@@ -131,10 +136,10 @@ fn accepted_samples_never_leave_a_filter_stuck() {
 #[test]
 #[cfg_attr(miri, ignore = "long loops")]
 fn every_in_range_configuration_works_at_every_accepted_dt() {
-    let mut rng = Noise(0xc0f1_9000);
     let rounds = if common::native::cross() { 10 } else { 150 };
-    for kind in Kind::ALL {
+    for (k, kind) in Kind::ALL.into_iter().enumerate() {
         for round in 0..rounds {
+            let mut rng = Noise(0xc0f1_9000 ^ ((k as u64) << 40) ^ ((round as u64) << 20));
             let mut c = Config::new(kind).unwrap();
             c.frame = Frame::ALL[round % 3];
             let params: Vec<ParamSpec> = kind.params().copied().collect();
