@@ -239,14 +239,17 @@ impl Quat {
         2.0 * libm::atan2(e.vector().norm(), e.w.abs())
     }
 
-    /// Euler angles (Z-Y'-X'') of a unit quaternion.
+    /// Euler angles (Z-Y'-X'') of a unit quaternion: yaw and roll in (-π, π], pitch in
+    /// [-π/2, π/2].
     pub fn to_euler(self) -> Euler {
         let Quat { w, x, y, z } = self;
         let sin_pitch = (2.0 * (w * y - z * x)).clamp(-1.0, 1.0);
+        // atan2 gives -π for a -0 sine and a negative cosine: the same angle as π.
+        let half_open = |a: f64| if a == -core::f64::consts::PI { core::f64::consts::PI } else { a };
         Euler {
-            yaw: libm::atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z)),
+            yaw: half_open(libm::atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))),
             pitch: libm::asin(sin_pitch),
-            roll: libm::atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y)),
+            roll: half_open(libm::atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))),
         }
     }
 }
@@ -451,6 +454,51 @@ mod tests {
             * Quat::from_axis_angle(x, e.roll);
         assert!(q.angle_to(r) < 1e-12, "{e:?}");
     }
+
+    /// The ranges the header states: yaw and roll in (-π, π], pitch in [-π/2, π/2], for
+    /// random unit quaternions and for the edge cases (half turns, signed zeros, gimbal
+    /// lock), and the angles recompose the rotation away from gimbal lock.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn euler_angles_stay_in_their_stated_ranges() {
+        use core::f64::consts::{FRAC_PI_2, PI};
+        let mut cases = vec![
+            Quat::IDENTITY,
+            Quat::new(0.0, 0.0, 0.0, 1.0),
+            Quat::new(-0.0, -0.0, -0.0, 1.0),
+            Quat::new(-0.0, -0.0, 0.0, 1.0),
+            Quat::new(-0.0, 1.0, 0.0, -0.0),
+            Quat::new(0.0, 1.0, 0.0, 0.0),
+            Quat::new(-0.0, 1.0, -0.0, -0.0),
+            Quat::new(0.0, -0.0, 1.0, -0.0),
+            Quat::new(FRAC_1_SQRT_2_F, 0.0, FRAC_1_SQRT_2_F, 0.0),
+            Quat::new(FRAC_1_SQRT_2_F, 0.0, -FRAC_1_SQRT_2_F, 0.0),
+        ];
+        let mut s: u64 = 0x2545_f491;
+        let mut next = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for _ in 0..2000 {
+            cases.push(Quat::new(next(), next(), next(), next()).normalized());
+        }
+        for q in cases {
+            let e = q.to_euler();
+            assert!(e.yaw > -PI && e.yaw <= PI, "{q:?}: yaw {}", e.yaw);
+            assert!(e.roll > -PI && e.roll <= PI, "{q:?}: roll {}", e.roll);
+            assert!((-FRAC_PI_2..=FRAC_PI_2).contains(&e.pitch), "{q:?}: pitch {}", e.pitch);
+            if e.pitch.abs() < 1.5 {
+                let r = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), e.yaw)
+                    * Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), e.pitch)
+                    * Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), e.roll);
+                assert!(q.angle_to(r) < 1e-9, "{q:?}: {e:?}");
+            }
+        }
+    }
+
+    const FRAC_1_SQRT_2_F: f64 = core::f64::consts::FRAC_1_SQRT_2;
 
     #[test]
     fn two_vector_rotation_maps_from_onto_to() {
