@@ -82,7 +82,7 @@ fn sound(f: &Filter, what: &str) {
     assert!(q.is_finite() && (q.norm() - 1.0).abs() < 1e-9, "{what}: q = {q:?}");
     let mut blob = vec![0; f.state_size()];
     f.save(&mut blob).unwrap_or_else(|e| panic!("{what}: save: {e:?}"));
-    let mut g = Filter::new(f.config()).unwrap();
+    let mut g = Filter::new(&f.config()).unwrap();
     g.load(&blob).unwrap_or_else(|e| panic!("{what}: its own blob is refused: {e:?}"));
     assert_eq!(&g, f, "{what}: the blob does not give back the state");
 }

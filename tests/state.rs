@@ -240,7 +240,7 @@ fn forged_blobs_with_a_valid_checksum_load_only_as_a_working_filter() {
                         }
                         let mut again = vec![0u8; g.state_size()];
                         g.save(&mut again).unwrap();
-                        Filter::new(g.config())
+                        Filter::new(&g.config())
                             .unwrap()
                             .load(&again)
                             .unwrap_or_else(|e| panic!("{kind:?} value {i} = {v}: own blob refused: {e:?}"));

@@ -11,12 +11,12 @@ use core::ffi::c_char;
 /// missing here is caught by the test below (and reported as a bug at run time).
 const TABLES: [&[ParamSpec]; 7] = [
     &COMMON,
-    &madgwick::PARAMS,
-    &mahony::PARAMS,
-    &complementary::PARAMS,
-    &ekf::PARAMS,
-    &gmvdk::PARAMS,
-    &robust::PARAMS,
+    madgwick::PARAMS,
+    mahony::PARAMS,
+    complementary::PARAMS,
+    ekf::PARAMS,
+    gmvdk::PARAMS,
+    robust::PARAMS,
 ];
 
 /// A parameter's strings in [`ParamText`] order.

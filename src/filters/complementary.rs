@@ -39,111 +39,71 @@
 //!   With `align_heading` set and magnetometer readings in the period, the mean field
 //!   defines north instead, aligning the output with the configured earth frame.
 
-use super::params::{id, ParamSpec};
+use super::params::{settings, Switch};
 use super::startup::{StartupMeans, Stillness};
 use super::Step;
 use crate::math::{Frame, Quat, Vec3};
 
-/// The complementary filter's settings.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ComplementarySettings {
-    /// K_P (1/s), active at rest only, eq. (4). Default 1.0 (see module doc).
-    pub kp: f64,
-    /// K_I (1/s²), active at rest only, eq. (5)/(10). Default 0.01 (see module doc).
-    pub ki: f64,
-    /// Rest threshold on |ω_m − ω̄| (rad/s), ω̄ the start-up mean. Default 0.02.
-    pub gyro_rest: f64,
-    /// Rest threshold on | |a_m| − g₀ | (m/s²). Default 0.2.
-    pub accel_rest: f64,
-    /// Length of the stationary start-up period (s). Default 2.
-    pub init_duration: f64,
-    /// Align heading with magnetic north from the start-up period's mean field.
-    /// Default false (the paper's relative heading).
-    pub align_heading: bool,
-}
-
-impl Default for ComplementarySettings {
-    fn default() -> Self {
-        ComplementarySettings {
-            kp: 1.0,
-            ki: 0.01,
-            gyro_rest: 0.02,
-            accel_rest: 0.2,
-            init_duration: 2.0,
-            align_heading: false,
-        }
+settings! {
+    /// The complementary filter's settings.
+    pub struct ComplementarySettings {
+        kp: f64 = COMPLEMENTARY_KP 24 {
+            unit: "1/s",
+            default: 1.0,
+            min: 0.0,
+            max: 1000.0,
+            zero_off: false,
+            doc: "Proportional gain K_P, eq. (4), applied only at rest; default 1.0 (the paper gives \
+                 no value: 1 s attitude time constant at rest).",
+        },
+        ki: f64 = COMPLEMENTARY_KI 25 {
+            unit: "1/s^2",
+            default: 0.01,
+            min: 0.0,
+            max: 1000.0,
+            zero_off: false,
+            doc: "Integral gain K_I for the gyro bias, eqs. (5) and (10), applied only at rest; \
+                 default 0.01 (the paper gives no value): stable for rests up to 100 s apart, since \
+                 the loop gain per rest is about K_I * motion time / K_P and must stay below 2.",
+        },
+        gyro_rest: f64 = COMPLEMENTARY_GYRO_REST 26 {
+            unit: "rad/s",
+            default: 0.02,
+            min: 0.0,
+            max: 100.0,
+            zero_off: false,
+            doc: "Rest when |gyro - start-up mean gyro| is below this; default 0.02 (about 3x the per-sample \
+                 noise floor of the paper's 0.03 deg/s/sqrt(Hz) gyro at 100 Hz).",
+        },
+        accel_rest: f64 = COMPLEMENTARY_ACCEL_REST 27 {
+            unit: "m/s^2",
+            default: 0.2,
+            min: 0.0,
+            max: 100.0,
+            zero_off: false,
+            doc: "Rest when | |accel| - g0 | is below this (g0: start-up mean); default 0.2 (about \
+                 3x the per-sample noise floor of the paper's 650 ug/sqrt(Hz) accelerometer).",
+        },
+        init_duration: f64 = COMPLEMENTARY_INIT_DURATION 28 {
+            unit: "s",
+            default: 2.0,
+            min: 0.0,
+            max: 3600.0,
+            zero_off: false,
+            doc: "Stationary start-up period giving the initial bias and attitude (paper: 'a time \
+                 period at the start of a trial'); default 2.",
+        },
+        align_heading: Switch = COMPLEMENTARY_ALIGN_HEADING 29 {
+            unit: "1",
+            default: 0.0,
+            min: 0.0,
+            max: 1.0,
+            zero_off: false,
+            doc: "1: take north from the start-up mean magnetometer reading, aligning heading with \
+                 the earth frame; 0 (default, the paper): heading relative to the sensor y axis.",
+        },
     }
 }
-
-pub(crate) const PARAMS: [ParamSpec; 6] = [
-    ParamSpec {
-        id: id::COMPLEMENTARY_KP,
-        name: "kp",
-        unit: "1/s",
-        doc: "Proportional gain K_P, eq. (4), applied only at rest; default 1.0 (the paper gives \
-              no value: 1 s attitude time constant at rest).",
-        default: 1.0,
-        min: 0.0,
-        max: 1000.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::COMPLEMENTARY_KI,
-        name: "ki",
-        unit: "1/s^2",
-        doc: "Integral gain K_I for the gyro bias, eqs. (5) and (10), applied only at rest; \
-              default 0.01 (the paper gives no value): stable for rests up to 100 s apart, since \
-              the loop gain per rest is about K_I * motion time / K_P and must stay below 2.",
-        default: 0.01,
-        min: 0.0,
-        max: 1000.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::COMPLEMENTARY_GYRO_REST,
-        name: "gyro_rest",
-        unit: "rad/s",
-        doc: "Rest when |gyro - start-up mean gyro| is below this; default 0.02 (about 3x the per-sample \
-              noise floor of the paper's 0.03 deg/s/sqrt(Hz) gyro at 100 Hz).",
-        default: 0.02,
-        min: 0.0,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::COMPLEMENTARY_ACCEL_REST,
-        name: "accel_rest",
-        unit: "m/s^2",
-        doc: "Rest when | |accel| - g0 | is below this (g0: start-up mean); default 0.2 (about \
-              3x the per-sample noise floor of the paper's 650 ug/sqrt(Hz) accelerometer).",
-        default: 0.2,
-        min: 0.0,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::COMPLEMENTARY_INIT_DURATION,
-        name: "init_duration",
-        unit: "s",
-        doc: "Stationary start-up period giving the initial bias and attitude (paper: 'a time \
-              period at the start of a trial'); default 2.",
-        default: 2.0,
-        min: 0.0,
-        max: 3600.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::COMPLEMENTARY_ALIGN_HEADING,
-        name: "align_heading",
-        unit: "1",
-        doc: "1: take north from the start-up mean magnetometer reading, aligning heading with \
-              the earth frame; 0 (default, the paper): heading relative to the sensor y axis.",
-        default: 0.0,
-        min: 0.0,
-        max: 1.0,
-        zero_off: false,
-    },
-];
 
 /// McGinnis' complementary filter. Native frame: East-North-Up with "north" from the
 /// start-up period (see the module doc).
@@ -204,7 +164,7 @@ impl Complementary {
     /// magnetometer; else the heading held), the bias ω_b and the stationary values kept.
     pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
         let (q, used_mag) = match r.with_mag {
-            Some(q) if self.settings.align_heading => (q, true),
+            Some(q) if self.settings.align_heading.on() => (q, true),
             _ => (r.keep, false),
         };
         self.q = q;
@@ -248,7 +208,7 @@ impl Complementary {
     /// field), rows of R_ES = [Ê₁; Ê₂; Ê₃].
     fn initial_attitude(&self, s: &StartupMeans) -> Quat {
         let accel = s.accel();
-        if self.settings.align_heading {
+        if self.settings.align_heading.on() {
             if let Some(q) = s.mag().and_then(|m| Frame::Enu.attitude_from(accel, Some(m))) {
                 return q;
             }
@@ -288,7 +248,7 @@ impl Complementary {
             self.g0 = s.accel_norm();
             self.startup = None;
             step.used_accel = true;
-            step.used_mag = self.settings.align_heading && s.mag().is_some();
+            step.used_mag = self.settings.align_heading.on() && s.mag().is_some();
             return Some(step);
         }
         let Some(a) = accel else {
@@ -399,5 +359,64 @@ mod tests {
         assert!((q.w - 0.5f64.cos()).abs() < 1e-15 && (q.z - 0.5f64.sin()).abs() < 1e-15);
         let tiny = rotation_of(Vec3::new(1e-14, 0.0, 0.0), 1.0);
         assert!((tiny.x - 5e-15).abs() < 1e-28);
+    }
+}
+
+/// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
+mod estimator_impl {
+    use super::*;
+    use crate::filters::estimator::{Estimator, Reacquisition};
+    use crate::filters::state::Codec;
+    use crate::filters::{Diagnostics, Kind};
+    use crate::math::Frame;
+
+    impl Estimator for Complementary {
+        type Settings = ComplementarySettings;
+        const KIND: Kind = Kind::Complementary;
+        const NATIVE: Frame = Frame::Enu;
+        const OWN_STARTUP: bool = true;
+
+        fn create(settings: ComplementarySettings) -> Self {
+            Complementary::new(settings)
+        }
+
+        fn settings(&self) -> &ComplementarySettings {
+            &self.settings
+        }
+
+        fn configure(&mut self, settings: ComplementarySettings) {
+            self.settings = settings;
+        }
+
+        #[inline(always)]
+        fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+            Self::update(self, dt, gyro, accel, mag)
+        }
+
+        #[inline(always)]
+        fn quaternion(&self) -> Quat {
+            Complementary::quaternion(self)
+        }
+
+        fn set_quaternion(&mut self, q: Quat) {
+            Complementary::set_quaternion(self, q)
+        }
+
+        fn reacquire(&mut self, r: &Reacquisition) -> bool {
+            Complementary::reacquire(self, r)
+        }
+
+        fn diagnose(&self, d: &mut Diagnostics) {
+            d.gyro_bias = self.bias();
+            d.rest = if self.at_rest() { 1.0 } else { 0.0 };
+        }
+
+        fn codec(&mut self, c: &mut dyn Codec) {
+            Complementary::codec(self, c)
+        }
+
+        fn valid(&self) -> bool {
+            Complementary::valid(self)
+        }
     }
 }

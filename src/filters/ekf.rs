@@ -60,7 +60,7 @@
 //!   heading innovation's recent power (`heading_adapt_tau`): near a magnet the
 //!   innovation grows and the field is trusted less (trial 32: 25.3° to 2.8°).
 
-use super::params::{id, ParamSpec};
+use super::params::settings;
 use super::rest::{lp_gain, RestDetector, RestThresholds};
 use super::Step;
 use crate::math::lanes::Lanes;
@@ -68,213 +68,132 @@ use crate::math::{Quat, Vec3};
 use nalgebra::{Matrix3, Matrix3x4, Matrix4, Matrix4x3, SMatrix, Vector3};
 use wide::f64x4;
 
-/// The EKF's settings.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct EkfSettings {
-    /// τ_ω (s): correlation time of the angular rate, eq. (9). Default 0.2 (human motion
-    /// of a few Hz bandwidth; the paper sets it from "the system's bandwidth").
-    pub tau_omega: f64,
-    /// Stationary standard deviation of ω (rad/s): "the limit of the magnitude of the
-    /// motion". Default 3.
-    pub omega_std: f64,
-    /// τ_δ (s): correlation time of the gyro drift, eq. (10). Default 100 ("slowly
-    /// drifting").
-    pub tau_drift: f64,
-    /// Stationary standard deviation of the drift δ (rad/s). Default 0.02.
-    pub drift_std: f64,
-    /// Gyroscope noise density (rad/s/√Hz). Default 0.05 °/s/√Hz (paper, section IV).
-    pub gyro_noise: f64,
-    /// Accelerometer noise density (m/s²/√Hz). Default 32 µg/√Hz (paper, section IV).
-    pub accel_noise: f64,
-    /// Standing allowance for linear acceleration (m/s², standard deviation). Default 0.5.
-    pub accel_motion: f64,
-    /// Standard deviation of the magnetometer heading measurement (rad). Default 0.1.
-    pub heading_std: f64,
-    /// Correlation time of linear acceleration (s). Default 0.5.
-    pub motion_tau: f64,
-    /// Correlation time of heading errors from magnetic disturbances (s). Default 1.
-    pub heading_tau: f64,
-    /// Gravity magnitude g in (13) (m/s²); taken from the common `gravity` parameter.
-    pub gravity: f64,
-    /// Standard deviation (rad/s) of the zero-rate pseudo-measurement at detected rest;
-    /// 0 (default, the paper) turns it off. An orient option; see [`super::rest`].
-    pub rest_rate_std: f64,
-    /// Time constant (s) of the accelerometer innovation power that raises its variance
-    /// (innovation-based adaptive noise); 0 turns it off. Default 2.
-    pub accel_adapt_tau: f64,
-    /// The same for the magnetometer heading innovation (s); 0 turns it off. Default 2.
-    pub heading_adapt_tau: f64,
-}
-
-impl Default for EkfSettings {
-    fn default() -> Self {
-        EkfSettings {
-            tau_omega: 0.2,
-            omega_std: 3.0,
-            tau_drift: 100.0,
-            drift_std: 0.02,
-            gyro_noise: 0.05f64.to_radians(),
-            accel_noise: 32e-6 * 9.80665,
-            accel_motion: 0.5,
-            heading_std: 0.1,
-            motion_tau: 0.5,
-            heading_tau: 1.0,
-            gravity: 9.80665,
-            rest_rate_std: 0.0,
-            accel_adapt_tau: 2.0,
-            heading_adapt_tau: 2.0,
-        }
+settings! {
+    /// The EKF's settings.
+    pub struct EkfSettings {
+        tau_omega: f64 = EKF_TAU_OMEGA 40 {
+            unit: "s",
+            default: 0.2,
+            min: 1e-4,
+            max: 1e6,
+            zero_off: false,
+            doc: "Correlation time of the angular-rate Markov process, eq. (9) (stable -1/tau form); \
+                 default 0.2 (motion bandwidth of a few Hz).",
+        },
+        omega_std: f64 = EKF_OMEGA_STD 41 {
+            unit: "rad/s",
+            default: 3.0,
+            min: 1e-3,
+            max: 1e3,
+            zero_off: false,
+            doc: "Stationary standard deviation of the angular rate ('limit of the magnitude of the \
+                 motion', section III.A); default 3.",
+        },
+        tau_drift: f64 = EKF_TAU_DRIFT 42 {
+            unit: "s",
+            default: 100.0,
+            min: 1e-3,
+            max: 1e9,
+            zero_off: false,
+            doc: "Correlation time of the gyro drift Markov process, eq. (10) (stable -1/tau form); \
+                 default 100 (slow drift).",
+        },
+        drift_std: f64 = EKF_DRIFT_STD 43 {
+            unit: "rad/s",
+            default: 0.02,
+            min: 1e-6,
+            max: 10.0,
+            zero_off: false,
+            doc: "Stationary standard deviation of the gyro drift; default 0.02.",
+        },
+        gyro_noise: f64 = EKF_GYRO_NOISE 44 {
+            unit: "rad/s/sqrt(Hz)",
+            default: 8.726_646_259_971_648e-4,
+            min: 1e-5,
+            max: 10.0,
+            zero_off: false,
+            doc: "Gyroscope noise density; default 0.05 deg/s/sqrt(Hz) (paper, section IV).",
+        },
+        accel_noise: f64 = EKF_ACCEL_NOISE 45 {
+            unit: "m/s^2/sqrt(Hz)",
+            default: 32e-6 * 9.80665,
+            min: 1e-5,
+            max: 100.0,
+            zero_off: false,
+            doc: "Accelerometer noise density; default 32 ug/sqrt(Hz) (paper, section IV).",
+        },
+        accel_motion: f64 = EKF_ACCEL_MOTION 46 {
+            unit: "m/s^2",
+            default: 0.5,
+            min: 0.0,
+            max: 1e3,
+            zero_off: false,
+            doc: "Standing allowance for linear acceleration added to the accelerometer noise \
+                 (plus (|f|-g)^2 per sample); default 0.5.",
+        },
+        heading_std: f64 = EKF_HEADING_STD 47 {
+            unit: "rad",
+            default: 0.1,
+            min: 1e-4,
+            max: 10.0,
+            zero_off: false,
+            doc: "Standard deviation of the magnetometer heading measurement (the paper's proposed \
+                 extension); default 0.1.",
+        },
+        motion_tau: f64 = EKF_MOTION_TAU 48 {
+            unit: "s",
+            default: 0.5,
+            min: 0.0,
+            max: 100.0,
+            zero_off: false,
+            doc: "Correlation time of linear acceleration: its variance is counted once per \
+                 2*motion_tau/dt samples (coloured, not white, noise); default 0.5 (hand motion); \
+                 0 treats it as white.",
+        },
+        heading_tau: f64 = EKF_HEADING_TAU 49 {
+            unit: "s",
+            default: 1.0,
+            min: 0.0,
+            max: 1000.0,
+            zero_off: false,
+            doc: "Correlation time of magnetic heading errors: the heading variance is counted once \
+                 per 2*heading_tau/dt samples; default 1 (disturbances change as the sensor moves \
+                 through a room's field); 0 treats them as white.",
+        },
+        rest_rate_std: f64 = EKF_REST_RATE_STD 50 {
+            unit: "rad/s",
+            default: 0.0,
+            min: 1e-6,
+            max: 10.0,
+            zero_off: true,
+            doc: "orient option: at detected rest (2 deg/s, 0.5 m/s^2, 0.5 deg tilt for 1.5 s) add \
+                 the pseudo-measurement omega = 0 with this standard deviation (zero-rate update), \
+                 which pins the drift delta to the resting gyro; default 0 = off (the paper).",
+        },
+        accel_adapt_tau: f64 = EKF_ACCEL_ADAPT_TAU 51 {
+            unit: "s",
+            default: 2.0,
+            min: 1e-3,
+            max: 1000.0,
+            zero_off: true,
+            doc: "Time constant of the accelerometer innovation's running power; the measurement \
+                 variance is at least that power (colour-scaled), so sustained linear acceleration \
+                 is trusted less (innovation-based adaptive noise, where the paper only allows 'a \
+                 modicum'); default 2 (BROAD mean 9D within 0.15 deg over 1-5 s); 0 = off.",
+        },
+        heading_adapt_tau: f64 = EKF_HEADING_ADAPT_TAU 52 {
+            unit: "s",
+            default: 2.0,
+            min: 1e-3,
+            max: 1000.0,
+            zero_off: true,
+            doc: "Time constant of the heading innovation's running power, which likewise bounds \
+                 the heading variance from below, so a disturbed field is trusted less; default 2; \
+                 0 = off.",
+        },
     }
+    shared { gravity: f64 = GRAVITY }
 }
-
-pub(crate) const PARAMS: [ParamSpec; 13] = [
-    ParamSpec {
-        id: id::EKF_TAU_OMEGA,
-        name: "tau_omega",
-        unit: "s",
-        doc: "Correlation time of the angular-rate Markov process, eq. (9) (stable -1/tau form); \
-              default 0.2 (motion bandwidth of a few Hz).",
-        default: 0.2,
-        min: 1e-4,
-        max: 1e6,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::EKF_OMEGA_STD,
-        name: "omega_std",
-        unit: "rad/s",
-        doc: "Stationary standard deviation of the angular rate ('limit of the magnitude of the \
-              motion', section III.A); default 3.",
-        default: 3.0,
-        min: 1e-3,
-        max: 1e3,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::EKF_TAU_DRIFT,
-        name: "tau_drift",
-        unit: "s",
-        doc: "Correlation time of the gyro drift Markov process, eq. (10) (stable -1/tau form); \
-              default 100 (slow drift).",
-        default: 100.0,
-        min: 1e-3,
-        max: 1e9,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::EKF_DRIFT_STD,
-        name: "drift_std",
-        unit: "rad/s",
-        doc: "Stationary standard deviation of the gyro drift; default 0.02.",
-        default: 0.02,
-        min: 1e-6,
-        max: 10.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::EKF_GYRO_NOISE,
-        name: "gyro_noise",
-        unit: "rad/s/sqrt(Hz)",
-        doc: "Gyroscope noise density; default 0.05 deg/s/sqrt(Hz) (paper, section IV).",
-        default: 8.726_646_259_971_648e-4,
-        min: 1e-5,
-        max: 10.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::EKF_ACCEL_NOISE,
-        name: "accel_noise",
-        unit: "m/s^2/sqrt(Hz)",
-        doc: "Accelerometer noise density; default 32 ug/sqrt(Hz) (paper, section IV).",
-        default: 32e-6 * 9.80665,
-        min: 1e-5,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::EKF_ACCEL_MOTION,
-        name: "accel_motion",
-        unit: "m/s^2",
-        doc: "Standing allowance for linear acceleration added to the accelerometer noise \
-              (plus (|f|-g)^2 per sample); default 0.5.",
-        default: 0.5,
-        min: 0.0,
-        max: 1e3,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::EKF_HEADING_STD,
-        name: "heading_std",
-        unit: "rad",
-        doc: "Standard deviation of the magnetometer heading measurement (the paper's proposed \
-              extension); default 0.1.",
-        default: 0.1,
-        min: 1e-4,
-        max: 10.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::EKF_MOTION_TAU,
-        name: "motion_tau",
-        unit: "s",
-        doc: "Correlation time of linear acceleration: its variance is counted once per \
-              2*motion_tau/dt samples (coloured, not white, noise); default 0.5 (hand motion); \
-              0 treats it as white.",
-        default: 0.5,
-        min: 0.0,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::EKF_HEADING_TAU,
-        name: "heading_tau",
-        unit: "s",
-        doc: "Correlation time of magnetic heading errors: the heading variance is counted once \
-              per 2*heading_tau/dt samples; default 1 (disturbances change as the sensor moves \
-              through a room's field); 0 treats them as white.",
-        default: 1.0,
-        min: 0.0,
-        max: 1000.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::EKF_REST_RATE_STD,
-        name: "rest_rate_std",
-        unit: "rad/s",
-        doc: "orient option: at detected rest (2 deg/s, 0.5 m/s^2, 0.5 deg tilt for 1.5 s) add \
-              the pseudo-measurement omega = 0 with this standard deviation (zero-rate update), \
-              which pins the drift delta to the resting gyro; default 0 = off (the paper).",
-        default: 0.0,
-        min: 1e-6,
-        max: 10.0,
-        zero_off: true,
-    },
-    ParamSpec {
-        id: id::EKF_ACCEL_ADAPT_TAU,
-        name: "accel_adapt_tau",
-        unit: "s",
-        doc: "Time constant of the accelerometer innovation's running power; the measurement \
-              variance is at least that power (colour-scaled), so sustained linear acceleration \
-              is trusted less (innovation-based adaptive noise, where the paper only allows 'a \
-              modicum'); default 2 (BROAD mean 9D within 0.15 deg over 1-5 s); 0 = off.",
-        default: 2.0,
-        min: 1e-3,
-        max: 1000.0,
-        zero_off: true,
-    },
-    ParamSpec {
-        id: id::EKF_HEADING_ADAPT_TAU,
-        name: "heading_adapt_tau",
-        unit: "s",
-        doc: "Time constant of the heading innovation's running power, which likewise bounds \
-              the heading variance from below, so a disturbed field is trusted less; default 2; \
-              0 = off.",
-        default: 2.0,
-        min: 1e-3,
-        max: 1000.0,
-        zero_off: true,
-    },
-];
 
 /// A vector in the state's block layout `[q (4), ω (3), δ (3)]`, each block one SIMD
 /// value of four lanes (the three-long blocks with a fourth lane that stays zero).
@@ -1384,5 +1303,65 @@ mod tests {
         let fixed = tilt_after(EkfSettings { accel_adapt_tau: 0.0, ..Default::default() });
         let adaptive = tilt_after(EkfSettings::default());
         assert!(adaptive < 0.7 * fixed, "adaptive {adaptive:.2} deg, fixed {fixed:.2} deg");
+    }
+}
+
+/// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
+mod estimator_impl {
+    use super::*;
+    use crate::filters::estimator::{Estimator, Reacquisition};
+    use crate::filters::state::Codec;
+    use crate::filters::{Diagnostics, Kind};
+    use crate::math::Frame;
+
+    impl Estimator for Ekf {
+        type Settings = EkfSettings;
+        const KIND: Kind = Kind::Ekf;
+        const NATIVE: Frame = Frame::Ned;
+        const OWN_STARTUP: bool = false;
+
+        fn create(settings: EkfSettings) -> Self {
+            Ekf::new(settings)
+        }
+
+        fn settings(&self) -> &EkfSettings {
+            &self.settings
+        }
+
+        fn configure(&mut self, settings: EkfSettings) {
+            self.settings = settings;
+        }
+
+        #[inline(always)]
+        fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+            Self::update(self, dt, gyro, accel, mag)
+        }
+
+        #[inline(always)]
+        fn quaternion(&self) -> Quat {
+            Ekf::quaternion(self)
+        }
+
+        fn set_quaternion(&mut self, q: Quat) {
+            Ekf::set_quaternion(self, q)
+        }
+
+        fn reacquire(&mut self, r: &Reacquisition) -> bool {
+            Ekf::reacquire(self, r)
+        }
+
+        fn diagnose(&self, d: &mut Diagnostics) {
+            d.gyro_bias = self.drift();
+            d.rate = self.rate();
+            d.covariance = self.covariance_diagonal();
+        }
+
+        fn codec(&mut self, c: &mut dyn Codec) {
+            Ekf::codec(self, c)
+        }
+
+        fn valid(&self) -> bool {
+            Ekf::valid(self)
+        }
     }
 }

@@ -49,162 +49,101 @@
 //! - Without a magnetometer reading the magnetometer pipeline contributes `q_SM = q_G`,
 //!   as it does when μ_K = 0.
 
-use super::params::{id, ParamSpec};
+use super::params::{settings, Switch};
 use super::startup::{StartupMeans, Stillness};
 use super::Step;
 use crate::math::{inv_sqrt, Frame, Quat, Vec3};
 
-/// GMVDK's settings.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GmvdkSettings {
-    /// SlopeAlpha (Appendix B.1). Default 1.0 (paper).
-    pub slope_alpha: f64,
-    /// SlopeMuk (Appendix B.2, eq. (20)). Default 1.5 (paper).
-    pub slope_muk: f64,
-    /// Window of the running minimum μ_2 (s). Default 0.4 (paper).
-    pub mu_window: f64,
-    /// Static start-up period (s). Default 1.0.
-    pub init_duration: f64,
-    /// Time constant of the activity averages behind Stillness (s). Default 0.1.
-    pub activity_tau: f64,
-    /// Gyroscope activity scale σ_ω (rad/s): mean square |ω_B|² of σ_ω² counts as fully
-    /// moving. Default 0.5.
-    pub gyro_activity: f64,
-    /// Accelerometer activity scale σ_a (m/s²). Default 1.0.
-    pub accel_activity: f64,
-    /// Length of a static run that re-estimates the gyroscope bias (s). Default 1.0.
-    pub bias_window: f64,
-    /// α at or above which the sensor counts as static for de-biasing. Default 0.95.
-    pub static_alpha: f64,
-    /// Report orientation relative to the start-up pose (the paper's output) instead of
-    /// the earth frame. Default false.
-    pub relative_output: bool,
-}
-
-impl Default for GmvdkSettings {
-    fn default() -> Self {
-        GmvdkSettings {
-            slope_alpha: 1.0,
-            slope_muk: 1.5,
-            mu_window: 0.4,
-            init_duration: 1.0,
-            activity_tau: 0.1,
-            gyro_activity: 0.5,
-            accel_activity: 1.0,
-            bias_window: 1.0,
-            static_alpha: 0.95,
-            relative_output: false,
-        }
+settings! {
+    /// GMVDK's settings.
+    pub struct GmvdkSettings {
+        slope_alpha: f64 = GMVDK_SLOPE_ALPHA 56 {
+            unit: "1",
+            default: 1.0,
+            min: 0.0,
+            max: 100.0,
+            zero_off: false,
+            doc: "SlopeAlpha of Appendix B.1: alpha = max(0, stillness*slope + 1 - slope); default \
+                 1.0 (paper).",
+        },
+        slope_muk: f64 = GMVDK_SLOPE_MUK 57 {
+            unit: "1/rad",
+            default: 1.5,
+            min: 0.0,
+            max: 100.0,
+            zero_off: false,
+            doc: "SlopeMuk of Appendix B.2 / eq. (20): muKA = 1 - slope*lambda; default 1.5 (paper).",
+        },
+        mu_window: f64 = GMVDK_MU_WINDOW 58 {
+            unit: "s",
+            default: 0.4,
+            min: 0.0,
+            max: 60.0,
+            zero_off: false,
+            doc: "Window of the running minimum mu2 of mu1 (section 2.2.2); default 0.4 (paper).",
+        },
+        init_duration: f64 = GMVDK_INIT_DURATION 59 {
+            unit: "s",
+            default: 1.0,
+            min: 0.0,
+            max: 3600.0,
+            zero_off: false,
+            doc: "Static start-up period averaging A_init, M_init and the first gyro bias; default 1.",
+        },
+        activity_tau: f64 = GMVDK_ACTIVITY_TAU 60 {
+            unit: "s",
+            default: 0.1,
+            min: 1e-4,
+            max: 100.0,
+            zero_off: false,
+            doc: "Time constant of the mean-square activity averages behind stillness; default 0.1.",
+        },
+        gyro_activity: f64 = GMVDK_GYRO_ACTIVITY 61 {
+            unit: "rad/s",
+            default: 0.5,
+            min: 1e-6,
+            max: 100.0,
+            zero_off: false,
+            doc: "Gyro activity scale: RMS de-biased rate at which stillness reaches 0 (with no \
+                 accelerometer activity, at sqrt(2) times it); default 0.5.",
+        },
+        accel_activity: f64 = GMVDK_ACCEL_ACTIVITY 62 {
+            unit: "m/s^2",
+            default: 1.0,
+            min: 1e-6,
+            max: 1000.0,
+            zero_off: false,
+            doc: "Accelerometer activity scale: RMS deviation of |a| from its start-up value at \
+                 which stillness reaches 0 (alone: sqrt(2) times it); default 1.0.",
+        },
+        bias_window: f64 = GMVDK_BIAS_WINDOW 63 {
+            unit: "s",
+            default: 1.0,
+            min: 1e-3,
+            max: 3600.0,
+            zero_off: false,
+            doc: "Static run length for the linear-regression gyro de-biasing of step [1]; \
+                 default 1.0.",
+        },
+        static_alpha: f64 = GMVDK_STATIC_ALPHA 64 {
+            unit: "1",
+            default: 0.95,
+            min: 0.0,
+            max: 1.0,
+            zero_off: false,
+            doc: "alpha at or above which the sensor counts as static for de-biasing; default 0.95.",
+        },
+        relative_output: Switch = GMVDK_RELATIVE_OUTPUT 65 {
+            unit: "1",
+            default: 0.0,
+            min: 0.0,
+            max: 1.0,
+            zero_off: false,
+            doc: "1: report orientation relative to the start-up pose (the paper's output); 0 \
+                 (default): in the configured earth frame.",
+        },
     }
 }
-
-pub(crate) const PARAMS: [ParamSpec; 10] = [
-    ParamSpec {
-        id: id::GMVDK_SLOPE_ALPHA,
-        name: "slope_alpha",
-        unit: "1",
-        doc: "SlopeAlpha of Appendix B.1: alpha = max(0, stillness*slope + 1 - slope); default \
-              1.0 (paper).",
-        default: 1.0,
-        min: 0.0,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::GMVDK_SLOPE_MUK,
-        name: "slope_muk",
-        unit: "1/rad",
-        doc: "SlopeMuk of Appendix B.2 / eq. (20): muKA = 1 - slope*lambda; default 1.5 (paper).",
-        default: 1.5,
-        min: 0.0,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::GMVDK_MU_WINDOW,
-        name: "mu_window",
-        unit: "s",
-        doc: "Window of the running minimum mu2 of mu1 (section 2.2.2); default 0.4 (paper).",
-        default: 0.4,
-        min: 0.0,
-        max: 60.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::GMVDK_INIT_DURATION,
-        name: "init_duration",
-        unit: "s",
-        doc: "Static start-up period averaging A_init, M_init and the first gyro bias; default 1.",
-        default: 1.0,
-        min: 0.0,
-        max: 3600.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::GMVDK_ACTIVITY_TAU,
-        name: "activity_tau",
-        unit: "s",
-        doc: "Time constant of the mean-square activity averages behind stillness; default 0.1.",
-        default: 0.1,
-        min: 1e-4,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::GMVDK_GYRO_ACTIVITY,
-        name: "gyro_activity",
-        unit: "rad/s",
-        doc: "Gyro activity scale: RMS de-biased rate at which stillness reaches 0 (with no \
-              accelerometer activity, at sqrt(2) times it); default 0.5.",
-        default: 0.5,
-        min: 1e-6,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::GMVDK_ACCEL_ACTIVITY,
-        name: "accel_activity",
-        unit: "m/s^2",
-        doc: "Accelerometer activity scale: RMS deviation of |a| from its start-up value at \
-              which stillness reaches 0 (alone: sqrt(2) times it); default 1.0.",
-        default: 1.0,
-        min: 1e-6,
-        max: 1000.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::GMVDK_BIAS_WINDOW,
-        name: "bias_window",
-        unit: "s",
-        doc: "Static run length for the linear-regression gyro de-biasing of step [1]; \
-              default 1.0.",
-        default: 1.0,
-        min: 1e-3,
-        max: 3600.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::GMVDK_STATIC_ALPHA,
-        name: "static_alpha",
-        unit: "1",
-        doc: "alpha at or above which the sensor counts as static for de-biasing; default 0.95.",
-        default: 0.95,
-        min: 0.0,
-        max: 1.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::GMVDK_RELATIVE_OUTPUT,
-        name: "relative_output",
-        unit: "1",
-        doc: "1: report orientation relative to the start-up pose (the paper's output); 0 \
-              (default): in the configured earth frame.",
-        default: 0.0,
-        min: 0.0,
-        max: 1.0,
-        zero_off: false,
-    },
-];
 
 /// `SLERP(q1, q2, h)`, eqs. (15)-(16), along the shorter arc; linear interpolation
 /// (normalised) when the two are within 1e-6 rad.
@@ -415,7 +354,7 @@ impl Gmvdk {
 
     /// The output: ENU, or relative to the start-up pose with `relative_output`.
     pub fn quaternion(&self) -> Quat {
-        if self.settings.relative_output {
+        if self.settings.relative_output.on() {
             self.q_start.conj() * self.q
         } else {
             self.q
@@ -844,4 +783,97 @@ mod tests {
         let t = f.trust();
         assert!(t.alpha > 0.99 && t.mu_k > 0.99, "{t:?}");
     }
+}
+
+/// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
+mod estimator_impl {
+    use super::*;
+    use crate::filters::diag;
+    use crate::filters::estimator::{Estimator, Reacquisition};
+    use crate::filters::state::Codec;
+    use crate::filters::{Diagnostics, Kind};
+    use crate::math::Frame;
+
+    impl Estimator for Gmvdk {
+        type Settings = GmvdkSettings;
+        const KIND: Kind = Kind::Gmvdk;
+        const NATIVE: Frame = Frame::Enu;
+        const OWN_STARTUP: bool = true;
+
+        fn create(settings: GmvdkSettings) -> Self {
+            Gmvdk::new(settings)
+        }
+
+        fn settings(&self) -> &GmvdkSettings {
+            &self.settings
+        }
+
+        fn configure(&mut self, settings: GmvdkSettings) {
+            self.settings = settings;
+        }
+
+        fn restart(&mut self, settings: GmvdkSettings) {
+            // Keeps the boxed μ window: no allocation.
+            self.settings = settings;
+            self.reset();
+        }
+
+        fn absolute_quaternion(&self) -> Quat {
+            Gmvdk::absolute_quaternion(self)
+        }
+
+        fn relative(&self) -> bool {
+            self.settings.relative_output.on()
+        }
+
+        #[inline(always)]
+        fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+            gmvdk_update(self, dt, gyro, accel, mag)
+        }
+
+        #[inline(always)]
+        fn quaternion(&self) -> Quat {
+            Gmvdk::quaternion(self)
+        }
+
+        fn set_quaternion(&mut self, q: Quat) {
+            Gmvdk::set_quaternion(self, q)
+        }
+
+        fn reacquire(&mut self, r: &Reacquisition) -> bool {
+            Gmvdk::reacquire(self, r)
+        }
+
+        fn diagnose(&self, d: &mut Diagnostics) {
+            d.gyro_bias = self.bias();
+            let t = self.trust();
+            d.alpha = t.alpha;
+            if self.mag_seen() {
+                d.mu_ka = t.mu_ka;
+                d.mu_km = t.mu_km;
+                d.mu_k = t.mu_k;
+            } else {
+                d.present &= !(diag::MU_KA | diag::MU_KM | diag::MU_K);
+            }
+        }
+
+        fn codec(&mut self, c: &mut dyn Codec) {
+            Gmvdk::codec(self, c)
+        }
+
+        fn valid(&self) -> bool {
+            Gmvdk::valid(self)
+        }
+    }
+}
+
+/// GMVDK's update in the widest copy the CPU has (crate::isa::widest). Out of line: its
+/// large frame, inlined into a caller, made that caller save six registers and set up
+/// the frame before any work.
+#[inline(never)]
+fn gmvdk_update(f: &mut Gmvdk, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+    crate::isa::widest(
+        #[inline(always)]
+        || f.update(dt, gyro, accel, mag),
+    )
 }

@@ -25,30 +25,46 @@
 //! - β for a step follows the sensors used in it: `beta_imu` for (12)-(13), `beta_marg`
 //!   for (18)-(19), the two values the paper found optimal (section V).
 
-use super::params::{id, ParamSpec};
+use super::params::settings;
 use super::rest::RestBias;
 use super::Step;
 use crate::math::{inv_sqrt, Quat, Vec3};
 use wide::f64x4;
 
-/// Madgwick's settings, in user units.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MadgwickSettings {
-    /// β (rad/s) for steps with accelerometer only, eq. (30). Default 0.041: the paper's
-    /// optimum for its IMU implementation (section V, Fig. 4). Set from a gyroscope error
-    /// with [`beta_from_gyro_error`], eq. (33).
-    pub beta_imu: f64,
-    /// β (rad/s) for steps with accelerometer and magnetometer, eq. (30). Default 0.041
-    /// (see [`PARAMS`]).
-    pub beta_marg: f64,
-    /// Time constant (s) of the gyroscope bias learned at detected rest; 0 (default, the
-    /// paper) turns it off. An orient option; see [`super::rest`].
-    pub rest_bias_tau: f64,
-}
-
-impl Default for MadgwickSettings {
-    fn default() -> Self {
-        MadgwickSettings { beta_imu: 0.041, beta_marg: 0.041, rest_bias_tau: 0.0 }
+settings! {
+    /// Madgwick's settings, in user units.
+    pub struct MadgwickSettings {
+        beta_imu: f64 = MADGWICK_BETA_IMU 8 {
+            unit: "rad/s",
+            default: 0.041,
+            min: 0.0,
+            max: 100.0,
+            zero_off: false,
+            doc: "Gradient step beta for steps without magnetometer, eq. (30); default 0.041 \
+                 (Madgwick 2010, section V, optimum of the IMU implementation). \
+                 beta = sqrt(3/4) * max gyro error, eq. (33).",
+        },
+        beta_marg: f64 = MADGWICK_BETA_MARG 9 {
+            unit: "rad/s",
+            default: 0.041,
+            min: 0.0,
+            max: 100.0,
+            zero_off: false,
+            doc: "Gradient step beta for steps with magnetometer, eq. (30); default 0.041, the \
+                 paper's IMU optimum (section V). The paper's MARG optimum, 0.033, was found for \
+                 its own sensor (beta scales with gyro error, eq. (33)); on BROAD it scores 7.79 \
+                 deg against 7.22 for 0.041, which is also the Python ahrs reference's value.",
+        },
+        rest_bias_tau: f64 = MADGWICK_REST_BIAS_TAU 10 {
+            unit: "s",
+            default: 0.0,
+            min: 1e-3,
+            max: 3600.0,
+            zero_off: true,
+            doc: "orient option: learn the gyro bias at detected rest (2 deg/s, 0.5 m/s^2, 0.5 deg \
+                 tilt for 1.5 s) with this time constant and subtract it; default 0 = off (the \
+                 paper has no bias estimate in this form).",
+        },
     }
 }
 
@@ -57,46 +73,6 @@ impl Default for MadgwickSettings {
 pub fn beta_from_gyro_error(gyro_error_max: f64) -> f64 {
     (0.75f64).sqrt() * gyro_error_max
 }
-
-pub(crate) const PARAMS: [ParamSpec; 3] = [
-    ParamSpec {
-        id: id::MADGWICK_BETA_IMU,
-        name: "beta_imu",
-        unit: "rad/s",
-        doc: "Gradient step beta for steps without magnetometer, eq. (30); default 0.041 \
-              (Madgwick 2010, section V, optimum of the IMU implementation). \
-              beta = sqrt(3/4) * max gyro error, eq. (33).",
-        default: 0.041,
-        min: 0.0,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::MADGWICK_BETA_MARG,
-        name: "beta_marg",
-        unit: "rad/s",
-        doc: "Gradient step beta for steps with magnetometer, eq. (30); default 0.041, the \
-              paper's IMU optimum (section V). The paper's MARG optimum, 0.033, was found for \
-              its own sensor (beta scales with gyro error, eq. (33)); on BROAD it scores 7.79 \
-              deg against 7.22 for 0.041, which is also the Python ahrs reference's value.",
-        default: 0.041,
-        min: 0.0,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::MADGWICK_REST_BIAS_TAU,
-        name: "rest_bias_tau",
-        unit: "s",
-        doc: "orient option: learn the gyro bias at detected rest (2 deg/s, 0.5 m/s^2, 0.5 deg \
-              tilt for 1.5 s) with this time constant and subtract it; default 0 = off (the \
-              paper has no bias estimate in this form).",
-        default: 0.0,
-        min: 1e-3,
-        max: 3600.0,
-        zero_off: true,
-    },
-];
 
 /// Objective function for gravity, eq. (12): `f_g = q* ⊗ [0 0 0 1] ⊗ q − â`.
 #[inline]
@@ -347,7 +323,9 @@ pub struct Madgwick {
 
 impl Madgwick {
     pub fn new(settings: MadgwickSettings) -> Madgwick {
-        Madgwick { settings, q: Quat::IDENTITY, bias: Vec3::ZERO, rest: RestBias::default() }
+        let mut rest = RestBias::default();
+        rest.prepare(settings.rest_bias_tau > 0.0);
+        Madgwick { settings, q: Quat::IDENTITY, bias: Vec3::ZERO, rest }
     }
 
     /// The estimate `ᴱₛq̂_est` (sensor to earth, North-West-Up).
@@ -385,7 +363,7 @@ impl Madgwick {
     pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
         self.q = q;
-        self.rest = RestBias::default();
+        self.rest.restart();
         used_mag
     }
 
@@ -481,12 +459,11 @@ impl Madgwick {
         accel: Option<Vec3>,
         mag: Option<Vec3>,
     ) -> Option<Step> {
-        let mut rest = self.rest.clone();
-        let bias = rest.update(dt, gyro, accel, self.settings.rest_bias_tau, self.bias);
+        let (detector, bias) = self.rest.update(dt, gyro, accel, self.settings.rest_bias_tau, self.bias);
         let (q, step) = self.step(bias, dt, gyro, accel, mag)?;
         self.q = q;
         self.bias = bias;
-        self.rest = rest;
+        self.rest.commit(detector);
         Some(step)
     }
 
@@ -771,5 +748,65 @@ mod tests {
         let before = f.clone();
         assert!(f.update(1e300, Vec3::new(1e300, 1e300, 0.0), None, None).is_none());
         assert_eq!(f, before);
+    }
+}
+
+/// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
+mod estimator_impl {
+    use super::*;
+    use crate::filters::estimator::{Estimator, Reacquisition};
+    use crate::filters::state::Codec;
+    use crate::filters::{Diagnostics, Kind};
+    use crate::math::Frame;
+
+    impl Estimator for Madgwick {
+        type Settings = MadgwickSettings;
+        const KIND: Kind = Kind::Madgwick;
+        const NATIVE: Frame = Frame::Nwu;
+        const OWN_STARTUP: bool = false;
+
+        fn create(settings: MadgwickSettings) -> Self {
+            Madgwick::new(settings)
+        }
+
+        fn settings(&self) -> &MadgwickSettings {
+            &self.settings
+        }
+
+        fn configure(&mut self, settings: MadgwickSettings) {
+            self.settings = settings;
+            self.rest.prepare(settings.rest_bias_tau > 0.0);
+        }
+
+        #[inline(always)]
+        fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+            Self::update(self, dt, gyro, accel, mag)
+        }
+
+        #[inline(always)]
+        fn quaternion(&self) -> Quat {
+            Madgwick::quaternion(self)
+        }
+
+        fn set_quaternion(&mut self, q: Quat) {
+            Madgwick::set_quaternion(self, q)
+        }
+
+        fn reacquire(&mut self, r: &Reacquisition) -> bool {
+            Madgwick::reacquire(self, r)
+        }
+
+        fn diagnose(&self, d: &mut Diagnostics) {
+            // The bias is reported only with the rest-bias option on.
+            let _ = d;
+        }
+
+        fn codec(&mut self, c: &mut dyn Codec) {
+            Madgwick::codec(self, c)
+        }
+
+        fn valid(&self) -> bool {
+            Madgwick::valid(self)
+        }
     }
 }

@@ -18,66 +18,44 @@
 //! North-West-Up. Integration is first order followed by normalisation, as in the
 //! widely used implementation that produced the BROAD baseline numbers.
 
-use super::params::{id, ParamSpec};
+use super::params::settings;
 use super::rest::RestBias;
 use super::Step;
 use crate::math::{Quat, Vec3};
 
-/// Mahony's settings.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MahonySettings {
-    /// Proportional gain k_P (1/s). Default 0.5, the value of the GMVDK paper's comparison
-    /// (and of BROAD's baseline run).
-    pub kp: f64,
-    /// Integral gain k_I (1/s²). Default 0: no bias estimation, as in that comparison.
-    pub ki: f64,
-    /// Time constant (s) with which the bias b follows the gyroscope at detected rest; 0
-    /// (default, Mahony's filter) turns it off. An orient option; see [`super::rest`].
-    pub rest_bias_tau: f64,
-}
-
-impl Default for MahonySettings {
-    fn default() -> Self {
-        MahonySettings { kp: 0.5, ki: 0.0, rest_bias_tau: 0.0 }
+settings! {
+    /// Mahony's settings.
+    pub struct MahonySettings {
+        kp: f64 = MAHONY_KP 16 {
+            unit: "1/s",
+            default: 0.5,
+            min: 0.0,
+            max: 1000.0,
+            zero_off: false,
+            doc: "Proportional gain on the direction error (Mahony 2008); default 0.5 as in the \
+                 GMVDK paper's comparison and BROAD's baseline.",
+        },
+        ki: f64 = MAHONY_KI 17 {
+            unit: "1/s^2",
+            default: 0.0,
+            min: 0.0,
+            max: 1000.0,
+            zero_off: false,
+            doc: "Integral gain for the gyroscope bias (Mahony 2008); default 0 (no bias \
+                 estimation) as in the GMVDK paper's comparison.",
+        },
+        rest_bias_tau: f64 = MAHONY_REST_BIAS_TAU 18 {
+            unit: "s",
+            default: 0.0,
+            min: 1e-3,
+            max: 3600.0,
+            zero_off: true,
+            doc: "orient option: at detected rest (2 deg/s, 0.5 m/s^2, 0.5 deg tilt for 1.5 s) the \
+                 bias b follows the low-passed gyro with this time constant; default 0 = off \
+                 (Mahony's filter).",
+        },
     }
 }
-
-pub(crate) const PARAMS: [ParamSpec; 3] = [
-    ParamSpec {
-        id: id::MAHONY_KP,
-        name: "kp",
-        unit: "1/s",
-        doc: "Proportional gain on the direction error (Mahony 2008); default 0.5 as in the \
-              GMVDK paper's comparison and BROAD's baseline.",
-        default: 0.5,
-        min: 0.0,
-        max: 1000.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::MAHONY_KI,
-        name: "ki",
-        unit: "1/s^2",
-        doc: "Integral gain for the gyroscope bias (Mahony 2008); default 0 (no bias \
-              estimation) as in the GMVDK paper's comparison.",
-        default: 0.0,
-        min: 0.0,
-        max: 1000.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::MAHONY_REST_BIAS_TAU,
-        name: "rest_bias_tau",
-        unit: "s",
-        doc: "orient option: at detected rest (2 deg/s, 0.5 m/s^2, 0.5 deg tilt for 1.5 s) the \
-              bias b follows the low-passed gyro with this time constant; default 0 = off \
-              (Mahony's filter).",
-        default: 0.0,
-        min: 1e-3,
-        max: 3600.0,
-        zero_off: true,
-    },
-];
 
 /// Mahony's filter: orientation (North-West-Up) and gyroscope bias.
 #[derive(Clone, Debug, PartialEq)]
@@ -90,7 +68,9 @@ pub struct Mahony {
 
 impl Mahony {
     pub fn new(settings: MahonySettings) -> Mahony {
-        Mahony { settings, q: Quat::IDENTITY, bias: Vec3::ZERO, rest: RestBias::default() }
+        let mut rest = RestBias::default();
+        rest.prepare(settings.rest_bias_tau > 0.0);
+        Mahony { settings, q: Quat::IDENTITY, bias: Vec3::ZERO, rest }
     }
 
     pub fn quaternion(&self) -> Quat {
@@ -106,7 +86,7 @@ impl Mahony {
     pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
         self.q = q;
-        self.rest = RestBias::default();
+        self.rest.restart();
         used_mag
     }
 
@@ -199,12 +179,11 @@ impl Mahony {
         accel: Option<Vec3>,
         mag: Option<Vec3>,
     ) -> Option<Step> {
-        let mut rest = self.rest.clone();
-        let bias = rest.update(dt, gyro, accel, self.settings.rest_bias_tau, self.bias);
+        let (detector, bias) = self.rest.update(dt, gyro, accel, self.settings.rest_bias_tau, self.bias);
         let (q, bias, step) = self.step(bias, dt, gyro, accel, mag)?;
         self.q = q;
         self.bias = bias;
-        self.rest = rest;
+        self.rest.commit(detector);
         Some(step)
     }
 
@@ -275,5 +254,64 @@ mod tests {
         }
         assert!((f.bias() - bias).norm() < 1e-6, "{:?}", f.bias());
         assert!(f.quaternion().angle_to(truth) < 1e-6);
+    }
+}
+
+/// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
+mod estimator_impl {
+    use super::*;
+    use crate::filters::estimator::{Estimator, Reacquisition};
+    use crate::filters::state::Codec;
+    use crate::filters::{Diagnostics, Kind};
+    use crate::math::Frame;
+
+    impl Estimator for Mahony {
+        type Settings = MahonySettings;
+        const KIND: Kind = Kind::Mahony;
+        const NATIVE: Frame = Frame::Nwu;
+        const OWN_STARTUP: bool = false;
+
+        fn create(settings: MahonySettings) -> Self {
+            Mahony::new(settings)
+        }
+
+        fn settings(&self) -> &MahonySettings {
+            &self.settings
+        }
+
+        fn configure(&mut self, settings: MahonySettings) {
+            self.settings = settings;
+            self.rest.prepare(settings.rest_bias_tau > 0.0);
+        }
+
+        #[inline(always)]
+        fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+            Self::update(self, dt, gyro, accel, mag)
+        }
+
+        #[inline(always)]
+        fn quaternion(&self) -> Quat {
+            Mahony::quaternion(self)
+        }
+
+        fn set_quaternion(&mut self, q: Quat) {
+            Mahony::set_quaternion(self, q)
+        }
+
+        fn reacquire(&mut self, r: &Reacquisition) -> bool {
+            Mahony::reacquire(self, r)
+        }
+
+        fn diagnose(&self, d: &mut Diagnostics) {
+            d.gyro_bias = self.bias();
+        }
+
+        fn codec(&mut self, c: &mut dyn Codec) {
+            Mahony::codec(self, c)
+        }
+
+        fn valid(&self) -> bool {
+            Mahony::valid(self)
+        }
     }
 }

@@ -20,62 +20,13 @@ pub mod id {
     /// The longest dt taken as given; a larger one is a gap, re-acquired (see `GAP` flag).
     pub const GAP_DT: u32 = 3;
 
-    /// Madgwick β for steps without a magnetometer.
-    pub const MADGWICK_BETA_IMU: u32 = 8;
-    /// Madgwick β for steps with a magnetometer.
-    pub const MADGWICK_BETA_MARG: u32 = 9;
-    /// Madgwick: time constant of the gyro bias learned at rest (0 = off).
-    pub const MADGWICK_REST_BIAS_TAU: u32 = 10;
-
-    pub const MAHONY_KP: u32 = 16;
-    pub const MAHONY_KI: u32 = 17;
-    pub const MAHONY_REST_BIAS_TAU: u32 = 18;
-
-    pub const COMPLEMENTARY_KP: u32 = 24;
-    pub const COMPLEMENTARY_KI: u32 = 25;
-    pub const COMPLEMENTARY_GYRO_REST: u32 = 26;
-    pub const COMPLEMENTARY_ACCEL_REST: u32 = 27;
-    pub const COMPLEMENTARY_INIT_DURATION: u32 = 28;
-    pub const COMPLEMENTARY_ALIGN_HEADING: u32 = 29;
-
-    pub const EKF_TAU_OMEGA: u32 = 40;
-    pub const EKF_OMEGA_STD: u32 = 41;
-    pub const EKF_TAU_DRIFT: u32 = 42;
-    pub const EKF_DRIFT_STD: u32 = 43;
-    pub const EKF_GYRO_NOISE: u32 = 44;
-    pub const EKF_ACCEL_NOISE: u32 = 45;
-    pub const EKF_ACCEL_MOTION: u32 = 46;
-    pub const EKF_HEADING_STD: u32 = 47;
-    pub const EKF_MOTION_TAU: u32 = 48;
-    pub const EKF_HEADING_TAU: u32 = 49;
-    pub const EKF_REST_RATE_STD: u32 = 50;
-    pub const EKF_ACCEL_ADAPT_TAU: u32 = 51;
-    pub const EKF_HEADING_ADAPT_TAU: u32 = 52;
-
-    pub const GMVDK_SLOPE_ALPHA: u32 = 56;
-    pub const GMVDK_SLOPE_MUK: u32 = 57;
-    pub const GMVDK_MU_WINDOW: u32 = 58;
-    pub const GMVDK_INIT_DURATION: u32 = 59;
-    pub const GMVDK_ACTIVITY_TAU: u32 = 60;
-    pub const GMVDK_GYRO_ACTIVITY: u32 = 61;
-    pub const GMVDK_ACCEL_ACTIVITY: u32 = 62;
-    pub const GMVDK_BIAS_WINDOW: u32 = 63;
-    pub const GMVDK_STATIC_ALPHA: u32 = 64;
-    pub const GMVDK_RELATIVE_OUTPUT: u32 = 65;
-
-    pub const ROBUST_TAU_ACC: u32 = 80;
-    pub const ROBUST_TAU_MAG: u32 = 81;
-    pub const ROBUST_REST_GYRO: u32 = 82;
-    pub const ROBUST_REST_ACCEL: u32 = 83;
-    pub const ROBUST_REST_TIME: u32 = 84;
-    pub const ROBUST_REST_TAU: u32 = 85;
-    pub const ROBUST_BIAS_TAU_REST: u32 = 86;
-    pub const ROBUST_BIAS_TAU_MOTION: u32 = 87;
-    pub const ROBUST_BIAS_LIMIT: u32 = 88;
-    pub const ROBUST_MAG_NORM_TH: u32 = 89;
-    pub const ROBUST_MAG_DIP_TH: u32 = 90;
-    pub const ROBUST_HARD_IRON_TIME: u32 = 91;
-    pub const ROBUST_REST_TILT: u32 = 92;
+    // Each kind's slots, defined beside its settings (the `settings!` tables).
+    pub use crate::filters::complementary::id::*;
+    pub use crate::filters::ekf::id::*;
+    pub use crate::filters::gmvdk::id::*;
+    pub use crate::filters::madgwick::id::*;
+    pub use crate::filters::mahony::id::*;
+    pub use crate::filters::robust::id::*;
 }
 
 /// What one parameter slot means.
@@ -169,3 +120,166 @@ pub const COMMON: [ParamSpec; 4] = [
         zero_off: true,
     },
 ];
+
+/// A settings field's value as its `f64` slot holds it, without loss.
+pub trait SlotValue: Copy {
+    fn from_slot(v: f64) -> Self;
+    fn to_slot(self) -> f64;
+}
+
+impl SlotValue for f64 {
+    #[inline]
+    fn from_slot(v: f64) -> f64 {
+        v
+    }
+    #[inline]
+    fn to_slot(self) -> f64 {
+        self
+    }
+}
+
+/// A setting that is on or off: 1 is on, 0 off (the slot keeps the value it was given;
+/// any value from 0.5 up reads as on).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Switch(pub f64);
+
+impl Switch {
+    pub const ON: Switch = Switch(1.0);
+    pub const OFF: Switch = Switch(0.0);
+
+    #[inline]
+    pub fn on(self) -> bool {
+        self.0 >= 0.5
+    }
+}
+
+impl SlotValue for Switch {
+    #[inline]
+    fn from_slot(v: f64) -> Switch {
+        Switch(v)
+    }
+    #[inline]
+    fn to_slot(self) -> f64 {
+        self.0
+    }
+}
+
+/// The mapping between a kind's settings struct and a configuration's slots (made by
+/// `settings!`).
+pub trait Settings: Copy + core::fmt::Debug + PartialEq + Default + Send + Sync + 'static {
+    /// The settings held in a configuration's slots.
+    fn from_slots(s: &[f64; MAX_PARAMS]) -> Self;
+    /// Writes the settings into their slots (shared ones included).
+    fn write_slots(&self, s: &mut [f64; MAX_PARAMS]);
+}
+
+/// The default of a common slot (see [`COMMON`]).
+pub const fn common_default(id: u32) -> f64 {
+    let mut i = 0;
+    while i < COMMON.len() {
+        if COMMON[i].id == id {
+            return COMMON[i].default;
+        }
+        i += 1;
+    }
+    panic!("not a common slot")
+}
+
+/// The one place a kind's parameters are defined. From one entry per parameter (field,
+/// type, slot id and number, unit, default, range, and the sentence that gives its
+/// meaning and the source of its default) it makes:
+/// - the settings struct, each field documented by that sentence, and its `Default`;
+/// - the slot numbers (`id::NAME`), re-exported by [`id`];
+/// - the kind's [`ParamSpec`] table `PARAMS`, which the C API (`orient_param_info`), the
+///   C constants (`src/ffi/param_ids.rs`, generated from it and checked by a test), the
+///   C#, C++ and Python bindings and the replay tool read;
+/// - `from_slots` / `write_slots`, the mapping between the struct and a [`crate::Config`]'s
+///   slots.
+///
+/// `shared` fields are read from common slots (see [`COMMON`]), which have their
+/// entries there.
+macro_rules! settings {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident {
+            $(
+                $field:ident: $ty:ty = $id:ident $num:literal {
+                    unit: $unit:literal,
+                    default: $default:expr,
+                    min: $min:expr,
+                    max: $max:expr,
+                    zero_off: $zero_off:literal,
+                    doc: $doc:literal $(,)?
+                }
+            ),* $(,)?
+        }
+        $(shared { $($sfield:ident: $sty:ty = $sid:ident),* $(,)? })?
+    ) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $name {
+            $(
+                #[doc = $doc]
+                #[doc = concat!("\n\nUnit: ", $unit, "; range ", stringify!($min), " to ", stringify!($max),
+                    "; slot ", stringify!($num), ".")]
+                pub $field: $ty,
+            )*
+            $($(
+                #[doc = concat!("From the common slot `", stringify!($sid), "`.")]
+                pub $sfield: $sty,
+            )*)?
+        }
+
+        /// Slot numbers of this kind's parameters.
+        pub mod id {
+            $(
+                #[doc = $doc]
+                pub const $id: u32 = $num;
+            )*
+        }
+
+        /// This kind's own parameters (the common ones are [`crate::filters::params::COMMON`]).
+        pub(crate) const PARAMS: &[$crate::filters::params::ParamSpec] = &[
+            $(
+                $crate::filters::params::ParamSpec {
+                    id: $num,
+                    name: stringify!($field),
+                    unit: $unit,
+                    doc: $doc,
+                    default: $default,
+                    min: $min,
+                    max: $max,
+                    zero_off: $zero_off,
+                },
+            )*
+        ];
+
+        impl Default for $name {
+            fn default() -> Self {
+                use $crate::filters::params::SlotValue;
+                $name {
+                    $($field: <$ty>::from_slot($default),)*
+                    $($($sfield: <$sty>::from_slot(
+                        $crate::filters::params::common_default($crate::filters::params::id::$sid)),)*)?
+                }
+            }
+        }
+
+        impl $crate::filters::params::Settings for $name {
+            fn from_slots(s: &[f64; $crate::filters::params::MAX_PARAMS]) -> Self {
+                use $crate::filters::params::SlotValue;
+                $name {
+                    $($field: <$ty>::from_slot(s[$num]),)*
+                    $($($sfield: <$sty>::from_slot(s[$crate::filters::params::id::$sid as usize]),)*)?
+                }
+            }
+
+            fn write_slots(&self, s: &mut [f64; $crate::filters::params::MAX_PARAMS]) {
+                use $crate::filters::params::SlotValue;
+                $(s[$num] = self.$field.to_slot();)*
+                $($(s[$crate::filters::params::id::$sid as usize] = self.$sfield.to_slot();)*)?
+            }
+        }
+    };
+}
+pub(crate) use settings;

@@ -118,32 +118,83 @@ impl RestThresholds {
 
 /// Rest detection with [`RestThresholds::DEFAULT`] feeding a gyroscope bias: the option
 /// that gives the seed filters bias estimation at rest.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default)]
 pub struct RestBias {
-    detector: RestDetector,
+    /// The detector, boxed: the option is off by default, and a filter without it keeps
+    /// 8 bytes here instead of the detector's 88. `None` is a detector that has seen no
+    /// sample. The box is made when the option is switched on ([`RestBias::prepare`]),
+    /// never in an update.
+    detector: Option<Box<RestDetector>>,
+}
+
+/// Equal when the detectors are: no box is a fresh detector.
+impl PartialEq for RestBias {
+    fn eq(&self, other: &RestBias) -> bool {
+        let fresh = RestDetector::default();
+        self.detector.as_deref().unwrap_or(&fresh) == other.detector.as_deref().unwrap_or(&fresh)
+    }
 }
 
 impl RestBias {
-    /// The bias after this sample: at rest it moves towards the low-passed gyroscope with
-    /// time constant `tau` (s); otherwise it is returned unchanged.
-    pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, tau: f64, bias: Vec3) -> Vec3 {
-        if self.detector.update(dt, gyro, accel, &RestThresholds::DEFAULT) {
-            bias + (self.detector.gyro_lp() - bias) * lp_gain(dt, tau)
+    /// Makes the detector's box when the option is on, so that no update allocates.
+    pub fn prepare(&mut self, on: bool) {
+        if on && self.detector.is_none() {
+            self.detector = Some(Box::default());
+        }
+    }
+
+    /// The bias after this sample and the detector state that goes with it: at rest the
+    /// bias moves towards the low-passed gyroscope with time constant `tau` (s);
+    /// otherwise it is returned unchanged. Nothing is stored: [`RestBias::commit`] keeps
+    /// the detector once the filter's step has succeeded.
+    pub fn update(
+        &self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        tau: f64,
+        bias: Vec3,
+    ) -> (RestDetector, Vec3) {
+        let mut detector = self.detector.as_deref().cloned().unwrap_or_default();
+        let bias = if detector.update(dt, gyro, accel, &RestThresholds::DEFAULT) {
+            bias + (detector.gyro_lp() - bias) * lp_gain(dt, tau)
         } else {
             bias
+        };
+        (detector, bias)
+    }
+
+    /// Keeps the detector state of a successful step.
+    pub fn commit(&mut self, detector: RestDetector) {
+        match &mut self.detector {
+            Some(d) => **d = detector,
+            // Only when prepare() was not called for an option that is on.
+            None => self.detector = Some(Box::new(detector)),
+        }
+    }
+
+    /// Starts detection over (the box is kept).
+    pub fn restart(&mut self) {
+        if let Some(d) = &mut self.detector {
+            **d = RestDetector::default();
         }
     }
 
     pub fn at_rest(&self) -> bool {
-        self.detector.at_rest()
+        self.detector.as_ref().is_some_and(|d| d.at_rest())
     }
 
     pub(crate) fn valid(&self) -> bool {
-        self.detector.valid()
+        self.detector.as_ref().map_or(true, |d| d.valid())
     }
 
+    /// The detector's fields (a fresh detector's when there is none).
     pub fn codec(&mut self, c: &mut dyn Codec) {
-        self.detector.codec(c);
+        let mut d = self.detector.as_deref().cloned().unwrap_or_default();
+        d.codec(c);
+        if self.detector.is_some() || d != RestDetector::default() {
+            self.commit(d);
+        }
     }
 }
 

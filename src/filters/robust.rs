@@ -40,215 +40,140 @@
 //! any dt and needs no transcendental per sample.
 
 use super::complementary::rotation_of;
-use super::params::{id, ParamSpec};
+use super::params::settings;
 use super::rest::{lp_gain, RestDetector, RestThresholds};
 use super::state::Codec;
 use super::Step;
 use crate::math::{Quat, Vec3};
 
-/// Settings of the recommended filter. Every default holds for hand-held and body-worn
-/// sensors at 50-1000 Hz; none is fitted to a single recording.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RobustSettings {
-    /// Time constant of the accelerometer low-pass in the quasi-inertial frame (s).
-    pub tau_acc: f64,
-    /// Time constant of the magnetometer heading correction (s).
-    pub tau_mag: f64,
-    /// Rest: gyroscope spread and low-passed magnitude below this (rad/s).
-    pub rest_gyro: f64,
-    /// Rest: accelerometer spread below this (m/s²).
-    pub rest_accel: f64,
-    /// Rest: largest change of the accelerometer direction within a rest (rad).
-    pub rest_tilt: f64,
-    /// Rest: conditions must hold this long (s).
-    pub rest_time: f64,
-    /// Time constant of the rest-detection low-pass (s).
-    pub rest_tau: f64,
-    /// Time constant of the bias estimate at rest (s).
-    pub bias_tau_rest: f64,
-    /// Time constant of the bias estimate in motion (s); 0 turns it off.
-    pub bias_tau_motion: f64,
-    /// Largest bias the motion estimate may reach (rad/s).
-    pub bias_limit: f64,
-    /// Magnetic disturbance: relative deviation of the field norm from the reference.
-    pub mag_norm_th: f64,
-    /// Magnetic disturbance: deviation of the dip angle from the reference (rad).
-    pub mag_dip_th: f64,
-    /// Seconds of a consistent hard-iron estimate before it is used; 0 turns it off.
-    pub hard_iron_time: f64,
-}
-
-impl Default for RobustSettings {
-    fn default() -> Self {
-        let p = |i: u32| PARAMS.iter().find(|p| p.id == i).map_or(0.0, |p| p.default);
-        RobustSettings {
-            tau_acc: p(id::ROBUST_TAU_ACC),
-            tau_mag: p(id::ROBUST_TAU_MAG),
-            rest_gyro: p(id::ROBUST_REST_GYRO),
-            rest_accel: p(id::ROBUST_REST_ACCEL),
-            rest_time: p(id::ROBUST_REST_TIME),
-            rest_tilt: p(id::ROBUST_REST_TILT),
-            rest_tau: p(id::ROBUST_REST_TAU),
-            bias_tau_rest: p(id::ROBUST_BIAS_TAU_REST),
-            bias_tau_motion: p(id::ROBUST_BIAS_TAU_MOTION),
-            bias_limit: p(id::ROBUST_BIAS_LIMIT),
-            mag_norm_th: p(id::ROBUST_MAG_NORM_TH),
-            mag_dip_th: p(id::ROBUST_MAG_DIP_TH),
-            hard_iron_time: p(id::ROBUST_HARD_IRON_TIME),
-        }
+settings! {
+    /// Settings of the recommended filter. Every default holds for hand-held and body-worn
+    /// sensors at 50-1000 Hz; none is fitted to a single recording.
+    pub struct RobustSettings {
+        tau_acc: f64 = ROBUST_TAU_ACC 80 {
+            unit: "s",
+            default: 2.5,
+            min: 1e-3,
+            max: 1000.0,
+            zero_off: false,
+            doc: "Time constant of the accelerometer low-pass (2nd-order Butterworth, cutoff \
+                 sqrt(2)/(2 pi tau)) in the quasi-inertial frame; default 2.5 (orient: long enough \
+                 to average out hand and body accelerations; BROAD scores vary by under 0.03 deg \
+                 over 2.5-3 s).",
+        },
+        tau_mag: f64 = ROBUST_TAU_MAG 81 {
+            unit: "s",
+            default: 9.0,
+            min: 1e-3,
+            max: 1000.0,
+            zero_off: false,
+            doc: "Time constant of the magnetometer heading correction; default 9 (VQF's default: \
+                 slow enough that a short undetected disturbance moves heading little).",
+        },
+        rest_gyro: f64 = ROBUST_REST_GYRO 82 {
+            unit: "rad/s",
+            default: 0.03490658503988659,
+            min: 0.0,
+            max: 10.0,
+            zero_off: false,
+            doc: "Rest when the gyroscope's spread around its low-pass and the low-pass itself stay \
+                 below this; default 0.0349 (2 deg/s, VQF's default; MEMS biases are below it).",
+        },
+        rest_accel: f64 = ROBUST_REST_ACCEL 83 {
+            unit: "m/s^2",
+            default: 0.5,
+            min: 0.0,
+            max: 100.0,
+            zero_off: false,
+            doc: "Rest when the accelerometer's spread around its low-pass stays below this; \
+                 default 0.5 (VQF's default).",
+        },
+        rest_time: f64 = ROBUST_REST_TIME 84 {
+            unit: "s",
+            default: 1.5,
+            min: 0.0,
+            max: 3600.0,
+            zero_off: false,
+            doc: "How long the rest conditions must hold before the sensor counts as resting; \
+                 default 1.5 (VQF's default).",
+        },
+        rest_tilt: f64 = ROBUST_REST_TILT 92 {
+            unit: "rad",
+            default: 0.008726646259971648,
+            min: 0.0,
+            max: 3.2,
+            zero_off: false,
+            doc: "Rest also needs the low-passed accelerometer direction to stay within this angle \
+                 of where the still period began, so a slow turn under rest_gyro is not learned \
+                 as bias; default 0.0087 (0.5 deg, orient: 10x the direction noise after the \
+                 rest low-pass of a consumer MEMS accelerometer).",
+        },
+        rest_tau: f64 = ROBUST_REST_TAU 85 {
+            unit: "s",
+            default: 0.5,
+            min: 1e-3,
+            max: 100.0,
+            zero_off: false,
+            doc: "Time constant of the low-pass that rest detection compares against; default 0.5 \
+                 (VQF's default).",
+        },
+        bias_tau_rest: f64 = ROBUST_BIAS_TAU_REST 86 {
+            unit: "s",
+            default: 2.0,
+            min: 1e-3,
+            max: 3600.0,
+            zero_off: false,
+            doc: "Time constant with which the bias follows the low-passed gyroscope at rest; \
+                 default 2 (orient: settles within a typical 5-10 s pause).",
+        },
+        bias_tau_motion: f64 = ROBUST_BIAS_TAU_MOTION 87 {
+            unit: "s",
+            default: 100.0,
+            min: 1e-3,
+            max: 1e6,
+            zero_off: true,
+            doc: "Time constant of the bias estimate from the accelerometer correction in motion; \
+                 default 100 (orient: 40 times tau_acc, so accelerations that leak through the \
+                 low-pass average out before they move the bias); 0 turns it off.",
+        },
+        bias_limit: f64 = ROBUST_BIAS_LIMIT 88 {
+            unit: "rad/s",
+            default: 0.03490658503988659,
+            min: 0.0,
+            max: 10.0,
+            zero_off: false,
+            doc: "Largest bias norm the motion estimate may reach; default 0.0349 (2 deg/s, the \
+                 rest threshold: a larger bias would also hide rest).",
+        },
+        mag_norm_th: f64 = ROBUST_MAG_NORM_TH 89 {
+            unit: "1",
+            default: 0.1,
+            min: 0.0,
+            max: 10.0,
+            zero_off: false,
+            doc: "Magnetic disturbance when the field norm deviates from the reference by more \
+                 than this fraction; default 0.1 (VQF's default).",
+        },
+        mag_dip_th: f64 = ROBUST_MAG_DIP_TH 90 {
+            unit: "rad",
+            default: 0.17453292519943295,
+            min: 0.0,
+            max: 3.2,
+            zero_off: false,
+            doc: "Magnetic disturbance when the dip angle deviates from the reference by more than \
+                 this; default 0.1745 (10 deg, VQF's default).",
+        },
+        hard_iron_time: f64 = ROBUST_HARD_IRON_TIME 91 {
+            unit: "s",
+            default: 3.0,
+            min: 1e-3,
+            max: 3600.0,
+            zero_off: true,
+            doc: "A sensor-fixed disturbance (attached magnet) is compensated once its estimate has \
+                 been consistent this long; default 3 (orient); 0 turns compensation off.",
+        },
     }
 }
-
-pub(crate) const PARAMS: [ParamSpec; 13] = [
-    ParamSpec {
-        id: id::ROBUST_TAU_ACC,
-        name: "tau_acc",
-        unit: "s",
-        doc: "Time constant of the accelerometer low-pass (2nd-order Butterworth, cutoff \
-              sqrt(2)/(2 pi tau)) in the quasi-inertial frame; default 2.5 (orient: long enough \
-              to average out hand and body accelerations; BROAD scores vary by under 0.03 deg \
-              over 2.5-3 s).",
-        default: 2.5,
-        min: 1e-3,
-        max: 1000.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_TAU_MAG,
-        name: "tau_mag",
-        unit: "s",
-        doc: "Time constant of the magnetometer heading correction; default 9 (VQF's default: \
-              slow enough that a short undetected disturbance moves heading little).",
-        default: 9.0,
-        min: 1e-3,
-        max: 1000.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_REST_GYRO,
-        name: "rest_gyro",
-        unit: "rad/s",
-        doc: "Rest when the gyroscope's spread around its low-pass and the low-pass itself stay \
-              below this; default 0.0349 (2 deg/s, VQF's default; MEMS biases are below it).",
-        default: 0.03490658503988659,
-        min: 0.0,
-        max: 10.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_REST_ACCEL,
-        name: "rest_accel",
-        unit: "m/s^2",
-        doc: "Rest when the accelerometer's spread around its low-pass stays below this; \
-              default 0.5 (VQF's default).",
-        default: 0.5,
-        min: 0.0,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_REST_TIME,
-        name: "rest_time",
-        unit: "s",
-        doc: "How long the rest conditions must hold before the sensor counts as resting; \
-              default 1.5 (VQF's default).",
-        default: 1.5,
-        min: 0.0,
-        max: 3600.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_REST_TILT,
-        name: "rest_tilt",
-        unit: "rad",
-        doc: "Rest also needs the low-passed accelerometer direction to stay within this angle \
-              of where the still period began, so a slow turn under rest_gyro is not learned \
-              as bias; default 0.0087 (0.5 deg, orient: 10x the direction noise after the \
-              rest low-pass of a consumer MEMS accelerometer).",
-        default: 0.008726646259971648,
-        min: 0.0,
-        max: 3.2,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_REST_TAU,
-        name: "rest_tau",
-        unit: "s",
-        doc: "Time constant of the low-pass that rest detection compares against; default 0.5 \
-              (VQF's default).",
-        default: 0.5,
-        min: 1e-3,
-        max: 100.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_BIAS_TAU_REST,
-        name: "bias_tau_rest",
-        unit: "s",
-        doc: "Time constant with which the bias follows the low-passed gyroscope at rest; \
-              default 2 (orient: settles within a typical 5-10 s pause).",
-        default: 2.0,
-        min: 1e-3,
-        max: 3600.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_BIAS_TAU_MOTION,
-        name: "bias_tau_motion",
-        unit: "s",
-        doc: "Time constant of the bias estimate from the accelerometer correction in motion; \
-              default 100 (orient: 40 times tau_acc, so accelerations that leak through the \
-              low-pass average out before they move the bias); 0 turns it off.",
-        default: 100.0,
-        min: 1e-3,
-        max: 1e6,
-        zero_off: true,
-    },
-    ParamSpec {
-        id: id::ROBUST_BIAS_LIMIT,
-        name: "bias_limit",
-        unit: "rad/s",
-        doc: "Largest bias norm the motion estimate may reach; default 0.0349 (2 deg/s, the \
-              rest threshold: a larger bias would also hide rest).",
-        default: 0.03490658503988659,
-        min: 0.0,
-        max: 10.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_MAG_NORM_TH,
-        name: "mag_norm_th",
-        unit: "1",
-        doc: "Magnetic disturbance when the field norm deviates from the reference by more \
-              than this fraction; default 0.1 (VQF's default).",
-        default: 0.1,
-        min: 0.0,
-        max: 10.0,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_MAG_DIP_TH,
-        name: "mag_dip_th",
-        unit: "rad",
-        doc: "Magnetic disturbance when the dip angle deviates from the reference by more than \
-              this; default 0.1745 (10 deg, VQF's default).",
-        default: 0.17453292519943295,
-        min: 0.0,
-        max: 3.2,
-        zero_off: false,
-    },
-    ParamSpec {
-        id: id::ROBUST_HARD_IRON_TIME,
-        name: "hard_iron_time",
-        unit: "s",
-        doc: "A sensor-fixed disturbance (attached magnet) is compensated once its estimate has \
-              been consistent this long; default 3 (orient); 0 turns compensation off.",
-        default: 3.0,
-        min: 1e-3,
-        max: 3600.0,
-        zero_off: true,
-    },
-];
 
 /// Wraps an angle into (-π, π].
 fn wrap(a: f64) -> f64 {
@@ -895,5 +820,64 @@ mod tests {
             peak = peak.max(y.x);
         }
         assert!((y - x).norm() < 2e-3 && peak < 1.05, "{y:?} {peak}");
+    }
+}
+
+/// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
+mod estimator_impl {
+    use super::*;
+    use crate::filters::estimator::{Estimator, Reacquisition};
+    use crate::filters::state::Codec;
+    use crate::filters::{Diagnostics, Kind};
+    use crate::math::Frame;
+
+    impl Estimator for Robust {
+        type Settings = RobustSettings;
+        const KIND: Kind = Kind::Robust;
+        const NATIVE: Frame = Frame::Enu;
+        const OWN_STARTUP: bool = false;
+
+        fn create(settings: RobustSettings) -> Self {
+            Robust::new(settings)
+        }
+
+        fn settings(&self) -> &RobustSettings {
+            &self.settings
+        }
+
+        fn configure(&mut self, settings: RobustSettings) {
+            self.settings = settings;
+        }
+
+        #[inline(always)]
+        fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+            Self::update(self, dt, gyro, accel, mag)
+        }
+
+        #[inline(always)]
+        fn quaternion(&self) -> Quat {
+            Robust::quaternion(self)
+        }
+
+        fn set_quaternion(&mut self, q: Quat) {
+            Robust::set_quaternion(self, q)
+        }
+
+        fn reacquire(&mut self, r: &Reacquisition) -> bool {
+            Robust::reacquire(self, r)
+        }
+
+        fn diagnose(&self, d: &mut Diagnostics) {
+            d.gyro_bias = self.bias();
+            d.rest = if self.at_rest() { 1.0 } else { 0.0 };
+        }
+
+        fn codec(&mut self, c: &mut dyn Codec) {
+            Robust::codec(self, c)
+        }
+
+        fn valid(&self) -> bool {
+            Robust::valid(self)
+        }
     }
 }

@@ -44,11 +44,21 @@ impl Frame {
 
     /// The constant rotation `c` with `q_to = c ⊗ q_self`; `None` when the frames are
     /// the same (no product is taken, so the quaternion passes through bit for bit).
-    pub fn rotation_to(self, to: Frame) -> Option<Quat> {
-        if self == to {
-            None
-        } else {
-            Some((to.from_enu() * self.from_enu().conj()).normalized())
+    ///
+    /// The six rotations are constants: `(to.from_enu() ⊗ self.from_enu()*)` normalised,
+    /// written out (a test checks them bit for bit against that product), so that an
+    /// output read costs no product of constants.
+    pub const fn rotation_to(self, to: Frame) -> Option<Quat> {
+        // 1/√2 rounded as the product gives it (one ulp under FRAC_1_SQRT_2).
+        const H: f64 = 0.7071067811865475;
+        match (self, to) {
+            (Frame::Enu, Frame::Ned) => Some(Quat::new(0.0, H, H, 0.0)),
+            (Frame::Enu, Frame::Nwu) => Some(Quat::new(H, 0.0, 0.0, -H)),
+            (Frame::Ned, Frame::Enu) => Some(Quat::new(0.0, -H, -H, 0.0)),
+            (Frame::Ned, Frame::Nwu) => Some(Quat::new(0.0, -1.0, 0.0, -0.0)),
+            (Frame::Nwu, Frame::Enu) => Some(Quat::new(H, 0.0, 0.0, H)),
+            (Frame::Nwu, Frame::Ned) => Some(Quat::new(0.0, 1.0, 0.0, 0.0)),
+            _ => None,
         }
     }
 
@@ -94,6 +104,17 @@ impl Frame {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_rotation_constants_are_the_products_of_the_frames() {
+        for a in Frame::ALL {
+            for b in Frame::ALL {
+                let product = (a != b).then(|| (b.from_enu() * a.from_enu().conj()).normalized());
+                let bits = |q: Option<Quat>| q.map(|q| [q.w, q.x, q.y, q.z].map(f64::to_bits));
+                assert_eq!(bits(a.rotation_to(b)), bits(product), "{a:?} -> {b:?}");
+            }
+        }
+    }
+
     use super::*;
 
     #[test]

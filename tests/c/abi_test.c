@@ -389,7 +389,7 @@ static void handle_paths(void) {
     memset(fake, 0, sizeof fake);
     memcpy(fake, "ORIENT.1", 8);
     CHECK_STATUS(orient_filter_update(not_a_handle, &s), ORIENT_STATUS_INVALID_HANDLE);
-    memcpy(fake, (const void *)f, 64);
+    memcpy(fake, (const void *)f, 16); /* a handle block is 16 bytes: kind tag, pointer */
     CHECK_STATUS(orient_filter_update(not_a_handle, &s), ORIENT_STATUS_INVALID_HANDLE);
     CHECK_STATUS(orient_filter_kind(not_a_handle, &kind), ORIENT_STATUS_INVALID_HANDLE);
     CHECK_STATUS(orient_filter_free(not_a_handle), ORIENT_STATUS_INVALID_HANDLE);

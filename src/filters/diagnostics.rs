@@ -1,0 +1,55 @@
+//! Internal states a host may show, the same struct for every kind.
+
+use crate::math::Vec3;
+
+/// Bits of [`Diagnostics::present`] and [`Kind::diagnostics`].
+pub mod diag {
+    pub const GYRO_BIAS: u32 = 1;
+    pub const REST: u32 = 2;
+    pub const ALPHA: u32 = 4;
+    pub const MU_KA: u32 = 8;
+    pub const MU_KM: u32 = 16;
+    pub const MU_K: u32 = 32;
+    pub const RATE: u32 = 64;
+    pub const COVARIANCE: u32 = 128;
+}
+
+/// Internal states a host may show, the same struct for every kind. A field whose bit in
+/// `present` is clear does not apply to this kind (or not yet) and holds NaN.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Diagnostics {
+    /// [`diag`] bits of the fields that hold values.
+    pub present: u32,
+    /// Gyroscope bias being subtracted (rad/s): Mahony's b, McGinnis' ω_b, the EKF's drift
+    /// δ, GMVDK's regression bias.
+    pub gyro_bias: Vec3,
+    /// McGinnis: the last sample counted as rest (gains active): 1.0, else 0.0.
+    pub rest: f64,
+    /// GMVDK accelerometer trust α of the last update.
+    pub alpha: f64,
+    /// GMVDK μ_KA, μ_KM and μ_K of the last update with a magnetometer.
+    pub mu_ka: f64,
+    pub mu_km: f64,
+    pub mu_k: f64,
+    /// EKF angular rate state ω (rad/s).
+    pub rate: Vec3,
+    /// EKF covariance diagonal, state order [q0, q1, q2, q3, ω, δ].
+    pub covariance: [f64; 10],
+}
+
+impl Default for Diagnostics {
+    fn default() -> Self {
+        let nan = f64::NAN;
+        Diagnostics {
+            present: 0,
+            gyro_bias: Vec3::new(nan, nan, nan),
+            rest: nan,
+            alpha: nan,
+            mu_ka: nan,
+            mu_km: nan,
+            mu_k: nan,
+            rate: Vec3::new(nan, nan, nan),
+            covariance: [nan; 10],
+        }
+    }
+}

@@ -1,0 +1,100 @@
+//! The trait every filter kind implements, and what its update and re-acquisition
+//! exchange with the common lifecycle ([`super::Runner`]).
+
+use super::params::Settings;
+use super::state::Codec;
+use super::{Diagnostics, Kind};
+use crate::math::{Frame, Quat, Vec3};
+
+/// One filter kind: its settings and parameter table, its native frame, and its state
+/// with the update written in the paper's terms. Everything else (checks, start-up from
+/// the first sample, gaps, frames, flags, snapshots' framing, outputs) is the common
+/// lifecycle's, the same for every kind.
+pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync + 'static {
+    /// The settings struct made by the kind's `settings!` table.
+    type Settings: Settings;
+    const KIND: Kind;
+    /// The earth frame the kind's equations are written in.
+    const NATIVE: Frame;
+    /// True for kinds that estimate their start from a period of samples themselves.
+    const OWN_STARTUP: bool = false;
+
+    fn create(settings: Self::Settings) -> Self;
+    fn settings(&self) -> &Self::Settings;
+    /// Takes new settings; the state is kept.
+    fn configure(&mut self, settings: Self::Settings);
+    /// Back to the state of [`Estimator::create`] with these settings, without touching
+    /// the heap.
+    fn restart(&mut self, settings: Self::Settings) {
+        *self = Self::create(settings);
+    }
+    /// One update in the native frame; `None` (and no change) on numerical failure.
+    fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step>;
+    /// The output orientation (native frame, or relative for GMVDK's relative output).
+    fn quaternion(&self) -> Quat;
+    /// The orientation in the native earth frame (GMVDK's, not its relative output).
+    fn absolute_quaternion(&self) -> Quat {
+        self.quaternion()
+    }
+    /// True when the output is not in an earth frame (GMVDK's relative output).
+    fn relative(&self) -> bool {
+        false
+    }
+    /// Sets the estimate (native frame, unit quaternion).
+    fn set_quaternion(&mut self, q: Quat);
+    /// Re-acquisition after a gap (native frame): `keep` has the accelerometer's
+    /// inclination and the heading held before the gap, `with_mag` the accelerometer's
+    /// and magnetometer's attitude when the sample has a usable magnetometer. Each kind
+    /// takes one, starts its low-passes and detectors over and keeps its bias estimate.
+    /// Returns true when the magnetometer's attitude was taken.
+    fn reacquire(&mut self, r: &Reacquisition) -> bool;
+    /// Fills the fields of [`Diagnostics`] this kind has (its `present` bits are set to
+    /// [`Kind::diagnostics`] before; a kind clears those it has no value for yet).
+    fn diagnose(&self, d: &mut Diagnostics);
+    /// The state fields of a snapshot, in order.
+    fn codec(&mut self, c: &mut dyn Codec);
+    /// True when every value is one the kind's updates could have left (a decoded
+    /// snapshot is checked with it).
+    fn valid(&self) -> bool;
+}
+
+/// What a core needs to re-acquire its orientation after a gap (native frame).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Reacquisition {
+    /// Inclination from the accelerometer, heading as before the gap.
+    pub keep: Quat,
+    /// Inclination from the accelerometer, heading from the magnetometer.
+    pub with_mag: Option<Quat>,
+    /// The sample's time step (the gap, s) and readings.
+    pub dt: f64,
+    pub gyro: Vec3,
+    pub accel: Vec3,
+    pub mag: Option<Vec3>,
+}
+
+impl Reacquisition {
+    /// The orientation a kind without its own magnetometer test takes, and whether the
+    /// magnetometer's heading is in it.
+    pub fn plain(&self) -> (Quat, bool) {
+        match self.with_mag {
+            Some(q) => (q, true),
+            None => (self.keep, false),
+        }
+    }
+}
+
+/// The rotation about `up` (earth frame) in `d`: its twist, the rotation about that axis
+/// nearest to `d`; the identity when `d` has none (a half turn about a horizontal axis).
+pub(crate) fn twist_about(d: Quat, up: Vec3) -> Quat {
+    let along = up * d.vector().dot(up);
+    Quat::new(d.w, along.x, along.y, along.z).try_normalized().unwrap_or(Quat::IDENTITY)
+}
+
+/// What one core update did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Step {
+    pub used_accel: bool,
+    pub used_mag: bool,
+    /// The filter is still in its start-up period and has no orientation yet.
+    pub initializing: bool,
+}

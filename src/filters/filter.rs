@@ -1,0 +1,324 @@
+//! [`Filter`]: a filter of any kind behind one type, for hosts that choose the kind at
+//! run time (the C API, the bindings, the replay tool). It holds one boxed
+//! [`Runner`] of its kind, so its memory is that kind's state and a few words (see
+//! [`Filter::memory`]); every call is one match on the kind and the kind's own code.
+
+use super::complementary::Complementary;
+use super::ekf::Ekf;
+use super::estimator::Estimator;
+use super::gmvdk::Gmvdk;
+use super::madgwick::{Madgwick, LANES};
+use super::mahony::Mahony;
+use super::robust::Robust;
+use super::runner::Runner;
+use super::sample::SampleView;
+use super::state::StateError;
+use super::{Config, Diagnostics, Error, Kind, Sample};
+use crate::math::{Euler, Quat, Vec3};
+
+/// One runner per kind, boxed: a handle takes what its kind needs.
+#[derive(Clone, Debug, PartialEq)]
+enum Inner {
+    Madgwick(Box<Runner<Madgwick>>),
+    Mahony(Box<Runner<Mahony>>),
+    Complementary(Box<Runner<Complementary>>),
+    Ekf(Box<Runner<Ekf>>),
+    Gmvdk(Box<Runner<Gmvdk>>),
+    Robust(Box<Runner<Robust>>),
+}
+
+/// Runs the same expression on whichever kind's runner the filter holds.
+macro_rules! each {
+    ($inner:expr, $r:ident => $body:expr) => {
+        match $inner {
+            Inner::Madgwick($r) => $body,
+            Inner::Mahony($r) => $body,
+            Inner::Complementary($r) => $body,
+            Inner::Ekf($r) => $body,
+            Inner::Gmvdk($r) => $body,
+            Inner::Robust($r) => $body,
+        }
+    };
+}
+
+/// Runs `$body` with `$E` naming the [`Estimator`] type of `$kind`: code generic over
+/// the kind, run for a kind chosen at run time (tests are driven from [`Kind::ALL`]).
+#[allow(unused_macros)]
+macro_rules! with_kind {
+    ($kind:expr, $E:ident => $body:expr) => {
+        match $kind {
+            $crate::filters::Kind::Madgwick => {
+                type $E = $crate::filters::madgwick::Madgwick;
+                $body
+            }
+            $crate::filters::Kind::Mahony => {
+                type $E = $crate::filters::mahony::Mahony;
+                $body
+            }
+            $crate::filters::Kind::Complementary => {
+                type $E = $crate::filters::complementary::Complementary;
+                $body
+            }
+            $crate::filters::Kind::Ekf => {
+                type $E = $crate::filters::ekf::Ekf;
+                $body
+            }
+            $crate::filters::Kind::Gmvdk => {
+                type $E = $crate::filters::gmvdk::Gmvdk;
+                $body
+            }
+            $crate::filters::Kind::Robust => {
+                type $E = $crate::filters::robust::Robust;
+                $body
+            }
+        }
+    };
+}
+#[allow(unused_imports)]
+pub(crate) use with_kind;
+
+/// An orientation filter of any kind, with the common lifecycle:
+/// [`Filter::new`], [`Filter::update`], the getters, [`Filter::reset`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Filter(Inner);
+
+impl Filter {
+    pub fn new(config: &Config) -> Result<Filter, Error> {
+        fn boxed<E: Estimator>(c: &Config) -> Result<Box<Runner<E>>, Error> {
+            Runner::<E>::new(c).map(Box::new)
+        }
+        Ok(Filter(match config.kind() {
+            Kind::Madgwick => Inner::Madgwick(boxed(config)?),
+            Kind::Mahony => Inner::Mahony(boxed(config)?),
+            Kind::Complementary => Inner::Complementary(boxed(config)?),
+            Kind::Ekf => Inner::Ekf(boxed(config)?),
+            Kind::Gmvdk => Inner::Gmvdk(boxed(config)?),
+            Kind::Robust => Inner::Robust(boxed(config)?),
+        }))
+    }
+
+    pub fn kind(&self) -> Kind {
+        fn kind_of<E: Estimator>(_: &Runner<E>) -> Kind {
+            E::KIND
+        }
+        each!(&self.0, r => kind_of(r))
+    }
+
+    /// Bytes this filter occupies: the value itself and its kind's boxed state (heap
+    /// blocks outside it, GMVDK's μ window, not counted). Constant per kind.
+    pub fn memory(&self) -> usize {
+        fn size_of<E: Estimator>(_: &Runner<E>) -> usize {
+            core::mem::size_of::<Runner<E>>()
+        }
+        core::mem::size_of::<Filter>() + each!(&self.0, r => size_of(r))
+    }
+
+    /// The configuration: kind, frame, initial orientation, and every parameter as set
+    /// (by the configuration it was made with and by [`Filter::set_param`] since).
+    pub fn config(&self) -> Config {
+        each!(&self.0, r => r.config())
+    }
+
+    /// Back to the state right after [`Filter::new`]; the settings are kept.
+    pub fn reset(&mut self) {
+        each!(&mut self.0, r => r.reset())
+    }
+
+    /// Changes a parameter while running; the orientation is kept.
+    pub fn set_param(&mut self, id: u32, value: f64) -> Result<(), Error> {
+        each!(&mut self.0, r => r.set_param(id, value))
+    }
+
+    pub fn param(&self, id: u32) -> Result<f64, Error> {
+        each!(&self.0, r => r.param(id))
+    }
+
+    /// Sets the orientation (in the configured frame; normalised). The filter counts as
+    /// initialised afterwards.
+    pub fn set_quaternion(&mut self, q: Quat) -> Result<(), Error> {
+        each!(&mut self.0, r => r.set_quaternion(q))
+    }
+
+    /// Checks a sample against every rule without touching the state.
+    #[inline]
+    pub fn check(&self, s: &Sample) -> Result<(), Error> {
+        each!(&self.0, r => r.check_view(s))
+    }
+
+    /// One step. On error nothing changes: the state is bit-identical to before.
+    pub fn update(&mut self, s: &Sample) -> Result<(), Error> {
+        self.update_inline(s)
+    }
+
+    /// [`Filter::update`] for any [`SampleView`], inlined into its caller: the C calls
+    /// pass the host's struct and the update reads it in place (see [`SampleView`]).
+    #[inline(always)]
+    pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        each!(&mut self.0, r => r.update_inline(s))
+    }
+
+    /// Updates `N` distinct filters, `filters[i]` with `samples[i]`, in order: the result
+    /// is exactly that of calling [`Filter::update`] on each (same bits, same errors),
+    /// stopping at the first error, whose index is returned with it. When all are
+    /// Madgwick filters past initialisation with the same sensors present, their steps run
+    /// side by side in lanes (see the Madgwick module), which overlaps their work.
+    pub fn update_group<const N: usize>(
+        filters: &mut [&mut Filter; N],
+        samples: [&Sample; N],
+    ) -> Result<(), (usize, Error)> {
+        let lanes = (
+            <&mut [&mut Filter; LANES]>::try_from(&mut filters[..]),
+            <[&Sample; LANES]>::try_from(&samples[..]),
+        );
+        if let (Ok(fs), Ok(ss)) = lanes {
+            if let Some(result) = Filter::try_lanes(fs, ss) {
+                return result;
+            }
+        }
+        for (i, (f, s)) in filters.iter_mut().zip(samples).enumerate() {
+            f.update(s).map_err(|e| (i, e))?;
+        }
+        Ok(())
+    }
+
+    /// The lane path of [`Filter::update_group`]; `None` when it does not apply (nothing
+    /// changed then).
+    pub(crate) fn try_lanes(
+        filters: &mut [&mut Filter; LANES],
+        samples: [&Sample; LANES],
+    ) -> Option<Result<(), (usize, Error)>> {
+        let with_mag = samples[0].mag.is_some();
+        for (f, s) in filters.iter().zip(samples) {
+            let eligible = match &f.0 {
+                Inner::Madgwick(r) => r.lane_ready(s) && s.mag.is_some() == with_mag,
+                _ => false,
+            };
+            if !eligible {
+                return None;
+            }
+        }
+        // A rejected sample: the filters before it are updated (one by one, which gives
+        // the same bits), and its index is reported.
+        for (i, s) in samples.iter().enumerate() {
+            if let Err(e) = filters[i].check(s) {
+                for j in 0..i {
+                    if let Err(e) = filters[j].update(samples[j]) {
+                        return Some(Err((j, e)));
+                    }
+                }
+                return Some(Err((i, e)));
+            }
+        }
+        // Gaps were sent down the single path above.
+        let dt = samples.map(|s| s.dt);
+        // check() guarantees the readings are present.
+        let gyro = samples.map(|s| s.gyro.unwrap_or_default());
+        let accel = samples.map(|s| s.accel.unwrap_or_default());
+        let mag = with_mag.then(|| samples.map(|s| s.mag.unwrap_or_default()));
+        let mut runners = filters.each_mut().map(|f| match &mut f.0 {
+            Inner::Madgwick(r) => Some(r),
+            _ => None,
+        });
+        if runners.iter().any(Option::is_none) {
+            return None;
+        }
+        let mut runners = runners.each_mut().map(|r| r.take().expect("checked above"));
+        let step = {
+            let mut cores = runners.each_mut().map(|r| &mut r.core);
+            Madgwick::update_lanes(&mut cores, dt, gyro, accel, mag)?
+        };
+        for (r, a) in runners.iter_mut().zip(accel) {
+            r.lane_done(a, step.used_mag);
+        }
+        Some(Ok(()))
+    }
+
+    /// The GMVDK state, for tests.
+    #[cfg(test)]
+    pub(crate) fn gmvdk(&self) -> Option<&Gmvdk> {
+        match &self.0 {
+            Inner::Gmvdk(r) => Some(&r.core),
+            _ => None,
+        }
+    }
+
+    /// The quick sample test, for tests.
+    #[cfg(test)]
+    pub(crate) fn plainly_valid(&self, s: &Sample) -> bool {
+        each!(&self.0, r => r.plainly_valid(s))
+    }
+
+    /// The exact sample rules, for tests.
+    #[cfg(test)]
+    pub(crate) fn check_exactly(&self, s: &Sample) -> Result<(), Error> {
+        each!(&self.0, r => r.check_exactly(s))
+    }
+
+    /// Internal states for display: bias, trust values, rest flag, covariance (see
+    /// [`Diagnostics`]; fields that do not apply are absent and NaN).
+    pub fn diagnostics(&self) -> Diagnostics {
+        each!(&self.0, r => r.diagnostics())
+    }
+
+    /// Size in bytes of [`Filter::save`]'s blob for this filter (constant per kind).
+    pub fn state_size(&self) -> usize {
+        each!(&self.0, r => r.state_size())
+    }
+
+    /// Writes a snapshot of the configuration and state into `out`; returns its length.
+    /// Loading it into a filter of the same kind continues bit for bit as this one would.
+    pub fn save(&self, out: &mut [u8]) -> Result<usize, StateError> {
+        each!(&self.0, r => r.save(out))
+    }
+
+    /// Restores a snapshot from [`Filter::save`]. On error nothing changes: the blob
+    /// must be whole, unmodified (checksum), of this format version and of this kind.
+    pub fn load(&mut self, blob: &[u8]) -> Result<(), StateError> {
+        each!(&mut self.0, r => r.load(blob))
+    }
+
+    /// True once the filter has an orientation.
+    pub fn is_initialized(&self) -> bool {
+        self.flags() & super::flags::INITIALIZED != 0
+    }
+
+    /// [`super::flags`] bits.
+    pub fn flags(&self) -> u32 {
+        each!(&self.0, r => r.flags)
+    }
+
+    /// The orientation in the configured frame (identity before initialisation).
+    #[inline]
+    pub fn quaternion(&self) -> Quat {
+        each!(&self.0, r => r.quaternion())
+    }
+
+    /// Euler angles (Z-Y'-X'': yaw, pitch, roll) of [`Filter::quaternion`], radians.
+    pub fn euler(&self) -> Euler {
+        self.quaternion().to_euler()
+    }
+
+    /// Rotation matrix (row-major, body to earth) of [`Filter::quaternion`].
+    pub fn rotation_matrix(&self) -> [[f64; 3]; 3] {
+        self.quaternion().to_matrix()
+    }
+
+    /// What the accelerometer reads at rest in the current orientation: gravity's
+    /// reaction (pointing up) in the sensor frame, m/s², magnitude `gravity`.
+    pub fn gravity(&self) -> Vec3 {
+        let (frame, g) = each!(&self.0, r => (r.frame(), r.gravity_magnitude()));
+        let up = self.quaternion().rotate_inverse(frame.up());
+        up * g
+    }
+
+    /// The last accelerometer reading minus [`Filter::gravity`], in the sensor frame;
+    /// `None` before the first accelerometer reading.
+    pub fn linear_accel(&self) -> Option<Vec3> {
+        each!(&self.0, r => r.last_accel()).map(|a| a - self.gravity())
+    }
+
+    /// [`Filter::linear_accel`] rotated into the earth frame.
+    pub fn linear_accel_earth(&self) -> Option<Vec3> {
+        self.linear_accel().map(|a| self.quaternion().rotate(a))
+    }
+}

@@ -1,0 +1,45 @@
+//! What a decoded snapshot may hold (see [`crate::Filter::load`]): the checks each kind's
+//! `valid` is built from. The codec already refuses NaN and infinities.
+
+use super::{MAX_ACCEL, MAX_GYRO, MAX_MAG};
+use crate::math::{Quat, Vec3};
+
+/// A unit quaternion, as every update leaves one (normalised to rounding).
+pub fn unit(q: Quat) -> bool {
+    (q.norm_squared() - 1.0).abs() <= 1e-9
+}
+
+/// Estimates follow the readings, and a blend of bounded readings and predictions
+/// may overshoot them a little: a decoded estimate must stay within ten times the
+/// readings' physical bound (a forged 1e300 is refused).
+const MARGIN: f64 = 10.0;
+
+/// A rate: a bias or a rate estimate.
+pub fn rate(v: Vec3) -> bool {
+    v.max_abs() < MARGIN * MAX_GYRO
+}
+
+/// An accelerometer-like value (a low-pass of readings, a reference).
+pub fn accel(v: Vec3) -> bool {
+    v.max_abs() < MARGIN * MAX_ACCEL
+}
+
+/// A magnetometer-like value.
+pub fn mag(v: Vec3) -> bool {
+    v.max_abs() < MARGIN * MAX_MAG
+}
+
+/// A mean of magnetometer norms: no more than a reading's largest norm, √3 · bound.
+pub fn mag_norm(x: f64) -> bool {
+    (0.0..=3f64.sqrt() * MAX_MAG).contains(&x)
+}
+
+/// A squared deviation between magnetometer-like values.
+pub fn mag_spread(x: f64) -> bool {
+    (0.0..(2.0 * MARGIN * MAX_MAG).powi(2)).contains(&x)
+}
+
+/// A value in `[lo, hi]`.
+pub fn within(x: f64, lo: f64, hi: f64) -> bool {
+    (lo..=hi).contains(&x)
+}

@@ -1,0 +1,545 @@
+//! The common lifecycle, generic over the kind: [`Runner<E>`] holds exactly one kind's
+//! state `E` and a head of a few words (flags, the common settings, the last
+//! accelerometer reading, the output frame), and does for every kind what is not in a
+//! paper: the checks, the start from the first sample, gaps, frames, flags, snapshots and
+//! the outputs. [`super::Filter`] holds one `Runner` of its kind.
+
+use super::estimator::{twist_about, Estimator, Reacquisition};
+use super::params::{id, Settings, MAX_PARAMS};
+use super::sample::{check_quaternion, check_vector, SampleView};
+use super::state::{self, Codec, Reader, StateError, Writer};
+use super::{flags, holds, Config, Diagnostics, Error, Field, Init, Kind, Sample};
+use super::{MAX_ACCEL, MAX_DT, MAX_GYRO, MAX_MAG, MIN_DT};
+use crate::math::{Frame, Quat, Vec3};
+
+/// The common settings (slots 0-3) and the sample limits the checks compare with, kept
+/// ready for each update: a range of zero (none set) is the physical bound here, and a
+/// gap dt of zero `+∞`, so that each test is one comparison.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Common {
+    pub gravity: f64,
+    /// Gyroscope full-scale range, or [`MAX_GYRO`] when none is set (rad/s).
+    pub gyro_limit: f64,
+    /// Accelerometer full-scale range, or [`MAX_ACCEL`] when none is set (m/s²).
+    pub accel_limit: f64,
+    /// dt above which a step is a gap, or `+∞` when the policy is off (s).
+    pub gap_limit: f64,
+}
+
+impl Common {
+    const GYRO_SET: u8 = 1;
+    const ACCEL_SET: u8 = 2;
+
+    /// The common settings, and which of the ranges are set ([`Common::GYRO_SET`],
+    /// [`Common::ACCEL_SET`]: a range equal to the physical bound is a saturation, not a
+    /// bound).
+    fn from_slots(s: &[f64; MAX_PARAMS]) -> (Common, u8) {
+        let (gyro, accel, gap) =
+            (s[id::GYRO_RANGE as usize], s[id::ACCEL_RANGE as usize], s[id::GAP_DT as usize]);
+        let common = Common {
+            gravity: s[id::GRAVITY as usize],
+            gyro_limit: if gyro > 0.0 { gyro.min(MAX_GYRO) } else { MAX_GYRO },
+            accel_limit: if accel > 0.0 { accel.min(MAX_ACCEL) } else { MAX_ACCEL },
+            gap_limit: if gap > 0.0 { gap } else { f64::INFINITY },
+        };
+        let set =
+            if gyro > 0.0 { Common::GYRO_SET } else { 0 } | if accel > 0.0 { Common::ACCEL_SET } else { 0 };
+        (common, set)
+    }
+
+    fn write_slots(&self, set: u8, s: &mut [f64; MAX_PARAMS]) {
+        s[id::GRAVITY as usize] = self.gravity;
+        s[id::GYRO_RANGE as usize] = if set & Common::GYRO_SET != 0 { self.gyro_limit } else { 0.0 };
+        s[id::ACCEL_RANGE as usize] = if set & Common::ACCEL_SET != 0 { self.accel_limit } else { 0.0 };
+        s[id::GAP_DT as usize] = if self.gap_limit.is_finite() { self.gap_limit } else { 0.0 };
+    }
+
+    fn gyro_range(&self, set: u8) -> Option<f64> {
+        (set & Common::GYRO_SET != 0).then_some(self.gyro_limit)
+    }
+
+    fn accel_range(&self, set: u8) -> Option<f64> {
+        (set & Common::ACCEL_SET != 0).then_some(self.accel_limit)
+    }
+}
+
+/// One filter of kind `E`: its state and the common head.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Runner<E: Estimator> {
+    pub(crate) core: E,
+    pub(crate) flags: u32,
+    frame: Frame,
+    /// `last_accel` holds a reading.
+    has_accel: bool,
+    common: Common,
+    /// Which sensor ranges are set (see [`Common::from_slots`]).
+    ranges_set: u8,
+    /// GMVDK's relative output is on: no frame rotation applies.
+    relative: bool,
+    pub(crate) last_accel: Vec3,
+    /// The configured initial orientation when it is [`Init::Given`] (kept for reset);
+    /// boxed, since few filters have one.
+    given: Option<Box<Quat>>,
+    identity_init: bool,
+}
+
+impl<E: Estimator> Runner<E> {
+    pub(crate) fn new(config: &Config) -> Result<Runner<E>, Error> {
+        debug_assert_eq!(config.kind(), E::KIND);
+        // Re-check every slot: a Config can only hold valid values, but be strict.
+        let config = Config::from_slots(config.kind(), config.frame, config.init, config.slots())?;
+        if let Init::Given(q) = config.init {
+            check_quaternion(q)?;
+        }
+        let core = E::create(E::Settings::from_slots(config.slots()));
+        let (common, ranges_set) = Common::from_slots(config.slots());
+        let mut r = Runner {
+            core,
+            flags: 0,
+            frame: config.frame,
+            has_accel: false,
+            common,
+            ranges_set,
+            relative: false,
+            last_accel: Vec3::ZERO,
+            given: match config.init {
+                Init::Given(q) => Some(Box::new(q)),
+                _ => None,
+            },
+            identity_init: config.init == Init::Identity,
+        };
+        r.set_frame_rotation();
+        r.reset();
+        Ok(r)
+    }
+
+    fn init(&self) -> Init {
+        match (&self.given, self.identity_init) {
+            (Some(q), _) => Init::Given(**q),
+            (None, true) => Init::Identity,
+            (None, false) => Init::AccMag,
+        }
+    }
+
+    fn set_frame_rotation(&mut self) {
+        self.relative = self.core.relative();
+    }
+
+    /// Native frame to configured frame (a constant); none for a relative output.
+    #[inline(always)]
+    fn to_frame(&self) -> Option<Quat> {
+        if self.relative {
+            None
+        } else {
+            E::NATIVE.rotation_to(self.frame)
+        }
+    }
+
+    /// The configuration this filter was made with, as changed by `set_param` since.
+    pub(crate) fn config(&self) -> Config {
+        let mut slots = [0.0; MAX_PARAMS];
+        self.common.write_slots(self.ranges_set, &mut slots);
+        self.core.settings().write_slots(&mut slots);
+        Config::from_parts(E::KIND, self.frame, self.init(), slots)
+    }
+
+    pub(crate) fn reset(&mut self) {
+        self.core.restart(*self.core.settings());
+        self.last_accel = Vec3::ZERO;
+        self.has_accel = false;
+        self.flags = 0;
+        match self.init() {
+            // From the first sample, or the core's own start-up period.
+            Init::AccMag => {}
+            Init::Identity => self.set_frame_quaternion(Quat::IDENTITY),
+            Init::Given(q) => self.set_frame_quaternion(q.normalized()),
+        }
+    }
+
+    pub(crate) fn set_param(&mut self, pid: u32, value: f64) -> Result<(), Error> {
+        let mut config = self.config();
+        config.set_param(pid, value)?;
+        self.core.configure(E::Settings::from_slots(config.slots()));
+        (self.common, self.ranges_set) = Common::from_slots(config.slots());
+        self.set_frame_rotation();
+        Ok(())
+    }
+
+    pub(crate) fn param(&self, pid: u32) -> Result<f64, Error> {
+        self.config().param(pid)
+    }
+
+    pub(crate) fn set_quaternion(&mut self, q: Quat) -> Result<(), Error> {
+        check_quaternion(q)?;
+        self.set_frame_quaternion(q.normalized());
+        Ok(())
+    }
+
+    fn set_frame_quaternion(&mut self, q: Quat) {
+        let native = match self.to_frame() {
+            Some(c) => c.conj() * q,
+            None => q,
+        };
+        self.core.set_quaternion(native);
+        self.flags |= flags::INITIALIZED;
+    }
+
+    /// The quick test on the sample where it lies, the exact rules (on a copy) only when
+    /// it fails.
+    #[inline(always)]
+    pub(crate) fn check_view<S: SampleView>(&self, s: &S) -> Result<(), Error> {
+        if self.plainly_valid(s) {
+            Ok(())
+        } else {
+            self.check_exactly(&s.to_sample())
+        }
+    }
+
+    /// A conservative test that `check_exactly` would accept the sample, with one branch:
+    /// every component of the readings is under the sensor's range or physical bound
+    /// (`|x| < limit` is false for NaN and ±∞);
+    /// the accelerometer's and magnetometer's squared norms lie in [MIN_POSITIVE, MAX]
+    /// (not zero, no overflow, finite components); dt is in range; and a sample without
+    /// an accelerometer reading comes after initialisation. A sample it turns down goes
+    /// through the exact rules, which tell the reason (or accept it: a zero gyroscope
+    /// reading's components, say, or a finite vector whose squared norm overflows).
+    #[inline(always)]
+    pub(crate) fn plainly_valid<S: SampleView>(&self, s: &S) -> bool {
+        let under = |v: Vec3, limit: f64| (v.x.abs() < limit) & (v.y.abs() < limit) & (v.z.abs() < limit);
+        let usable = |v: Vec3| (f64::MIN_POSITIVE..=f64::MAX).contains(&v.norm_squared());
+        let gyro = match s.gyro() {
+            Some(g) => under(g, self.common.gyro_limit),
+            None => false,
+        };
+        let accel = match s.accel() {
+            Some(a) => under(a, self.common.accel_limit) & usable(a),
+            None => self.flags & flags::INITIALIZED != 0,
+        };
+        let mag = match s.mag() {
+            Some(m) => under(m, MAX_MAG) & usable(m),
+            None => true,
+        };
+        (s.dt() >= MIN_DT) & (s.dt() <= MAX_DT) & gyro & accel & mag
+    }
+
+    /// The rules one by one, in the order that picks the reported error.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn check_exactly(&self, s: &Sample) -> Result<(), Error> {
+        // No sensor samples faster than 1 GHz: a smaller dt (a subnormal one, say) is a
+        // host bug, and would overflow noise variances that scale with 1/dt.
+        if !(s.dt.is_finite() && (MIN_DT..=MAX_DT).contains(&s.dt)) {
+            return Err(Error::InvalidDt(s.dt));
+        }
+        let gyro = s.gyro.ok_or(Error::MissingSensor(Field::Gyro))?;
+        if !gyro.is_finite() {
+            return Err(Error::NonFinite(Field::Gyro));
+        }
+        if self.common.gyro_range(self.ranges_set).is_some_and(|r| gyro.max_abs() >= r) {
+            return Err(Error::Saturated(Field::Gyro));
+        }
+        if gyro.max_abs() >= MAX_GYRO {
+            return Err(Error::TooLarge(Field::Gyro));
+        }
+        if let Some(a) = s.accel {
+            check_vector(a, Field::Accel)?;
+            if self.common.accel_range(self.ranges_set).is_some_and(|r| a.max_abs() >= r) {
+                return Err(Error::Saturated(Field::Accel));
+            }
+            if a.max_abs() >= MAX_ACCEL {
+                return Err(Error::TooLarge(Field::Accel));
+            }
+        }
+        if let Some(m) = s.mag {
+            check_vector(m, Field::Mag)?;
+            if m.max_abs() >= MAX_MAG {
+                return Err(Error::TooLarge(Field::Mag));
+            }
+        }
+        if self.flags & flags::INITIALIZED == 0 && s.accel.is_none() {
+            return Err(Error::NotInitialized);
+        }
+        Ok(())
+    }
+
+    /// One step. On error nothing changes: the state is bit-identical to before.
+    #[inline(always)]
+    pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        self.check_view(s)?;
+        // check() guarantees a gyro reading.
+        let gyro = s.gyro().unwrap_or_default();
+        let gap = s.dt() > self.common.gap_limit;
+        let pending = self.flags & flags::REACQUIRE_PENDING;
+        if self.flags & flags::INITIALIZED != 0 && (gap || pending != 0) {
+            match s.accel() {
+                Some(accel) => return self.reacquire(s.dt(), gyro, accel, s.mag(), gap),
+                None if gap => {
+                    // Nothing to re-acquire from: hold the orientation until a sample
+                    // with an accelerometer reading.
+                    self.flags = flags::INITIALIZED | flags::GAP | flags::REACQUIRE_PENDING;
+                    return Ok(());
+                }
+                // Gyroscope only while pending: integrate as usual, still pending.
+                None => {}
+            }
+        }
+        if self.flags & flags::INITIALIZED == 0 {
+            return self.start(s.dt(), gyro, s.accel(), s.mag(), gap);
+        }
+        let dt = if gap { self.common.gap_limit } else { s.dt() };
+        match self.core.update(dt, gyro, s.accel(), s.mag()) {
+            Some(step) => {
+                if let Some(a) = s.accel() {
+                    self.last_accel = a;
+                    self.has_accel = true;
+                }
+                self.flags = flags::INITIALIZED
+                    | if step.used_accel { flags::ACCEL_USED } else { 0 }
+                    | if step.used_mag { flags::MAG_USED } else { 0 }
+                    | if gap { flags::GAP } else { 0 }
+                    | pending;
+                Ok(())
+            }
+            None => Err(Error::Numeric),
+        }
+    }
+
+    /// An update before the filter has an orientation: from this sample's accelerometer
+    /// (and magnetometer), or a step of the kind's own start-up period. Out of line: it
+    /// runs once (or for a start-up period's samples).
+    #[cold]
+    #[inline(never)]
+    fn start(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+        gap: bool,
+    ) -> Result<(), Error> {
+        let saved = if E::OWN_STARTUP {
+            None
+        } else {
+            // check() guarantees an accelerometer reading here.
+            let a = accel.unwrap_or_default();
+            let frame = self.frame;
+            let q =
+                frame.attitude_from(a, mag).or_else(|| frame.attitude_from(a, None)).ok_or(Error::Numeric)?;
+            let saved = (self.core.clone(), self.flags);
+            self.set_frame_quaternion(q);
+            Some(saved)
+        };
+        // An own start-up's still period is broken by a gap: it starts over with this
+        // sample, counted as gap_dt.
+        if gap && saved.is_none() {
+            self.core.restart(*self.core.settings());
+        }
+        let dt = if gap { self.common.gap_limit } else { dt };
+        match self.core.update(dt, gyro, accel, mag) {
+            Some(step) => {
+                if let Some(a) = accel {
+                    self.last_accel = a;
+                    self.has_accel = true;
+                }
+                self.flags = if step.initializing {
+                    0
+                } else {
+                    flags::INITIALIZED
+                        | if step.used_accel { flags::ACCEL_USED } else { 0 }
+                        | if step.used_mag { flags::MAG_USED } else { 0 }
+                        | if gap { flags::GAP } else { 0 }
+                };
+                Ok(())
+            }
+            None => {
+                if let Some((core, flags)) = saved {
+                    self.core = core;
+                    self.flags = flags;
+                }
+                Err(Error::Numeric)
+            }
+        }
+    }
+
+    /// Re-acquisition after a gap (see [`flags::REACQUIRED`]): inclination from this
+    /// accelerometer reading; heading from the magnetometer when the sample has one that
+    /// defines north (and the kind accepts it), else the heading held before the gap.
+    #[cold]
+    #[inline(never)]
+    fn reacquire(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Vec3,
+        mag: Option<Vec3>,
+        gap: bool,
+    ) -> Result<(), Error> {
+        let native = E::NATIVE;
+        let tilt = native.attitude_from(accel, None).ok_or(Error::Numeric)?;
+        // The rotation about the vertical that brings the tilt nearest to the old
+        // orientation: that orientation's heading on the new inclination.
+        let before = self.core.absolute_quaternion();
+        let keep = (twist_about(before * tilt.conj(), native.up()) * tilt).normalized();
+        let with_mag = mag.and_then(|m| native.attitude_from(accel, Some(m)));
+        let r = Reacquisition { keep, with_mag, dt, gyro, accel, mag };
+        let used_mag = self.core.reacquire(&r);
+        self.last_accel = accel;
+        self.has_accel = true;
+        self.flags = flags::INITIALIZED
+            | flags::ACCEL_USED
+            | flags::REACQUIRED
+            | if used_mag { flags::MAG_USED } else { 0 }
+            | if gap { flags::GAP } else { 0 };
+        Ok(())
+    }
+
+    /// True when the lanes of [`super::Filter::update_group`] may take this filter's step
+    /// with this sample: past initialisation, nothing pending, no gap, an accelerometer.
+    pub(crate) fn lane_ready(&self, s: &Sample) -> bool {
+        self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED
+            && s.dt <= self.common.gap_limit
+            && s.accel.is_some()
+    }
+
+    /// What a lane step leaves besides the core's state.
+    pub(crate) fn lane_done(&mut self, accel: Vec3, used_mag: bool) {
+        self.flags = flags::INITIALIZED | flags::ACCEL_USED | if used_mag { flags::MAG_USED } else { 0 };
+        self.last_accel = accel;
+        self.has_accel = true;
+    }
+
+    pub(crate) fn diagnostics(&self) -> Diagnostics {
+        let mut d = Diagnostics { present: E::KIND.diagnostics(), ..Diagnostics::default() };
+        self.core.diagnose(&mut d);
+        d
+    }
+
+    /// The configuration and state fields of a snapshot, in order (see [`state`]).
+    fn codec(&mut self, c: &mut dyn Codec) {
+        let mut head = ConfigFields::of(&self.config());
+        head.codec(c);
+        c.u32(&mut self.flags);
+        let mut last = self.has_accel.then_some(self.last_accel);
+        c.opt_vec3(&mut last);
+        self.has_accel = last.is_some();
+        self.last_accel = last.unwrap_or(Vec3::ZERO);
+        self.core.codec(c);
+    }
+
+    fn kind_byte() -> u8 {
+        Kind::ALL.iter().position(|k| *k == E::KIND).unwrap_or(0) as u8 + 1
+    }
+
+    fn payload_len(&self) -> usize {
+        let mut counter = Writer { buf: None, pos: 0 };
+        self.clone().codec(&mut counter);
+        counter.pos
+    }
+
+    pub(crate) fn state_size(&self) -> usize {
+        state::HEADER + self.payload_len() + state::TRAILER
+    }
+
+    pub(crate) fn save(&self, out: &mut [u8]) -> Result<usize, StateError> {
+        let len = self.payload_len();
+        let mut copy = self.clone();
+        state::seal(out, Self::kind_byte(), len, |w| copy.codec(w))
+    }
+
+    pub(crate) fn load(&mut self, blob: &[u8]) -> Result<(), StateError> {
+        let payload = state::open(blob, Self::kind_byte(), self.payload_len())?;
+        let mut r = Reader { buf: payload, pos: 0, ok: true };
+        let mut head = ConfigFields::of(&self.config());
+        head.codec(&mut r);
+        let config = head.config(E::KIND).filter(|_| r.ok).ok_or(StateError::Corrupt)?;
+        let mut fresh = Runner::<E>::new(&config).map_err(|_| StateError::Corrupt)?;
+        r.u32(&mut fresh.flags);
+        let mut last = None;
+        r.opt_vec3(&mut last);
+        fresh.has_accel = last.is_some();
+        fresh.last_accel = last.unwrap_or(Vec3::ZERO);
+        fresh.core.codec(&mut r);
+        // Slots this kind does not use are zero in every snapshot it writes: a blob of
+        // another kind relabelled (with a fresh checksum) has its own kind's slots set.
+        let foreign =
+            head.params.iter().enumerate().any(|(i, v)| *v != 0.0 && E::KIND.param(i as u32).is_none());
+        let accel_ok = last.map_or(true, holds::accel);
+        if !r.ok
+            || r.pos != payload.len()
+            || foreign
+            || fresh.flags & !flags::ALL != 0
+            || !accel_ok
+            || !fresh.core.valid()
+        {
+            return Err(StateError::Corrupt);
+        }
+        *self = fresh;
+        Ok(())
+    }
+
+    pub(crate) fn frame(&self) -> Frame {
+        self.frame
+    }
+
+    /// The orientation in the configured frame (identity before initialisation).
+    #[inline(always)]
+    pub(crate) fn quaternion(&self) -> Quat {
+        if self.flags & flags::INITIALIZED == 0 {
+            return Quat::IDENTITY;
+        }
+        let q = self.core.quaternion();
+        match self.to_frame() {
+            Some(c) => c * q,
+            None => q,
+        }
+    }
+
+    pub(crate) fn gravity_magnitude(&self) -> f64 {
+        self.common.gravity
+    }
+
+    pub(crate) fn last_accel(&self) -> Option<Vec3> {
+        self.has_accel.then_some(self.last_accel)
+    }
+}
+
+/// The configuration as it travels in a snapshot.
+struct ConfigFields {
+    frame: u32,
+    init: u32,
+    initial: Quat,
+    params: [f64; MAX_PARAMS],
+}
+
+impl ConfigFields {
+    fn of(c: &Config) -> ConfigFields {
+        let (init, initial) = match c.init {
+            Init::AccMag => (0, Quat::IDENTITY),
+            Init::Identity => (1, Quat::IDENTITY),
+            Init::Given(q) => (2, q),
+        };
+        let frame = Frame::ALL.iter().position(|f| *f == c.frame).unwrap_or(0) as u32;
+        ConfigFields { frame, init, initial, params: *c.slots() }
+    }
+
+    fn codec(&mut self, c: &mut dyn Codec) {
+        c.u32(&mut self.frame);
+        c.u32(&mut self.init);
+        c.quat(&mut self.initial);
+        for p in self.params.iter_mut() {
+            c.f64(p);
+        }
+    }
+
+    /// The configuration, if every field is valid for `kind`.
+    fn config(&self, kind: Kind) -> Option<Config> {
+        let frame = *Frame::ALL.get(self.frame as usize)?;
+        let init = match self.init {
+            0 => Init::AccMag,
+            1 => Init::Identity,
+            2 => Init::Given(self.initial),
+            _ => return None,
+        };
+        Config::from_slots(kind, frame, init, &self.params).ok()
+    }
+}

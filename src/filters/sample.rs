@@ -1,0 +1,97 @@
+//! Samples, the physical bounds on them, and the checks of vectors and quaternions.
+
+use super::{Error, Field};
+use crate::math::{Quat, Vec3};
+
+/// One sensor sample. Units: gyro rad/s, accel m/s², mag any unit (consistent over a
+/// run); `dt` in seconds since the previous sample.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Sample {
+    pub dt: f64,
+    pub gyro: Option<Vec3>,
+    pub accel: Option<Vec3>,
+    pub mag: Option<Vec3>,
+}
+
+/// Read access to a sample where it lies: a [`Sample`], or a host's own struct (the C
+/// API's), so that an update reads the host's memory in place rather than a copy just
+/// written, which the processor reads back only after a stall (store-to-load
+/// forwarding fails when the copy was written in narrower pieces than it is read).
+pub(crate) trait SampleView {
+    fn dt(&self) -> f64;
+    fn gyro(&self) -> Option<Vec3>;
+    fn accel(&self) -> Option<Vec3>;
+    fn mag(&self) -> Option<Vec3>;
+    /// The sample as a [`Sample`].
+    #[inline]
+    fn to_sample(&self) -> Sample {
+        Sample { dt: self.dt(), gyro: self.gyro(), accel: self.accel(), mag: self.mag() }
+    }
+}
+
+impl SampleView for Sample {
+    #[inline(always)]
+    fn dt(&self) -> f64 {
+        self.dt
+    }
+    #[inline(always)]
+    fn gyro(&self) -> Option<Vec3> {
+        self.gyro
+    }
+    #[inline(always)]
+    fn accel(&self) -> Option<Vec3> {
+        self.accel
+    }
+    #[inline(always)]
+    fn mag(&self) -> Option<Vec3> {
+        self.mag
+    }
+}
+
+/// The smallest dt accepted (s): 1 ns.
+pub const MIN_DT: f64 = 1e-9;
+/// The largest dt accepted (s): 10⁶ s, eleven and a half days. Beyond `gap_dt` a step is
+/// a gap and re-acquires; with the gap policy off, this bounds what one step integrates.
+pub const MAX_DT: f64 = 1e6;
+
+/// Physical bounds on the readings, applied whatever the configured sensor ranges: a
+/// component at or beyond one is refused as [`Error::TooLarge`] before any arithmetic,
+/// so that no accepted reading can overflow a filter's equations.
+///
+/// Gyroscope (rad/s): 10⁴ rad/s, about 573,000 °/s, over 100 times the largest MEMS
+/// full scale (±4,000 °/s).
+pub const MAX_GYRO: f64 = 1e4;
+/// Accelerometer (m/s²): 10⁵ m/s², about 10,000 g, over 30 times the largest
+/// consumer full scale (±400 g).
+pub const MAX_ACCEL: f64 = 1e5;
+/// Magnetometer (any unit): 10¹² in whatever unit the host uses; the earth's field is
+/// 0.65 G, 65 µT, 65,000 nT or a few thousand counts at most.
+pub const MAX_MAG: f64 = 1e12;
+
+pub(crate) fn check_vector(v: Vec3, field: Field) -> Result<(), Error> {
+    if !v.is_finite() {
+        return Err(Error::NonFinite(field));
+    }
+    let n2 = v.norm_squared();
+    if !n2.is_finite() {
+        return Err(Error::TooLarge(field));
+    }
+    if n2 < f64::MIN_POSITIVE {
+        return Err(Error::ZeroVector(field));
+    }
+    Ok(())
+}
+
+pub(crate) fn check_quaternion(q: Quat) -> Result<(), Error> {
+    if !q.is_finite() {
+        return Err(Error::NonFinite(Field::Quaternion));
+    }
+    let n2 = q.norm_squared();
+    if !n2.is_finite() {
+        return Err(Error::TooLarge(Field::Quaternion));
+    }
+    if n2 < f64::MIN_POSITIVE {
+        return Err(Error::ZeroVector(Field::Quaternion));
+    }
+    Ok(())
+}

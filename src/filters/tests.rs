@@ -1,0 +1,436 @@
+//! Tests of the common lifecycle over every kind.
+
+use super::estimator::Estimator;
+use super::filter::with_kind;
+use super::params::{id, Settings};
+use super::*;
+use crate::math::{Frame, Quat, Vec3};
+
+/// Deterministic test motion for filter `k` at step `i`.
+fn rig_sample(k: usize, i: usize, mag: bool) -> Sample {
+    let t = i as f64 * 0.01 + k as f64;
+    Sample {
+        dt: 0.01 + 0.001 * (k as f64),
+        gyro: Some(Vec3::new(0.5 * t.sin(), 0.3 * (1.3 * t).cos(), 0.2 + 0.1 * k as f64)),
+        accel: Some(Vec3::new(0.3 * t.cos(), 0.2 * t.sin() + 0.1, 9.8)),
+        mag: mag.then(|| Vec3::new(20.0 + t.sin(), 3.0 * k as f64, -40.0)),
+    }
+}
+
+/// The EKF and GMVDK updates run in the AVX copy where the CPU has it
+/// (crate::isa; 256-bit lanes in the EKF). Forced onto the baseline code, the same
+/// steps must give the same bits, step by step, in every kind's whole state. (On a
+/// CPU without AVX, or off x86-64, both are the same code.)
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn the_wide_encoding_gives_the_baseline_bits() {
+    for kind in Kind::ALL {
+        for mag in [false, true] {
+            let config = Config::new(kind).unwrap();
+            let (mut wide, mut base) = (Filter::new(&config).unwrap(), Filter::new(&config).unwrap());
+            let (mut a, mut b) = (vec![0; wide.state_size()], vec![0; base.state_size()]);
+            for i in 0..3000 {
+                let mut s = rig_sample(1, i, mag);
+                if i % 7 == 3 {
+                    s.accel = None; // a gyro-only step
+                }
+                if i % 500 == 250 {
+                    s.dt = 5.0; // a gap
+                }
+                let baseline = crate::isa::baseline(|| base.update(&s));
+                assert_eq!(wide.update(&s), baseline, "{kind:?} step {i}");
+                wide.save(&mut a).unwrap();
+                base.save(&mut b).unwrap();
+                assert!(a == b, "{kind:?} (mag {mag}): the states differ after step {i}");
+            }
+        }
+    }
+}
+
+/// Readings beyond the physical bounds, which could overflow a step, are refused by the
+/// checks, before any arithmetic, and change nothing; readings just inside them give a
+/// finite unit quaternion. (They once reached the cores: GMVDK answered Ok with a zero
+/// quaternion, and the EKF was left refusing every later sample.)
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn readings_beyond_the_physical_bounds_are_refused_before_any_arithmetic() {
+    for kind in Kind::ALL {
+        let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
+        // Long enough for the start-up periods' patience with a sensor in motion.
+        for i in 0..1500 {
+            f.update(&rig_sample(0, i, true)).unwrap();
+        }
+        assert!(f.is_initialized(), "{kind:?}");
+        let base = rig_sample(0, 1500, true);
+        let cases = [
+            (Sample { gyro: Some(Vec3::new(1e300, -1e300, 1e300)), ..base }, Error::TooLarge(Field::Gyro)),
+            (Sample { gyro: Some(Vec3::new(0.0, -MAX_GYRO, 0.0)), ..base }, Error::TooLarge(Field::Gyro)),
+            (
+                Sample { gyro: Some(Vec3::new(0.0, 1e156, -2.25)), accel: None, mag: None, dt: 0.0011 },
+                Error::TooLarge(Field::Gyro),
+            ),
+            (Sample { accel: Some(Vec3::new(MAX_ACCEL, 0.0, 1.0)), ..base }, Error::TooLarge(Field::Accel)),
+            (Sample { mag: Some(Vec3::new(1.0, -MAX_MAG, 1.0)), ..base }, Error::TooLarge(Field::Mag)),
+            (Sample { dt: 2.0 * MAX_DT, ..base }, Error::InvalidDt(2.0 * MAX_DT)),
+        ];
+        for (s, want) in cases {
+            let before = f.clone();
+            assert_eq!(f.update(&s), Err(want), "{kind:?} {s:?}");
+            assert_eq!(f, before, "{kind:?}");
+        }
+        let inside = MAX_GYRO * 0.999_999;
+        for s in [
+            Sample { gyro: Some(Vec3::new(inside, -inside, inside)), ..base },
+            Sample { gyro: Some(Vec3::new(0.0, -inside, -2.25)), accel: None, mag: None, dt: 0.2 },
+            Sample { accel: Some(Vec3::new(MAX_ACCEL * 0.999, 0.0, 1.0)), ..base },
+        ] {
+            f.update(&s).unwrap_or_else(|e| panic!("{kind:?} {s:?}: {e}"));
+            let q = f.quaternion();
+            assert!(q.is_finite() && (q.norm() - 1.0).abs() < 1e-9, "{kind:?}: {q:?}");
+        }
+    }
+}
+
+/// The cores' own rule, shared by every kind: an update that returns `None` has
+/// changed nothing (each computes into locals and commits at the end; the Filter
+/// restores nothing but an initialisation). Driven past the Filter's checks with
+/// values that overflow, fresh and warmed. (The complementary filter once kept the
+/// g₀ of a step it refused.)
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn a_core_update_that_fails_changes_nothing() {
+    fn failures<E: Estimator>(config: &Config) -> usize {
+        let mut failures = 0;
+        for warm in [0, 300] {
+            let mut core = E::create(E::Settings::from_slots(config.slots()));
+            core.set_quaternion(Quat::IDENTITY);
+            for i in 0..warm {
+                let s = rig_sample(0, i, true);
+                core.update(s.dt, s.gyro.unwrap(), s.accel, s.mag);
+            }
+            let still = Vec3::new(0.0, 0.0, 9.81);
+            let field = Some(Vec3::new(0.0, 20.0, -40.0));
+            let cases = [
+                (1e300, Vec3::ZERO, Some(still), field),
+                (f64::MAX, Vec3::ZERO, Some(still), None),
+                (0.01, Vec3::new(1e300, -1e300, 1e300), Some(still), field),
+                (0.01, Vec3::new(0.0, f64::MAX, 0.0), None, None),
+                (1e300, Vec3::new(3.0, 0.0, 0.0), None, None),
+                (0.01, Vec3::ZERO, Some(Vec3::new(1e300, 1e300, 0.0)), field),
+                // McGinnis at rest, tilted: the bias step (10) overflows.
+                (1e300, Vec3::ZERO, Some(Vec3::new(1.0, 0.0, 9.75)), None),
+            ];
+            for (dt, gyro, accel, mag) in cases {
+                let before = core.clone();
+                if core.update(dt, gyro, accel, mag).is_none() {
+                    failures += 1;
+                    assert_eq!(core, before, "{:?} (warm {warm}) dt {dt} {gyro:?} {accel:?}", E::KIND);
+                }
+                core = before;
+            }
+        }
+        failures
+    }
+    let mut total = 0;
+    for kind in Kind::ALL {
+        let config = Config::new(kind).unwrap();
+        total += with_kind!(kind, E => failures::<E>(&config));
+    }
+    // Not vacuous: these inputs do make cores fail.
+    assert!(total >= 6, "{total}");
+}
+
+/// set_param keeps the estimate; GMVDK's relative_output changes what the output is
+/// relative to (the header says so), and switching back gives the same bits.
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn set_param_keeps_the_estimate_and_relative_output_changes_the_reference() {
+    let mut f = Filter::new(&Config::new(Kind::Gmvdk).unwrap()).unwrap();
+    for i in 0..400 {
+        let s = Sample { gyro: Some(Vec3::ZERO), ..rig_sample(0, 0, true) };
+        let s = if i < 150 { s } else { rig_sample(0, i, true) };
+        f.update(&s).unwrap();
+    }
+    assert!(f.is_initialized());
+    let absolute = f.quaternion();
+    f.set_param(id::GMVDK_RELATIVE_OUTPUT, 1.0).unwrap();
+    let relative = f.quaternion();
+    let g = f.gmvdk().unwrap();
+    assert!(relative.angle_to(g.start_pose().conj() * absolute) < 1e-12);
+    assert!(relative.angle_to(absolute) > 1e-3, "the start-up pose is not the earth frame here");
+    f.set_param(id::GMVDK_RELATIVE_OUTPUT, 0.0).unwrap();
+    assert_eq!(f.quaternion(), absolute);
+    // Any other setting keeps the output as it was.
+    f.set_param(id::GMVDK_SLOPE_ALPHA, 0.5).unwrap();
+    f.set_param(id::GAP_DT, 2.0).unwrap();
+    assert_eq!(f.quaternion(), absolute);
+}
+
+#[test]
+fn the_quick_check_accepts_only_what_the_exact_rules_accept() {
+    let values = [
+        0.0,
+        -0.0,
+        1e-200,
+        -1e-170,
+        f64::MIN_POSITIVE,
+        5e-324,
+        1e-9,
+        0.01,
+        -3.0,
+        9.81,
+        1e154,
+        -1e160,
+        1e300,
+        f64::MAX,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NAN,
+    ];
+    let pick = |i: usize| values[i % values.len()];
+    let vector = |i: usize| match i % 7 {
+        0 => None,
+        _ => Some(Vec3::new(pick(i), pick(i / 3 + 1), pick(i / 5 + 2))),
+    };
+    // Fewer under Miri, where each sample costs a thousand times more.
+    let n = if cfg!(miri) { 4_000 } else { 20_000 };
+    let mut accepted = 0;
+    for (range, initialised) in [(0.0, false), (0.0, true), (20.0, true), (1e4, true)] {
+        let mut f = Filter::new(&Config::new(Kind::Mahony).unwrap()).unwrap();
+        f.set_param(id::GYRO_RANGE, range).unwrap();
+        f.set_param(id::ACCEL_RANGE, 0.5 * range).unwrap();
+        if initialised {
+            f.set_quaternion(Quat::IDENTITY).unwrap();
+        }
+        for i in 0..n {
+            let s = Sample {
+                dt: pick(i / 11),
+                gyro: vector(i),
+                accel: vector(i / 2 + 3),
+                mag: vector(i / 4 + 5),
+            };
+            let quick = f.plainly_valid(&s);
+            assert!(!quick || f.check_exactly(&s).is_ok(), "{s:?}");
+            accepted += quick as usize;
+        }
+    }
+    // Not a vacuous check: ordinary samples take the quick path, with or without
+    // sensor ranges set.
+    assert!(accepted > n / 200, "{accepted}");
+    let mut f = Filter::new(&Config::new(Kind::Mahony).unwrap()).unwrap();
+    assert!(f.plainly_valid(&rig_sample(0, 0, true)));
+    f.set_param(id::GYRO_RANGE, 35.0).unwrap();
+    f.set_param(id::ACCEL_RANGE, 160.0).unwrap();
+    assert!(f.plainly_valid(&rig_sample(0, 0, true)));
+}
+
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn a_group_update_is_bit_identical_to_single_updates() {
+    for mag in [false, true] {
+        let config = Config::new(Kind::Madgwick).unwrap();
+        let mut group: Vec<Filter> = (0..4).map(|_| Filter::new(&config).unwrap()).collect();
+        let mut single = group.clone();
+        for i in 0..500 {
+            let samples: Vec<Sample> = (0..4).map(|k| rig_sample(k, i, mag)).collect();
+            {
+                let [a, b, c, d] = &mut group[..] else { unreachable!() };
+                let refs = [&samples[0], &samples[1], &samples[2], &samples[3]];
+                if i == 0 {
+                    // Initialisation takes the scalar path.
+                    Filter::update_group(&mut [a, b, c, d], refs).unwrap();
+                } else {
+                    // Afterwards the lanes must take every step.
+                    assert_eq!(Filter::try_lanes(&mut [a, b, c, d], refs), Some(Ok(())), "step {i}");
+                }
+            }
+            for (f, s) in single.iter_mut().zip(&samples) {
+                f.update(s).unwrap();
+            }
+            for (g, s) in group.iter().zip(&single) {
+                let (a, b) = (g.quaternion(), s.quaternion());
+                assert!(
+                    a.w.to_bits() == b.w.to_bits()
+                        && a.x.to_bits() == b.x.to_bits()
+                        && a.y.to_bits() == b.y.to_bits()
+                        && a.z.to_bits() == b.z.to_bits()
+                        && g.flags() == s.flags(),
+                    "mag {mag} step {i}: {a:?} vs {b:?}"
+                );
+            }
+        }
+        assert_eq!(group, single);
+    }
+}
+
+#[test]
+fn a_group_stops_at_a_bad_sample_like_single_updates() {
+    let config = Config::new(Kind::Madgwick).unwrap();
+    let mut group: Vec<Filter> = (0..4).map(|_| Filter::new(&config).unwrap()).collect();
+    let mut single = group.clone();
+    let mut samples: Vec<Sample> = (0..4).map(|k| rig_sample(k, 0, true)).collect();
+    for (f, s) in group.iter_mut().zip(&samples) {
+        f.update(s).unwrap();
+    }
+    for (f, s) in single.iter_mut().zip(&samples) {
+        f.update(s).unwrap();
+    }
+    samples[2].mag = Some(Vec3::new(f64::NAN, 0.0, 0.0));
+    let result = {
+        let [a, b, c, d] = &mut group[..] else { unreachable!() };
+        Filter::update_group(&mut [a, b, c, d], [&samples[0], &samples[1], &samples[2], &samples[3]])
+    };
+    assert_eq!(result, Err((2, Error::NonFinite(Field::Mag))));
+    single[0].update(&samples[0]).unwrap();
+    single[1].update(&samples[1]).unwrap();
+    assert_eq!(group, single);
+    // A gap (dt above gap_dt) takes the same path as alone, flag included.
+    samples[2] = rig_sample(2, 1, true);
+    samples[1].dt = 5.0;
+    {
+        let [a, b, c, d] = &mut group[..] else { unreachable!() };
+        Filter::update_group(&mut [a, b, c, d], [&samples[0], &samples[1], &samples[2], &samples[3]])
+            .unwrap();
+    }
+    for (f, s) in single.iter_mut().zip(&samples) {
+        f.update(s).unwrap();
+    }
+    assert_eq!(group, single);
+    assert!(group[1].flags() & flags::GAP != 0);
+}
+
+fn madgwick() -> Filter {
+    Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap()
+}
+
+fn good() -> Sample {
+    Sample {
+        dt: 0.01,
+        gyro: Some(Vec3::new(0.1, -0.2, 0.3)),
+        accel: Some(Vec3::new(0.5, 0.2, 9.7)),
+        mag: Some(Vec3::new(10.0, 20.0, -40.0)),
+    }
+}
+
+#[test]
+fn every_kind_is_built_and_has_documented_parameters() {
+    for k in Kind::ALL {
+        assert!(Config::new(k).is_ok());
+        for p in k.params() {
+            assert!(p.accepts(p.default), "{k:?} {}", p.name);
+            assert!(p.doc.contains("default") || p.doc.contains("Default"), "{k:?} {}", p.name);
+            assert_eq!(k.param_by_name(p.name).map(|q| q.id), Some(p.id), "duplicate name {}", p.name);
+        }
+    }
+}
+
+#[test]
+fn defaults_come_from_the_tables() {
+    let c = Config::new(Kind::Madgwick).unwrap();
+    assert_eq!(c.param(id::MADGWICK_BETA_IMU), Ok(0.041));
+    assert_eq!(c.param(id::MADGWICK_BETA_MARG), Ok(0.041));
+    assert_eq!(c.param(id::GRAVITY), Ok(9.80665));
+    assert_eq!(c.param(40), Err(Error::UnknownParam(40)));
+}
+
+#[test]
+fn bad_samples_leave_the_state_bit_identical() {
+    let mut f = madgwick();
+    f.update(&good()).unwrap();
+    f.set_param(id::GYRO_RANGE, 30.0).unwrap();
+    f.set_param(id::ACCEL_RANGE, 150.0).unwrap();
+    let before = f.clone();
+    let nan = f64::NAN;
+    let cases: Vec<(Sample, Error)> = vec![
+        (Sample { dt: 0.0, ..good() }, Error::InvalidDt(0.0)),
+        (Sample { dt: -0.01, ..good() }, Error::InvalidDt(-0.01)),
+        (Sample { gyro: None, ..good() }, Error::MissingSensor(Field::Gyro)),
+        (Sample { gyro: Some(Vec3::new(nan, 0.0, 0.0)), ..good() }, Error::NonFinite(Field::Gyro)),
+        (Sample { gyro: Some(Vec3::new(0.0, 31.0, 0.0)), ..good() }, Error::Saturated(Field::Gyro)),
+        (Sample { accel: Some(Vec3::ZERO), ..good() }, Error::ZeroVector(Field::Accel)),
+        (Sample { accel: Some(Vec3::new(0.0, 0.0, -150.0)), ..good() }, Error::Saturated(Field::Accel)),
+        (
+            Sample { accel: Some(Vec3::new(f64::INFINITY, 0.0, 1.0)), ..good() },
+            Error::NonFinite(Field::Accel),
+        ),
+        (Sample { mag: Some(Vec3::ZERO), ..good() }, Error::ZeroVector(Field::Mag)),
+        (Sample { mag: Some(Vec3::new(1e200, 1e200, 0.0)), ..good() }, Error::TooLarge(Field::Mag)),
+    ];
+    for (s, e) in cases {
+        let got = f.update(&s).unwrap_err();
+        match (got, e) {
+            (Error::InvalidDt(a), Error::InvalidDt(b)) => assert_eq!(a.to_bits(), b.to_bits()),
+            _ => assert_eq!(got, e),
+        }
+        assert_eq!(f, before, "{s:?}");
+    }
+    let nan_dt = f.update(&Sample { dt: nan, ..good() });
+    assert!(matches!(nan_dt, Err(Error::InvalidDt(_))));
+    assert_eq!(f, before);
+}
+
+#[test]
+fn acc_mag_init_waits_for_an_accelerometer() {
+    let mut f = madgwick();
+    assert!(!f.is_initialized());
+    let gyro_only = Sample { accel: None, mag: None, ..good() };
+    assert_eq!(f.update(&gyro_only), Err(Error::NotInitialized));
+    f.update(&good()).unwrap();
+    assert!(f.is_initialized());
+    // Right after init the reported gravity points along the measured accelerometer.
+    let g = f.gravity().normalized();
+    assert!((g - good().accel.unwrap().normalized()).norm() < 0.01);
+    f.update(&gyro_only).unwrap();
+    assert_eq!(f.flags() & flags::ACCEL_USED, 0);
+}
+
+#[test]
+fn frames_differ_by_their_constant_rotation() {
+    // Start away from the measurements: at a perfectly consistent estimate the
+    // gradient is rounding noise and (30) steps in its arbitrary direction, which
+    // would make the runs differ by β·dt for reasons unrelated to frames.
+    let q0 = Quat::from_axis_angle(Vec3::new(0.3, -0.2, 1.0), 0.8);
+    let run = |frame: Frame| {
+        let mut c = Config::new(Kind::Madgwick).unwrap();
+        c.frame = frame;
+        c.init = Init::Given(Frame::Enu.rotation_to(frame).map_or(q0, |r| r * q0));
+        let mut f = Filter::new(&c).unwrap();
+        for i in 0..200 {
+            let t = i as f64 * 0.01;
+            f.update(&Sample { dt: 0.01, gyro: Some(Vec3::new(0.3 * t.sin(), 0.2, -0.1)), ..good() })
+                .unwrap();
+        }
+        f.quaternion()
+    };
+    let enu = run(Frame::Enu);
+    for frame in [Frame::Ned, Frame::Nwu] {
+        let q = run(frame);
+        let c = Frame::Enu.rotation_to(frame).unwrap();
+        assert!(q.angle_to(c * enu) < 1e-12, "{frame:?} {}", q.angle_to(c * enu));
+    }
+}
+
+#[test]
+fn reset_returns_to_the_fresh_state_and_keeps_settings() {
+    let mut f = madgwick();
+    f.set_param(id::MADGWICK_BETA_IMU, 0.2).unwrap();
+    f.update(&good()).unwrap();
+    f.reset();
+    let mut fresh = Filter::new(&f.config()).unwrap();
+    fresh.set_param(id::MADGWICK_BETA_IMU, 0.2).unwrap();
+    assert_eq!(f, fresh);
+    assert!(!f.is_initialized());
+}
+
+#[test]
+fn linear_accel_is_zero_for_a_pure_gravity_reading() {
+    let mut c = Config::new(Kind::Madgwick).unwrap();
+    c.init = Init::Given(Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.4));
+    let f = Filter::new(&c).unwrap();
+    let mut g = f.clone();
+    let reading = f.gravity();
+    assert!((reading.norm() - 9.80665).abs() < 1e-12);
+    g.update(&Sample { dt: 1e-9, gyro: Some(Vec3::ZERO), accel: Some(reading), mag: None }).unwrap();
+    assert!(g.linear_accel().unwrap().norm() < 1e-6);
+    assert!(f.linear_accel().is_none());
+}
