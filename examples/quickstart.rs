@@ -3,8 +3,8 @@
 //!
 //!     cargo run --release --example quickstart
 
-use orient::eval::Recording;
 use orient::{Config, Filter, Frame, Kind};
+use orient_tools::eval::Recording;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/data/broad_01_excerpt.csv");
