@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every test: setup, formatting, lints, the generated header and the exported
-# symbols, the ABI against its baseline, then cargo test: Rust unit and integration
+# symbols, the C# P/Invoke layer generated from the header, the ABI against its baseline, then cargo test: Rust unit and integration
 # tests, doc tests, the C test program against the .so and the .a, the C++ wrapper
 # (with and without exceptions), the C# binding under Mono and the Unity scripts
 # against a stub, the examples in every language, the install layout with CMake and
@@ -22,6 +22,8 @@ echo "== clippy"
 cargo clippy --workspace --all-targets --quiet -- -D warnings
 echo "== header and exports"
 scripts/check-header.sh
+echo "== C# P/Invoke layer generated from the header"
+scripts/check-csharp.sh
 echo "== ABI against the committed baseline"
 scripts/check-abi.sh
 echo "== cargo test (the library and the tools crate)"
