@@ -1,5 +1,7 @@
 //! The Rust API in a few lines: a filter per kind on the demo recording, the final
 //! orientation and its error against the optical ground truth.
+//! (The recording is read with the repository's tools crate, `orient-tools`; everything
+//! after that is the `orient` API.)
 //!
 //!     cargo run --release --example quickstart
 
