@@ -1,10 +1,12 @@
 //! The Rust API in a few lines: a filter per kind on the demo recording, the final
 //! orientation and its error against the optical ground truth.
+//! (The recording is read with the repository's tools crate, `orient-tools`; everything
+//! after that is the `orient` API.)
 //!
 //!     cargo run --release --example quickstart
 
-use orient::eval::Recording;
 use orient::{Config, Filter, Frame, Kind};
+use orient_tools::eval::Recording;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/data/broad_01_excerpt.csv");

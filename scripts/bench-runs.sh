@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
-# Runs examples/bench RUNS times (default 7), each in a fresh process, and prints per row
+# Runs the bench tool (tools/src/bin/bench.rs) RUNS times (default 7), each in a fresh process, and prints per row
 # the median and the range over the runs of the Rust, C and batch times, of the first
 # anchor's ratio, and (Madgwick, Mahony) of the floor: their arithmetic alone with the
-# state in memory (examples/bench.rs, module floor). One process's times are bimodal for the small filters (the same
+# state in memory (tools/src/bin/bench.rs, module floor). One process's times are bimodal for the small filters (the same
 # binary gives Madgwick IMU 38-40 ns in most processes and 60-65 ns in some, while the
 # anchors in that process stay put; docs/PERFORMANCE.md), so a single run can mislead.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RUNS=${RUNS:-7}
-cargo build --release --quiet --example bench
+cargo build --release --quiet -p orient-tools --bin bench
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
 for _ in $(seq "$RUNS"); do
-  target/release/examples/bench | awk 'NF >= 8 && $3 ~ /^[0-9.]+$/ {
+  target/release/bench | awk 'NF >= 8 && $3 ~ /^[0-9.]+$/ {
     ratio = "-"; for (i = 9; i <= NF; i++) if ($i ~ /^\([0-9.]+x\)$/) { ratio = substr($i, 2, length($i) - 3); break }
     floor = "-"; for (i = 9; i < NF; i++) if ($i == "alone") { floor = $(i + 1); sub(/,$/, "", floor); break }
     print $1 " " $2, $3, $4, $6, ratio, floor }' >> "$out"

@@ -8,8 +8,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 N=${N:-5000}
 via=${1:-}
-cargo build --release --quiet --example bench
-bin=target/release/examples/bench
+cargo build --release --quiet -p orient-tools --bin bench
+bin=target/release/bench
 # The baseline (SSE2) code: valgrind 3.19 cannot decode every AVX instruction of the
 # path a CPU with AVX takes (src/isa.rs).
 count() {

@@ -23,7 +23,7 @@ for side in old new; do
 done
 # The library half: every function of the baseline is still exported by the release .so.
 symbols="abi/orient-abi$abi.symbols"
-cargo build --release --lib --quiet
+cargo build --release -p orient --lib --quiet
 nm -D --defined-only target/release/liborient.so | awk '$2 == "T" { print $3 }' | sort > "$work/exports"
 missing=$(comm -23 "$symbols" "$work/exports")
 if [ -n "$missing" ]; then

@@ -8,7 +8,8 @@
 Release: the shared files are there and SHA256SUMS matches; every platform folder has
 its libraries, CMake package and pkg-config files, and an archive; every library
 (ELF, PE, Mach-O, static archives, import libraries) exports exactly the header's
-functions and is built for its folder's machine; Linux glibc builds need no symbol
+functions and is built for its folder's machine; no static archive holds tools code
+(orient-tools: the CSV reader and scoring); Linux glibc builds need no symbol
 newer than GLIBC_2.17 and carry the SONAME liborient.so.ABI; the DLL needs no MinGW
 runtime DLL; the dylib is universal (arm64, x86_64), has the install name
 @rpath/liborient.dylib and a code signature on arm64.
@@ -151,6 +152,9 @@ def macho_dylib(path, want):
     return ok, "Mach-O universal, install name @rpath/liborient.dylib, " + ", ".join(notes)
 
 
+TOOLS_CODE = re.compile(r"\borient(?:_tools)?::eval::\w+|\borient_tools::\w+")
+
+
 def static_lib(path, platform, want):
     """An archive defines the whole Rust runtime too; its C-named (unmangled) global
     functions must be exactly the header's, and every header function must be there."""
@@ -162,6 +166,13 @@ def static_lib(path, platform, want):
             names.add(parts[-1].lstrip("_") if "apple" in platform or "ios" in platform else parts[-1])
     got = {n for n in names if n.startswith("orient_")}
     ok = compare(path, got, want)
+    # The tools crate (recording CSV reader, scoring) must stay out of the library: an
+    # archive keeps every public Rust function, so its code would show up here by name.
+    demangled = run([NM, "--defined-only", "-C", path])
+    tools = sorted(set(m.group(0) for m in TOOLS_CODE.finditer(demangled)))
+    if tools:
+        fail("%s: contains tools code (%s)" % (path, ", ".join(tools[:4])))
+        ok = False
     header = run([READOBJ, "--file-headers", path])
     arch = platform_arch(platform)
     if "ios" in platform:

@@ -15,7 +15,7 @@ if ! cmp -s "$tmp/orient.h" include/orient.h; then
   exit 1
 fi
 echo "header: include/orient.h matches cbindgen output"
-cargo build --release --lib --quiet
+cargo build --release -p orient --lib --quiet
 so=target/release/liborient.so
 # The symfile is a linker script fragment: '{ name; name; };'
 tr -d '{};' < "$tmp/symbols" | tr -s ' \n' '\n' | grep -v '^$' | sort > "$tmp/header-symbols"

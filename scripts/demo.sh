@@ -19,8 +19,8 @@ replay="${ORIENT_DEMO_REPLAY:-}"
 if [ -z "$replay" ]; then
   scripts/setup-debian.sh --demo
   export PATH="$HOME/.cargo/bin:$PATH"
-  cargo build --release --quiet --example replay
-  replay=./target/release/examples/replay
+  cargo build --release --quiet -p orient-tools --bin replay
+  replay=./target/release/replay
 fi
 shared="${ORIENT_SHARED_DATA:-../shared/data}"
 rec="$shared/broad/15_undisturbed_fast_translation_A.csv"

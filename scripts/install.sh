@@ -28,10 +28,10 @@ done
 
 if [ -z "$libdir" ]; then
   if [ -n "$target" ]; then
-    cargo build --release --lib --target "$target"
+    cargo build --release -p orient --lib --target "$target"
     libdir="target/$target/release"
   else
-    cargo build --release --lib
+    cargo build --release -p orient --lib
     libdir="target/release"
   fi
 fi

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Instruction counts per Madgwick MARG update in f64 and f32 on the emulated board
-# targets (examples/precision_cost.rs): qemu in single-step mode logs one line per
+# targets (tools/src/bin/precision_cost.rs): qemu in single-step mode logs one line per
 # executed instruction; a run of N updates minus a run of none, divided by N.
 # Counts, not times: emulation says nothing about a board's clock.
 #   scripts/instruction-counts.sh [N]        (default 2000; needs --cross setup)
@@ -12,8 +12,8 @@ trap 'rm -rf "$work"' EXIT
 for spec in "aarch64-unknown-linux-gnu:qemu-aarch64:/usr/aarch64-linux-gnu" \
             "armv7-unknown-linux-gnueabihf:qemu-arm:/usr/arm-linux-gnueabihf"; do
   IFS=: read -r target qemu sysroot <<< "$spec"
-  cargo build --quiet --release --example precision_cost --target "$target"
-  bin="target/$target/release/examples/precision_cost"
+  cargo build --quiet --release -p orient-tools --bin precision_cost --target "$target"
+  bin="target/$target/release/precision_cost"
   for precision in f64 f32; do
     count() {
       "$qemu" -L "$sysroot" -singlestep -d exec,nochain -D "$work/log" "$bin" "$precision" "$1" > /dev/null

@@ -66,7 +66,7 @@ build() {
   shift 3
   echo "== $target ($types)"
   # shellcheck disable=SC2086
-  if ! nice -n 10 $tool rustc ${cargo_extra:-} --release --lib --quiet --target "$target" --crate-type "$types" \
+  if ! nice -n 10 $tool rustc ${cargo_extra:-} -p orient --release --lib --quiet --target "$target" --crate-type "$types" \
     -- --print native-static-libs "$@" >"$work/$target.log" 2>&1; then
     cat "$work/$target.log" >&2
     exit 1

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every test: setup, formatting, lints, the generated header and the exported
-# symbols, the ABI against its baseline, then cargo test: Rust unit and integration
+# symbols, the C# P/Invoke layer generated from the header, the ABI against its baseline, then cargo test: Rust unit and integration
 # tests, doc tests, the C test program against the .so and the .a, the C++ wrapper
 # (with and without exceptions), the C# binding under Mono and the Unity scripts
 # against a stub, the examples in every language, the install layout with CMake and
@@ -19,19 +19,21 @@ export PATH="$HOME/.cargo/bin:$PATH"
 echo "== format"
 cargo fmt --all -- --check
 echo "== clippy"
-cargo clippy --all-targets --quiet -- -D warnings
+cargo clippy --workspace --all-targets --quiet -- -D warnings
 echo "== header and exports"
 scripts/check-header.sh
+echo "== C# P/Invoke layer generated from the header"
+scripts/check-csharp.sh
 echo "== ABI against the committed baseline"
 scripts/check-abi.sh
-echo "== cargo test"
+echo "== cargo test (the library and the tools crate)"
 cargo test
 echo "== Python package: wheel, fresh virtual environment, pytest"
 scripts/test-python.sh
 echo "== Miri on the library's unit tests (unsafe FFI code included)"
 # Tree Borrows: nalgebra's matrix views break the stricter Stacked Borrows model
 # inside nalgebra itself (cholesky -> gemv), which is not orient's code.
-MIRIFLAGS="-Zmiri-tree-borrows" cargo +nightly miri test --lib
+MIRIFLAGS="-Zmiri-tree-borrows" cargo +nightly miri test -p orient --lib
 echo "== fuzzing the C ABI (short run; scripts/fuzz.sh SECONDS for longer)"
 scripts/fuzz.sh 60
 for board in aarch64 armv7; do

@@ -11,13 +11,13 @@ elapsed() { awk -v a="$1" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.1f", b - a }'
 start=$EPOCHREALTIME
 out="${1:-target/wheels}"
 wheel_start=$EPOCHREALTIME
-cargo build --release --lib --quiet
+cargo build --release -p orient --lib --quiet
 rm -f "$out"/orient_imu-*.whl
 wheel=$(python3 bindings/python/build_wheel.py --lib target/release/liborient.so --out "$out")
 echo "wheel: $wheel ($(du -k "$wheel" | cut -f1) KiB, $(elapsed "$wheel_start") s with the library build)"
-# The BROAD test compares with the replay tool; cargo test has usually built it already.
-replay=target/debug/examples/replay
-[ -x "$replay" ] || cargo build --quiet --example replay
+# The BROAD test compares with the replay tool (the tools crate; a no-op when up to date).
+cargo build --quiet -p orient-tools --bin replay
+replay=target/debug/replay
 # A fresh environment outside the source tree, removed afterwards.
 venv=$(mktemp -d "${TMPDIR:-/tmp}/orient-venv.XXXXXX")
 trap 'rm -rf "$venv"' EXIT

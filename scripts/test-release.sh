@@ -185,7 +185,7 @@ echo "== README: the C build lines as written; CMake add_subdirectory of the rep
 # program as app.c; app.c, app and out/ are removed afterwards.
 mapfile -t lines < <(sed -n '/^After `cargo build --release`/,/^(`/p' README.md | grep -o '`[^`]*app\.c[^`]*`' | tr -d '`')
 [ "${#lines[@]}" = 2 ] || { echo "FAIL README: expected 2 C build lines, found ${#lines[@]}" >&2; exit 1; }
-[ -f target/release/liborient.a ] || cargo build --release --lib --quiet
+[ -f target/release/liborient.a ] || cargo build --release -p orient --lib --quiet
 [ ! -e app.c ] && [ ! -e app ] && [ ! -e out ] || { echo "FAIL app.c, app or out/ already in $root" >&2; exit 1; }
 trap 'rm -rf "$root/app.c" "$root/app" "$root/out"' EXIT
 cp tests/cmake_consumer/consumer.c app.c

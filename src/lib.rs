@@ -23,8 +23,6 @@
 //! ```
 
 /// cbindgen:ignore
-pub mod eval;
-/// cbindgen:ignore
 pub mod filters;
 mod isa;
 /// cbindgen:ignore

@@ -4,8 +4,8 @@
 //! Needs the shared directory beside the repository, as CI has it. Set
 //! ORIENT_SKIP_SHARED_DATA=1 to skip these tests where it is absent.
 
-use orient::eval::{remove_heading_offset, score, Recording, Scores};
 use orient::{Config, Filter, Frame, Kind, Quat};
+use orient_tools::eval::{remove_heading_offset, score, Recording, Scores};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::{Mutex, OnceLock};

@@ -1,4 +1,6 @@
-//! The C# binding: its declarations match include/orient.h, its wrapper replays the
+//! The C# binding: the committed P/Invoke layer is what scripts/gen-csharp.py generates
+//! from include/orient.h (and the generator follows header changes and refuses what
+//! IL2CPP cannot pass), its declarations match the header, its wrapper replays the
 //! golden vectors bit for bit under Mono, and the Unity scripts compile against a stub
 //! of UnityEngine. Needs Mono's mcs and mono (scripts/setup-debian.sh installs them).
 #![cfg(not(miri))]
@@ -188,4 +190,83 @@ fn unity_package_assembles_and_compiles_against_the_unityengine_stub() {
         .arg(pkg.join("Samples~/HandRig/OrientHandRig.cs"))
         .arg(root().join("tests/csharp/UnityEngineStub.cs"));
     check(mcs, "mcs Unity scripts");
+}
+
+/// Runs scripts/gen-csharp.py on `header` text; its exit success, output and stderr.
+fn generate(name: &str, header: &str) -> (bool, String, String) {
+    let dir = out_dir("gen_csharp");
+    let (h, cs) = (dir.join(format!("{name}.h")), dir.join(format!("{name}.cs")));
+    std::fs::write(&h, header).unwrap();
+    let _ = std::fs::remove_file(&cs);
+    let out = Command::new("python3")
+        .arg(root().join("scripts/gen-csharp.py"))
+        .arg(&h)
+        .arg(&cs)
+        .output()
+        .expect("python3 (scripts/setup-debian.sh installs it)");
+    let text = std::fs::read_to_string(&cs).unwrap_or_default();
+    (out.status.success(), text, String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+#[test]
+fn committed_csharp_layer_is_what_the_generator_makes_from_the_header() {
+    let (ok, generated, err) = generate("orient", &read("include/orient.h"));
+    assert!(ok, "gen-csharp.py failed: {err}");
+    assert!(
+        generated == read("bindings/csharp/Orient.Native.cs"),
+        "bindings/csharp/Orient.Native.cs is stale: run scripts/gen-csharp.py and commit the result"
+    );
+}
+
+#[test]
+fn generator_follows_header_additions() {
+    let header = read("include/orient.h");
+    let added = header
+        .replacen(
+            "#define ORIENT_MAX_PARAMS",
+            "#define ORIENT_TEST_ADDED 77\n\n#define ORIENT_MAX_PARAMS",
+            1,
+        )
+        .replacen(
+            "  double z;\n} OrientVec3;",
+            "  double z;\n  /**\n   * New & <documented>.\n   */\n  uint8_t extra[4];\n} OrientVec3;",
+            1,
+        )
+        .replacen(
+            "#ifdef __cplusplus\n}",
+            "/**\n * Added.\n */\nOrientStatus orient_test_added(const OrientFilter *filter,\n                              \
+             size_t n,\n                              double *out);\n\n#ifdef __cplusplus\n}",
+            1,
+        );
+    assert_ne!(added, header);
+    let (ok, cs, err) = generate("added", &added);
+    assert!(ok, "gen-csharp.py failed: {err}");
+    for expected in [
+        "public const uint TestAdded = 77;",
+        "public static extern Status orient_test_added(IntPtr filter, UIntPtr n, double* @out);",
+        "/// New &amp; &lt;documented&gt;.",
+        "public fixed byte Extra[4];",
+        "public unsafe partial struct Vec3",
+    ] {
+        assert!(cs.contains(expected), "generated file lacks `{expected}`");
+    }
+}
+
+#[test]
+fn generator_refuses_what_il2cpp_cannot_pass_and_what_it_does_not_know() {
+    let header = read("include/orient.h");
+    for (name, from, to, message) in [
+        ("bool", "uint32_t orient_abi_version(void);", "bool orient_abi_version(void);", "bool"),
+        (
+            "unknown",
+            "uint32_t orient_abi_version(void);",
+            "wchar_t orient_abi_version(void);",
+            "unknown type",
+        ),
+        ("union", "typedef struct OrientVec3 {", "typedef union OrientVec3 {", "unhandled"),
+    ] {
+        assert!(header.contains(from));
+        let (ok, _, err) = generate(name, &header.replacen(from, to, 1));
+        assert!(!ok && err.contains(message), "{name}: expected a refusal naming `{message}`, got: {err}");
+    }
 }

@@ -2,8 +2,8 @@
 //! from the Python `ahrs` package (tests/reference/ahrs_madgwick.py) on a recorded
 //! BROAD sequence, within 1e-9 rad per sample.
 
-use orient::eval::Recording;
 use orient::{Config, Filter, Frame, Init, Kind, Quat};
+use orient_tools::eval::Recording;
 use std::path::Path;
 
 fn root() -> &'static Path {

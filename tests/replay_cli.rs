@@ -6,21 +6,21 @@ mod common;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-/// target/<profile>/examples/replay. A full `cargo test` builds it beside the tests;
-/// when only this test was asked for, build it here (once).
+/// target/[<target>/]debug/replay, from the tools crate (orient-tools). `cargo test` does
+/// not build another package's binaries for this package's tests, so build it here, once
+/// per test process (a no-op when it is up to date).
 fn replay() -> PathBuf {
     static BUILT: std::sync::Once = std::sync::Once::new();
     let exe = std::env::current_exe().unwrap();
-    let bin = exe.parent().unwrap().parent().unwrap().join("examples/replay");
+    let bin = exe.parent().unwrap().parent().unwrap().join("replay");
     BUILT.call_once(|| {
-        if !bin.exists() {
-            let status = Command::new(env!("CARGO"))
-                .args(["build", "--quiet", "--example", "replay", "--manifest-path"])
-                .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/Cargo.toml"))
-                .status()
-                .unwrap();
-            assert!(status.success(), "cargo build --example replay failed");
+        let mut cargo = Command::new(env!("CARGO"));
+        cargo.args(["build", "--quiet", "-p", "orient-tools", "--bin", "replay", "--manifest-path"]);
+        cargo.arg(concat!(env!("CARGO_MANIFEST_DIR"), "/Cargo.toml"));
+        if common::native::cross() {
+            cargo.args(["--target", env!("ORIENT_BUILD_TARGET")]);
         }
+        assert!(cargo.status().unwrap().success(), "cargo build -p orient-tools --bin replay failed");
     });
     assert!(bin.exists(), "{} not built", bin.display());
     bin

@@ -18,6 +18,21 @@ using System.Runtime.InteropServices;
 using System.Text;
 using Orient.Native;
 
+namespace Orient.Native
+{
+    // The generated structs (Orient.Native.cs) are partial; these constructors are the
+    // hand-written part.
+    public partial struct Vec3
+    {
+        public Vec3(double x, double y, double z) { X = x; Y = y; Z = z; }
+    }
+
+    public partial struct Quaternion
+    {
+        public Quaternion(double w, double x, double y, double z) { W = w; X = x; Y = y; Z = z; }
+    }
+}
+
 namespace Orient
 {
     /// <summary>A call into the library failed; Status is its code.</summary>
@@ -87,13 +102,16 @@ namespace Orient
     }
 
     /// <summary>A filter configuration: kind, frame, initial orientation, parameters.</summary>
-    public sealed class OrientSettings
+    public sealed unsafe class OrientSettings
     {
         internal Config raw;
 
         public OrientSettings(Kind kind)
         {
-            OrientException.Check(NativeMethods.orient_config_default((int)kind, out raw));
+            fixed (Config* c = &raw)
+            {
+                OrientException.Check(NativeMethods.orient_config_default((int)kind, c));
+            }
         }
 
         public Kind Kind
@@ -126,10 +144,19 @@ namespace Orient
             get
             {
                 double v;
-                OrientException.Check(NativeMethods.orient_config_get_param(ref raw, id, out v));
+                fixed (Config* c = &raw)
+                {
+                    OrientException.Check(NativeMethods.orient_config_get_param(c, id, &v));
+                }
                 return v;
             }
-            set { OrientException.Check(NativeMethods.orient_config_set_param(ref raw, id, value)); }
+            set
+            {
+                fixed (Config* c = &raw)
+                {
+                    OrientException.Check(NativeMethods.orient_config_set_param(c, id, value));
+                }
+            }
         }
 
         /// <summary>A parameter by name (see Parameters), range-checked on set.</summary>
@@ -168,7 +195,7 @@ namespace Orient
     }
 
     /// <summary>An orientation filter of any kind.</summary>
-    public sealed class OrientFilter : IDisposable
+    public sealed unsafe class OrientFilter : IDisposable
     {
         private readonly FilterHandle handle = new FilterHandle();
 
@@ -177,7 +204,12 @@ namespace Orient
         public OrientFilter(OrientSettings settings)
         {
             IntPtr h;
-            OrientException.Check(NativeMethods.orient_filter_new(ref settings.raw, out h));
+            Status s;
+            fixed (Config* c = &settings.raw)
+            {
+                s = NativeMethods.orient_filter_new(c, &h);
+            }
+            OrientException.Check(s);
             handle.Set(h);
             Kind = settings.Kind;
             Frame = settings.Frame;
@@ -249,7 +281,7 @@ namespace Orient
         /// <summary>One sample; throws OrientException (state unchanged) when rejected.</summary>
         public void Update(Sample sample)
         {
-            Status s = NativeMethods.orient_filter_update(H, ref sample);
+            Status s = NativeMethods.orient_filter_update(H, &sample);
             GC.KeepAlive(this);
             OrientException.Check(s);
         }
@@ -257,7 +289,11 @@ namespace Orient
         /// <summary>Like Update, returning the status instead of throwing.</summary>
         public Status TryUpdate(ref Sample sample)
         {
-            Status s = NativeMethods.orient_filter_update(H, ref sample);
+            Status s;
+            fixed (Sample* p = &sample)
+            {
+                s = NativeMethods.orient_filter_update(H, p);
+            }
             GC.KeepAlive(this);
             return s;
         }
@@ -268,7 +304,7 @@ namespace Orient
         /// samples processed; throws OrientException at the first bad sample (the ones before
         /// it stay applied; its index is in the message).
         /// </summary>
-        public unsafe int UpdateBatch(Sample[] samples, int offset, int count, Native.Quaternion[] quaternions)
+        public int UpdateBatch(Sample[] samples, int offset, int count, Native.Quaternion[] quaternions)
         {
             if (samples == null) throw new ArgumentNullException("samples");
             if (offset < 0 || count < 0 || offset + count > samples.Length)
@@ -310,13 +346,13 @@ namespace Orient
             get
             {
                 Native.Quaternion q;
-                OrientException.Check(NativeMethods.orient_filter_quaternion(H, out q));
+                OrientException.Check(NativeMethods.orient_filter_quaternion(H, &q));
                 GC.KeepAlive(this);
                 return q;
             }
             set
             {
-                OrientException.Check(NativeMethods.orient_filter_set_quaternion(H, ref value));
+                OrientException.Check(NativeMethods.orient_filter_set_quaternion(H, &value));
                 GC.KeepAlive(this);
             }
         }
@@ -326,14 +362,14 @@ namespace Orient
             get
             {
                 Euler e;
-                OrientException.Check(NativeMethods.orient_filter_euler(H, out e));
+                OrientException.Check(NativeMethods.orient_filter_euler(H, &e));
                 GC.KeepAlive(this);
                 return e;
             }
         }
 
         /// <summary>Row-major rotation matrix, sensor to earth.</summary>
-        public unsafe double[] RotationMatrix
+        public double[] RotationMatrix
         {
             get
             {
@@ -353,7 +389,7 @@ namespace Orient
             get
             {
                 Vec3 v;
-                OrientException.Check(NativeMethods.orient_filter_gravity(H, out v));
+                OrientException.Check(NativeMethods.orient_filter_gravity(H, &v));
                 GC.KeepAlive(this);
                 return v;
             }
@@ -365,7 +401,7 @@ namespace Orient
             get
             {
                 Vec3 v;
-                OrientException.Check(NativeMethods.orient_filter_linear_accel(H, out v));
+                OrientException.Check(NativeMethods.orient_filter_linear_accel(H, &v));
                 GC.KeepAlive(this);
                 return v;
             }
@@ -377,7 +413,7 @@ namespace Orient
             get
             {
                 Vec3 v;
-                OrientException.Check(NativeMethods.orient_filter_linear_accel_earth(H, out v));
+                OrientException.Check(NativeMethods.orient_filter_linear_accel_earth(H, &v));
                 GC.KeepAlive(this);
                 return v;
             }
@@ -388,7 +424,7 @@ namespace Orient
             get
             {
                 Diagnostics d;
-                OrientException.Check(NativeMethods.orient_filter_diagnostics(H, out d));
+                OrientException.Check(NativeMethods.orient_filter_diagnostics(H, &d));
                 GC.KeepAlive(this);
                 return d;
             }
@@ -399,7 +435,7 @@ namespace Orient
             get
             {
                 uint f;
-                OrientException.Check(NativeMethods.orient_filter_flags(H, out f));
+                OrientException.Check(NativeMethods.orient_filter_flags(H, &f));
                 GC.KeepAlive(this);
                 return f;
             }
@@ -415,10 +451,13 @@ namespace Orient
         public byte[] SaveState()
         {
             UIntPtr size;
-            OrientException.Check(NativeMethods.orient_filter_state_size(H, out size));
+            OrientException.Check(NativeMethods.orient_filter_state_size(H, &size));
             byte[] blob = new byte[(int)size];
             UIntPtr written;
-            OrientException.Check(NativeMethods.orient_filter_save(H, blob, size, out written));
+            fixed (byte* p = blob)
+            {
+                OrientException.Check(NativeMethods.orient_filter_save(H, p, size, &written));
+            }
             GC.KeepAlive(this);
             return blob;
         }
@@ -428,7 +467,13 @@ namespace Orient
         public void LoadState(byte[] blob)
         {
             if (blob == null) throw new ArgumentNullException("blob");
-            OrientException.Check(NativeMethods.orient_filter_load(H, blob, (UIntPtr)blob.Length));
+            byte empty = 0;
+            fixed (byte* p = blob)
+            {
+                // An empty array pins as NULL; the library wants a pointer even for 0 bytes.
+                byte* data = blob.Length == 0 ? &empty : p;
+                OrientException.Check(NativeMethods.orient_filter_load(H, data, (UIntPtr)blob.Length));
+            }
             GC.KeepAlive(this);
         }
 
@@ -446,7 +491,7 @@ namespace Orient
             get
             {
                 double v;
-                OrientException.Check(NativeMethods.orient_filter_get_param(H, id, out v));
+                OrientException.Check(NativeMethods.orient_filter_get_param(H, id, &v));
                 GC.KeepAlive(this);
                 return v;
             }
@@ -468,7 +513,10 @@ namespace Orient
             if (name == null) throw new ArgumentNullException("name");
             byte[] bytes = Encoding.UTF8.GetBytes(name + "\0");
             uint id;
-            OrientException.Check(NativeMethods.orient_param_find((int)kind, bytes, out id));
+            fixed (byte* p = bytes)
+            {
+                OrientException.Check(NativeMethods.orient_param_find((int)kind, p, &id));
+            }
             return id;
         }
 
@@ -476,12 +524,12 @@ namespace Orient
         public static IList<ParameterInfo> ParametersOf(Kind kind)
         {
             uint n;
-            OrientException.Check(NativeMethods.orient_param_count((int)kind, out n));
+            OrientException.Check(NativeMethods.orient_param_count((int)kind, &n));
             List<ParameterInfo> list = new List<ParameterInfo>((int)n);
             for (uint i = 0; i < n; i++)
             {
                 Native.ParamInfo info;
-                OrientException.Check(NativeMethods.orient_param_info((int)kind, i, out info));
+                OrientException.Check(NativeMethods.orient_param_info((int)kind, i, &info));
                 ParameterInfo p = new ParameterInfo();
                 p.Id = info.Id;
                 p.Name = Marshal.PtrToStringAnsi(info.Name);
@@ -568,7 +616,7 @@ namespace Orient
     /// of a hand, the segments of a body. The filters may be of any kinds; the rig does not
     /// own them (dispose them yourself). Update allocates nothing.
     /// </summary>
-    public sealed class OrientRig
+    public sealed unsafe class OrientRig
     {
         private readonly OrientFilter[] filters;
         private readonly IntPtr[] handles;
@@ -595,7 +643,7 @@ namespace Orient
         /// (the filters before it stay updated, it and those after are unchanged; its index
         /// is in the message).
         /// </summary>
-        public unsafe void Update(Sample[] samples, Native.Quaternion[] quaternions)
+        public void Update(Sample[] samples, Native.Quaternion[] quaternions)
         {
             if (samples == null) throw new ArgumentNullException("samples");
             if (samples.Length < filters.Length)

@@ -26,6 +26,6 @@ def shared_data() -> Path:
 @pytest.fixture(scope="session")
 def replay_tool() -> Path:
     """The replay tool ($ORIENT_REPLAY, built by scripts/test-python.sh)."""
-    path = Path(os.environ.get("ORIENT_REPLAY", ROOT / "target" / "debug" / "examples" / "replay"))
-    assert path.is_file(), f"replay tool not built: {path} (cargo build --example replay)"
+    path = Path(os.environ.get("ORIENT_REPLAY", ROOT / "target" / "debug" / "replay"))
+    assert path.is_file(), f"replay tool not built: {path} (cargo build -p orient-tools --bin replay)"
     return path

@@ -1,5 +1,5 @@
 """A shared BROAD trial through the Python package, against the replay tool
-(examples/replay.rs): the same quaternions bit for bit and the same scores."""
+(tools/src/bin/replay): the same quaternions bit for bit and the same scores."""
 
 import re
 import subprocess

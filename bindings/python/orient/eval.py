@@ -1,4 +1,4 @@
-"""Recordings and scoring, as the replay tool does them (src/eval.rs): read the CSV of
+"""Recordings and scoring, as the replay tool does them (tools/src/eval.rs): read the CSV of
 shared/data/FORMAT.md, replay it through a filter, and score the estimates against the
 optical ground truth with BROAD's rule."""
 

@@ -1,7 +1,7 @@
 //! Runs every filter kind, 9D and 6D, with default settings over every recording in a
 //! directory and prints BROAD's scores as a Markdown table.
 //!
-//!     cargo run --release --example broad_table [-- DIR]     (default ../shared/data/broad)
+//!     cargo run --release --bin broad_table [-- DIR]     (default ../shared/data/broad)
 //!
 //! 9D: magnetometer used, scored as is (BROAD's rule). 6D*: magnetometer unused, one
 //! constant heading offset removed per trial (FORMAT.md). Cells: total / heading /
@@ -12,8 +12,8 @@
 //! Options: `--kinds robust,madgwick` limits the columns; `--set name=value` (repeatable)
 //! sets a parameter on every kind that has it.
 
-use orient::eval::{remove_heading_offset, score, Recording, Scores};
 use orient::{Config, Filter, Kind, Quat};
+use orient_tools::eval::{remove_heading_offset, score, Recording, Scores};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -39,7 +39,7 @@ fn trial_number(name: &str) -> u32 {
 }
 
 fn main() {
-    let mut dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/broad"));
+    let mut dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/broad"));
     let mut kinds: Vec<Kind> = Kind::ALL.to_vec();
     let mut sets: Vec<(String, f64)> = Vec::new();
     let mut args = std::env::args().skip(1);

@@ -3,9 +3,9 @@
 //!
 //! Not used by the filters; the replay and benchmark tools and the tests share it.
 
-use crate::filters::Sample;
-use crate::math::{Quat, Vec3};
 use core::fmt;
+use orient::filters::Sample;
+use orient::math::{Quat, Vec3};
 use std::path::Path;
 
 /// A recording: IMU samples, optionally with ground truth and BROAD's movement mask.

@@ -1,15 +1,15 @@
 //! What f32 would cost and gain on a board: the Madgwick MARG update (the library's
 //! equations, written once over a float type) in f64 and in f32, on the demo recording.
 //!
-//!     cargo run --release --example precision_cost                  accuracy of f32 vs f64
-//!     cargo run --release --example precision_cost -- f64 5000      run N updates only
+//!     cargo run --release --bin precision_cost                  accuracy of f32 vs f64
+//!     cargo run --release --bin precision_cost -- f64 5000      run N updates only
 //!
 //! The second form exists to be counted: under qemu,
 //! `qemu-aarch64 -one-insn-per-tb -d exec,nochain -D log BIN f32 5000` logs one line per
 //! executed instruction (scripts/instruction-counts.sh subtracts a zero-update run).
 //! The library itself stays f64: this example only measures the alternative.
 
-use orient::eval::Recording;
+use orient_tools::eval::Recording;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 trait Float:
@@ -126,7 +126,7 @@ fn run<T: Float>(rec: &Recording, n: usize) -> Vec<[f64; 4]> {
 }
 
 fn main() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/data/broad_01_excerpt.csv");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/data/broad_01_excerpt.csv");
     let args: Vec<String> = std::env::args().collect();
     if args.len() == 3 {
         // Counting mode: the same 200 rows are parsed whatever N is, so that a run with

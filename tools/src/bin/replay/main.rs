@@ -1,7 +1,7 @@
 //! Replays a recording through a filter and scores it against ground truth.
 //!
 //! ```text
-//! cargo run --release --example replay -- --filter NAME[,NAME...] [--no-mag] [--frame enu|ned|nwu]
+//! cargo run --release --bin replay -- --filter NAME[,NAME...] [--no-mag] [--frame enu|ned|nwu]
 //!     [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv
 //! ```
 //!
@@ -28,12 +28,11 @@
 //! Exit status: 0 on success, 2 on bad arguments or malformed input (the message names
 //! the line and column), 1 when writing the output fails.
 
-#[path = "replay/plot.rs"]
 mod plot;
 
-use orient::eval::{remove_heading_offset, score, Recording, Scores};
 use orient::filters::{diag, Diagnostics};
 use orient::{Config, Filter, Frame, Kind, Quat};
+use orient_tools::eval::{remove_heading_offset, score, Recording, Scores};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::exit;

@@ -9,14 +9,13 @@
 //! registers. Then one frame of a 20-sensor rig through the multi-sensor call. Prints
 //! medians over interleaved rounds and ratios measured in the same run.
 //!
-//!     cargo run --release --example bench [-- --rounds N]
+//!     cargo run --release --bin bench [-- --rounds N]
 //!     bench --count KIND imu|marg N [c] (N updates only, through the Rust API or with `c`
 //!                                        the C ABI: for instruction counts under callgrind,
 //!                                        see scripts/callgrind-counts.sh)
 //!
 //! Input: the real recording in examples/data (13,500 samples, cycled).
 
-use orient::eval::Recording;
 use orient::ffi::{
     orient_config_default, orient_filter_free, orient_filter_new, orient_filter_update,
     orient_filter_update_batch, orient_filters_update, OrientConfig, OrientFilter, OrientQuaternion,
@@ -26,6 +25,7 @@ use orient::filters::madgwick::{gradient_imu, gradient_marg, reference_field, Ma
 use orient::filters::mahony::{Mahony, MahonySettings};
 use orient::math::inv_sqrt;
 use orient::{Config, Filter, Kind, Quat, Sample, Vec3};
+use orient_tools::eval::Recording;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -244,7 +244,7 @@ fn main() {
     if let Some(i) = args.iter().position(|a| a == "--rounds") {
         rounds = args.get(i + 1).and_then(|v| v.parse().ok()).expect("--rounds N");
     }
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/data/broad_01_excerpt.csv");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/data/broad_01_excerpt.csv");
     let marg_rec = Recording::read(path.as_ref(), true).expect("demo recording");
     if let Some(i) = args.iter().position(|a| a == "--count") {
         let kind = Kind::from_name(&args[i + 1]).expect("--count KIND imu|marg N");

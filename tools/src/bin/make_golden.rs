@@ -2,11 +2,13 @@
 //! quaternion the Rust API produces after each sample, as exact bit patterns.
 //!
 //! Run it only when an algorithm changes on purpose, and say why in the commit:
-//!     cargo run --example make_golden
+//!     cargo run -p orient-tools --bin make_golden [OUT]
+//! (OUT defaults to the committed tests/golden/filters.golden; give another path to
+//! compare without touching it.)
 //! The tests (Rust, C through the .so and the .a, and later C++ and C#) then require
 //! every binding to reproduce these bits exactly.
 
-#[path = "../tests/common/golden.rs"]
+#[path = "../../../tests/common/golden.rs"]
 mod golden;
 
 use golden::{Case, Row, SAMPLE_ACCEL, SAMPLE_GYRO, SAMPLE_MAG};
@@ -189,7 +191,10 @@ fn main() {
             motion(11, 300, |_| imu),
         ),
     ];
-    std::fs::write(golden::PATH, golden::write(&cases)).expect("write golden file");
+    let out = std::env::args().nth(1).unwrap_or_else(|| {
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/golden/filters.golden").to_string()
+    });
+    std::fs::write(&out, golden::write(&cases)).expect("write golden file");
     let n: usize = cases.iter().map(|c| c.rows.len()).sum();
-    println!("wrote {} cases, {n} samples to {}", cases.len(), golden::PATH);
+    println!("wrote {} cases, {n} samples to {out}", cases.len());
 }

@@ -11,8 +11,8 @@
 //! "mag unused"), so there is no other band. Drawn with `plotters` (SVG backend only);
 //! each line is the maximum over the samples of one pixel column, so no peak is lost.
 
-use orient::eval::{error_angles, Recording};
 use orient::{flags, Quat};
+use orient_tools::eval::{error_angles, Recording};
 use plotters::prelude::*;
 use std::path::Path;
 
