@@ -51,6 +51,452 @@
 typedef struct OrientFilter OrientFilter;
 
 /**
+ * Parameter slot (every kind): Gravity magnitude for the gravity and linear-acceleration
+ * outputs; default: standard gravity 9.80665 (CGPM 1901).
+ *
+ * Unit m/s^2; range 0.001 to 1000; default 9.80665.
+ */
+#define ORIENT_PARAM_GRAVITY 0
+
+/**
+ * Parameter slot (every kind): Gyroscope full scale: a sample with any axis at or beyond
+ * it is rejected as saturated; 0 turns the check off (default, since the range is the
+ * sensor's).
+ *
+ * Unit rad/s; range 0 (off) or 0.1 to 10000; default 0.
+ */
+#define ORIENT_PARAM_GYRO_RANGE 1
+
+/**
+ * Parameter slot (every kind): Accelerometer full scale: a sample with any axis at or
+ * beyond it is rejected as saturated; 0 turns the check off (default).
+ *
+ * Unit m/s^2; range 0 (off) or 1 to 100000; default 0.
+ */
+#define ORIENT_PARAM_ACCEL_RANGE 2
+
+/**
+ * Parameter slot (every kind): Longest dt taken as given: a larger dt is a gap in the
+ * data (dropped packets), and the update re-acquires the orientation from the sensors
+ * instead of integrating over it (GAP and REACQUIRED flags); default 0.25 (orient: over
+ * a quarter second a hand's rate changes enough that integrating the next sample's rate
+ * errs more than one accelerometer reading; 10 periods of a 40 Hz sensor); 0 turns it
+ * off.
+ *
+ * Unit s; range 0 (off) or 0.001 to 1000000; default 0.25.
+ */
+#define ORIENT_PARAM_GAP_DT 3
+
+/**
+ * Parameter slot (madgwick): Gradient step beta for steps without magnetometer, eq.
+ * (30); default 0.041 (Madgwick 2010, section V, optimum of the IMU implementation).
+ * beta = sqrt(3/4) * max gyro error, eq. (33).
+ *
+ * Unit rad/s; range 0 to 100; default 0.041.
+ */
+#define ORIENT_PARAM_MADGWICK_BETA_IMU 8
+
+/**
+ * Parameter slot (madgwick): Gradient step beta for steps with magnetometer, eq. (30);
+ * default 0.041, the paper's IMU optimum (section V). The paper's MARG optimum, 0.033,
+ * was found for its own sensor (beta scales with gyro error, eq. (33)); on BROAD it
+ * scores 7.79 deg against 7.22 for 0.041, which is also the Python ahrs reference's
+ * value.
+ *
+ * Unit rad/s; range 0 to 100; default 0.041.
+ */
+#define ORIENT_PARAM_MADGWICK_BETA_MARG 9
+
+/**
+ * Parameter slot (madgwick): orient option: learn the gyro bias at detected rest (2
+ * deg/s, 0.5 m/s^2, 0.5 deg tilt for 1.5 s) with this time constant and subtract it;
+ * default 0 = off (the paper has no bias estimate in this form).
+ *
+ * Unit s; range 0 (off) or 0.001 to 3600; default 0.
+ */
+#define ORIENT_PARAM_MADGWICK_REST_BIAS_TAU 10
+
+/**
+ * Parameter slot (mahony): Proportional gain on the direction error (Mahony 2008);
+ * default 0.5 as in the GMVDK paper's comparison and BROAD's baseline.
+ *
+ * Unit 1/s; range 0 to 1000; default 0.5.
+ */
+#define ORIENT_PARAM_MAHONY_KP 16
+
+/**
+ * Parameter slot (mahony): Integral gain for the gyroscope bias (Mahony 2008); default 0
+ * (no bias estimation) as in the GMVDK paper's comparison.
+ *
+ * Unit 1/s^2; range 0 to 1000; default 0.
+ */
+#define ORIENT_PARAM_MAHONY_KI 17
+
+/**
+ * Parameter slot (mahony): orient option: at detected rest (2 deg/s, 0.5 m/s^2, 0.5 deg
+ * tilt for 1.5 s) the bias b follows the low-passed gyro with this time constant;
+ * default 0 = off (Mahony's filter).
+ *
+ * Unit s; range 0 (off) or 0.001 to 3600; default 0.
+ */
+#define ORIENT_PARAM_MAHONY_REST_BIAS_TAU 18
+
+/**
+ * Parameter slot (complementary): Proportional gain K_P, eq. (4), applied only at rest;
+ * default 1.0 (the paper gives no value: 1 s attitude time constant at rest).
+ *
+ * Unit 1/s; range 0 to 1000; default 1.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_KP 24
+
+/**
+ * Parameter slot (complementary): Integral gain K_I for the gyro bias, eqs. (5) and
+ * (10), applied only at rest; default 0.01 (the paper gives no value): stable for rests
+ * up to 100 s apart, since the loop gain per rest is about K_I * motion time / K_P and
+ * must stay below 2.
+ *
+ * Unit 1/s^2; range 0 to 1000; default 0.01.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_KI 25
+
+/**
+ * Parameter slot (complementary): Rest when |gyro - start-up mean gyro| is below this;
+ * default 0.02 (about 3x the per-sample noise floor of the paper's 0.03 deg/s/sqrt(Hz)
+ * gyro at 100 Hz).
+ *
+ * Unit rad/s; range 0 to 100; default 0.02.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_GYRO_REST 26
+
+/**
+ * Parameter slot (complementary): Rest when | |accel| - g0 | is below this (g0: start-up
+ * mean); default 0.2 (about 3x the per-sample noise floor of the paper's 650 ug/sqrt(Hz)
+ * accelerometer).
+ *
+ * Unit m/s^2; range 0 to 100; default 0.2.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_ACCEL_REST 27
+
+/**
+ * Parameter slot (complementary): Stationary start-up period giving the initial bias and
+ * attitude (paper: 'a time period at the start of a trial'); default 2.
+ *
+ * Unit s; range 0 to 3600; default 2.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_INIT_DURATION 28
+
+/**
+ * Parameter slot (complementary): 1: take north from the start-up mean magnetometer
+ * reading, aligning heading with the earth frame; 0 (default, the paper): heading
+ * relative to the sensor y axis.
+ *
+ * Unit 1; range 0 to 1; default 0.
+ */
+#define ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING 29
+
+/**
+ * Parameter slot (ekf): Correlation time of the angular-rate Markov process, eq. (9)
+ * (stable -1/tau form); default 0.2 (motion bandwidth of a few Hz).
+ *
+ * Unit s; range 0.0001 to 1000000; default 0.2.
+ */
+#define ORIENT_PARAM_EKF_TAU_OMEGA 40
+
+/**
+ * Parameter slot (ekf): Stationary standard deviation of the angular rate ('limit of the
+ * magnitude of the motion', section III.A); default 3.
+ *
+ * Unit rad/s; range 0.001 to 1000; default 3.
+ */
+#define ORIENT_PARAM_EKF_OMEGA_STD 41
+
+/**
+ * Parameter slot (ekf): Correlation time of the gyro drift Markov process, eq. (10)
+ * (stable -1/tau form); default 100 (slow drift).
+ *
+ * Unit s; range 0.001 to 1000000000; default 100.
+ */
+#define ORIENT_PARAM_EKF_TAU_DRIFT 42
+
+/**
+ * Parameter slot (ekf): Stationary standard deviation of the gyro drift; default 0.02.
+ *
+ * Unit rad/s; range 0.000001 to 10; default 0.02.
+ */
+#define ORIENT_PARAM_EKF_DRIFT_STD 43
+
+/**
+ * Parameter slot (ekf): Gyroscope noise density; default 0.05 deg/s/sqrt(Hz) (paper,
+ * section IV).
+ *
+ * Unit rad/s/sqrt(Hz); range 0.00001 to 10; default 0.0008726646259971648.
+ */
+#define ORIENT_PARAM_EKF_GYRO_NOISE 44
+
+/**
+ * Parameter slot (ekf): Accelerometer noise density; default 32 ug/sqrt(Hz) (paper,
+ * section IV).
+ *
+ * Unit m/s^2/sqrt(Hz); range 0.00001 to 100; default 0.00031381279999999996.
+ */
+#define ORIENT_PARAM_EKF_ACCEL_NOISE 45
+
+/**
+ * Parameter slot (ekf): Standing allowance for linear acceleration added to the
+ * accelerometer noise (plus (|f|-g)^2 per sample); default 0.5.
+ *
+ * Unit m/s^2; range 0 to 1000; default 0.5.
+ */
+#define ORIENT_PARAM_EKF_ACCEL_MOTION 46
+
+/**
+ * Parameter slot (ekf): Standard deviation of the magnetometer heading measurement (the
+ * paper's proposed extension); default 0.1.
+ *
+ * Unit rad; range 0.0001 to 10; default 0.1.
+ */
+#define ORIENT_PARAM_EKF_HEADING_STD 47
+
+/**
+ * Parameter slot (ekf): Correlation time of linear acceleration: its variance is counted
+ * once per 2*motion_tau/dt samples (coloured, not white, noise); default 0.5 (hand
+ * motion); 0 treats it as white.
+ *
+ * Unit s; range 0 to 100; default 0.5.
+ */
+#define ORIENT_PARAM_EKF_MOTION_TAU 48
+
+/**
+ * Parameter slot (ekf): Correlation time of magnetic heading errors: the heading
+ * variance is counted once per 2*heading_tau/dt samples; default 1 (disturbances change
+ * as the sensor moves through a room's field); 0 treats them as white.
+ *
+ * Unit s; range 0 to 1000; default 1.
+ */
+#define ORIENT_PARAM_EKF_HEADING_TAU 49
+
+/**
+ * Parameter slot (ekf): orient option: at detected rest (2 deg/s, 0.5 m/s^2, 0.5 deg
+ * tilt for 1.5 s) add the pseudo-measurement omega = 0 with this standard deviation
+ * (zero-rate update), which pins the drift delta to the resting gyro; default 0 = off
+ * (the paper).
+ *
+ * Unit rad/s; range 0 (off) or 0.000001 to 10; default 0.
+ */
+#define ORIENT_PARAM_EKF_REST_RATE_STD 50
+
+/**
+ * Parameter slot (ekf): Time constant of the accelerometer innovation's running power;
+ * the measurement variance is at least that power (colour-scaled), so sustained linear
+ * acceleration is trusted less (innovation-based adaptive noise, where the paper only
+ * allows 'a modicum'); default 2 (BROAD mean 9D within 0.15 deg over 1-5 s); 0 = off.
+ *
+ * Unit s; range 0 (off) or 0.001 to 1000; default 2.
+ */
+#define ORIENT_PARAM_EKF_ACCEL_ADAPT_TAU 51
+
+/**
+ * Parameter slot (ekf): Time constant of the heading innovation's running power, which
+ * likewise bounds the heading variance from below, so a disturbed field is trusted less;
+ * default 2; 0 = off.
+ *
+ * Unit s; range 0 (off) or 0.001 to 1000; default 2.
+ */
+#define ORIENT_PARAM_EKF_HEADING_ADAPT_TAU 52
+
+/**
+ * Parameter slot (gmvdk): SlopeAlpha of Appendix B.1: alpha = max(0, stillness*slope + 1
+ * - slope); default 1.0 (paper).
+ *
+ * Unit 1; range 0 to 100; default 1.
+ */
+#define ORIENT_PARAM_GMVDK_SLOPE_ALPHA 56
+
+/**
+ * Parameter slot (gmvdk): SlopeMuk of Appendix B.2 / eq. (20): muKA = 1 - slope*lambda;
+ * default 1.5 (paper).
+ *
+ * Unit 1/rad; range 0 to 100; default 1.5.
+ */
+#define ORIENT_PARAM_GMVDK_SLOPE_MUK 57
+
+/**
+ * Parameter slot (gmvdk): Window of the running minimum mu2 of mu1 (section 2.2.2);
+ * default 0.4 (paper).
+ *
+ * Unit s; range 0 to 60; default 0.4.
+ */
+#define ORIENT_PARAM_GMVDK_MU_WINDOW 58
+
+/**
+ * Parameter slot (gmvdk): Static start-up period averaging A_init, M_init and the first
+ * gyro bias; default 1.
+ *
+ * Unit s; range 0 to 3600; default 1.
+ */
+#define ORIENT_PARAM_GMVDK_INIT_DURATION 59
+
+/**
+ * Parameter slot (gmvdk): Time constant of the mean-square activity averages behind
+ * stillness; default 0.1.
+ *
+ * Unit s; range 0.0001 to 100; default 0.1.
+ */
+#define ORIENT_PARAM_GMVDK_ACTIVITY_TAU 60
+
+/**
+ * Parameter slot (gmvdk): Gyro activity scale: RMS de-biased rate at which stillness
+ * reaches 0 (with no accelerometer activity, at sqrt(2) times it); default 0.5.
+ *
+ * Unit rad/s; range 0.000001 to 100; default 0.5.
+ */
+#define ORIENT_PARAM_GMVDK_GYRO_ACTIVITY 61
+
+/**
+ * Parameter slot (gmvdk): Accelerometer activity scale: RMS deviation of |a| from its
+ * start-up value at which stillness reaches 0 (alone: sqrt(2) times it); default 1.0.
+ *
+ * Unit m/s^2; range 0.000001 to 1000; default 1.
+ */
+#define ORIENT_PARAM_GMVDK_ACCEL_ACTIVITY 62
+
+/**
+ * Parameter slot (gmvdk): Static run length for the linear-regression gyro de-biasing of
+ * step [1]; default 1.0.
+ *
+ * Unit s; range 0.001 to 3600; default 1.
+ */
+#define ORIENT_PARAM_GMVDK_BIAS_WINDOW 63
+
+/**
+ * Parameter slot (gmvdk): alpha at or above which the sensor counts as static for
+ * de-biasing; default 0.95.
+ *
+ * Unit 1; range 0 to 1; default 0.95.
+ */
+#define ORIENT_PARAM_GMVDK_STATIC_ALPHA 64
+
+/**
+ * Parameter slot (gmvdk): 1: report orientation relative to the start-up pose (the
+ * paper's output); 0 (default): in the configured earth frame.
+ *
+ * Unit 1; range 0 to 1; default 0.
+ */
+#define ORIENT_PARAM_GMVDK_RELATIVE_OUTPUT 65
+
+/**
+ * Parameter slot (robust): Time constant of the accelerometer low-pass (2nd-order
+ * Butterworth, cutoff sqrt(2)/(2 pi tau)) in the quasi-inertial frame; default 2.5
+ * (orient: long enough to average out hand and body accelerations; BROAD scores vary by
+ * under 0.03 deg over 2.5-3 s).
+ *
+ * Unit s; range 0.001 to 1000; default 2.5.
+ */
+#define ORIENT_PARAM_ROBUST_TAU_ACC 80
+
+/**
+ * Parameter slot (robust): Time constant of the magnetometer heading correction; default
+ * 9 (VQF's default: slow enough that a short undetected disturbance moves heading
+ * little).
+ *
+ * Unit s; range 0.001 to 1000; default 9.
+ */
+#define ORIENT_PARAM_ROBUST_TAU_MAG 81
+
+/**
+ * Parameter slot (robust): Rest when the gyroscope's spread around its low-pass and the
+ * low-pass itself stay below this; default 0.0349 (2 deg/s, VQF's default; MEMS biases
+ * are below it).
+ *
+ * Unit rad/s; range 0 to 10; default 0.03490658503988659.
+ */
+#define ORIENT_PARAM_ROBUST_REST_GYRO 82
+
+/**
+ * Parameter slot (robust): Rest when the accelerometer's spread around its low-pass
+ * stays below this; default 0.5 (VQF's default).
+ *
+ * Unit m/s^2; range 0 to 100; default 0.5.
+ */
+#define ORIENT_PARAM_ROBUST_REST_ACCEL 83
+
+/**
+ * Parameter slot (robust): How long the rest conditions must hold before the sensor
+ * counts as resting; default 1.5 (VQF's default).
+ *
+ * Unit s; range 0 to 3600; default 1.5.
+ */
+#define ORIENT_PARAM_ROBUST_REST_TIME 84
+
+/**
+ * Parameter slot (robust): Rest also needs the low-passed accelerometer direction to
+ * stay within this angle of where the still period began, so a slow turn under rest_gyro
+ * is not learned as bias; default 0.0087 (0.5 deg, orient: 10x the direction noise after
+ * the rest low-pass of a consumer MEMS accelerometer).
+ *
+ * Unit rad; range 0 to 3.2; default 0.008726646259971648.
+ */
+#define ORIENT_PARAM_ROBUST_REST_TILT 92
+
+/**
+ * Parameter slot (robust): Time constant of the low-pass that rest detection compares
+ * against; default 0.5 (VQF's default).
+ *
+ * Unit s; range 0.001 to 100; default 0.5.
+ */
+#define ORIENT_PARAM_ROBUST_REST_TAU 85
+
+/**
+ * Parameter slot (robust): Time constant with which the bias follows the low-passed
+ * gyroscope at rest; default 2 (orient: settles within a typical 5-10 s pause).
+ *
+ * Unit s; range 0.001 to 3600; default 2.
+ */
+#define ORIENT_PARAM_ROBUST_BIAS_TAU_REST 86
+
+/**
+ * Parameter slot (robust): Time constant of the bias estimate from the accelerometer
+ * correction in motion; default 100 (orient: 40 times tau_acc, so accelerations that
+ * leak through the low-pass average out before they move the bias); 0 turns it off.
+ *
+ * Unit s; range 0 (off) or 0.001 to 1000000; default 100.
+ */
+#define ORIENT_PARAM_ROBUST_BIAS_TAU_MOTION 87
+
+/**
+ * Parameter slot (robust): Largest bias norm the motion estimate may reach; default
+ * 0.0349 (2 deg/s, the rest threshold: a larger bias would also hide rest).
+ *
+ * Unit rad/s; range 0 to 10; default 0.03490658503988659.
+ */
+#define ORIENT_PARAM_ROBUST_BIAS_LIMIT 88
+
+/**
+ * Parameter slot (robust): Magnetic disturbance when the field norm deviates from the
+ * reference by more than this fraction; default 0.1 (VQF's default).
+ *
+ * Unit 1; range 0 to 10; default 0.1.
+ */
+#define ORIENT_PARAM_ROBUST_MAG_NORM_TH 89
+
+/**
+ * Parameter slot (robust): Magnetic disturbance when the dip angle deviates from the
+ * reference by more than this; default 0.1745 (10 deg, VQF's default).
+ *
+ * Unit rad; range 0 to 3.2; default 0.17453292519943295.
+ */
+#define ORIENT_PARAM_ROBUST_MAG_DIP_TH 90
+
+/**
+ * Parameter slot (robust): A sensor-fixed disturbance (attached magnet) is compensated
+ * once its estimate has been consistent this long; default 3 (orient); 0 turns
+ * compensation off.
+ *
+ * Unit s; range 0 (off) or 0.001 to 3600; default 3.
+ */
+#define ORIENT_PARAM_ROBUST_HARD_IRON_TIME 91
+
+/**
  * Version of the C ABI described by this header. It changes only when an existing
  * function, struct layout or constant changes meaning; additions keep it.
  */
@@ -124,275 +570,6 @@ typedef struct OrientFilter OrientFilter;
  * smallest value that has it on.
  */
 #define ORIENT_PARAM_FLAG_ZERO_OFF 1
-
-/**
- * Parameter slot (every kind): gravity magnitude for the gravity and linear
- * acceleration outputs, m/s^2, default 9.80665.
- */
-#define ORIENT_PARAM_GRAVITY 0
-
-/**
- * Parameter slot (every kind): gyroscope full scale, rad/s; a sample with any axis at or
- * beyond it is rejected with ORIENT_STATUS_SATURATED. Default 0 = no check.
- */
-#define ORIENT_PARAM_GYRO_RANGE 1
-
-/**
- * Parameter slot (every kind): accelerometer full scale, m/s^2; a sample with any axis
- * at or beyond it is rejected with ORIENT_STATUS_SATURATED. Default 0 = no check.
- */
-#define ORIENT_PARAM_ACCEL_RANGE 2
-
-/**
- * Parameter slot (every kind): the longest dt (s) taken as it is; a larger dt is a gap in
- * the data: the update re-acquires the orientation from the sensors and sets
- * ORIENT_FLAG_GAP (see ORIENT_FLAG_REACQUIRED). Default 0.25; 0 turns the policy off
- * (every accepted dt is integrated as given).
- */
-#define ORIENT_PARAM_GAP_DT 3
-
-/**
- * Parameter slot (Madgwick): beta for steps without magnetometer, rad/s, default 0.041
- * (Madgwick 2010, section V). beta = sqrt(3/4) * max gyro error, eq. (33):
- * see orient_madgwick_beta().
- */
-#define ORIENT_PARAM_MADGWICK_BETA_IMU 8
-
-/**
- * Parameter slot (Madgwick): beta for steps with magnetometer, rad/s, default 0.041
- * (Madgwick 2010, section V: its IMU optimum; the ahrs reference uses it for MARG too).
- */
-#define ORIENT_PARAM_MADGWICK_BETA_MARG 9
-
-/**
- * Parameter slot (Madgwick): time constant of the gyro bias learned at rest, s, default 0 = off.
- */
-#define ORIENT_PARAM_MADGWICK_REST_BIAS_TAU 10
-
-/**
- * Parameter slot (Mahony): proportional gain kP, 1/s, default 0.5 (GMVDK paper's comparison).
- */
-#define ORIENT_PARAM_MAHONY_KP 16
-
-/**
- * Parameter slot (Mahony): integral gain kI for the gyro bias, 1/s^2, default 0.
- */
-#define ORIENT_PARAM_MAHONY_KI 17
-
-/**
- * Parameter slot (Mahony): time constant of the bias learned at rest, s, default 0 = off.
- */
-#define ORIENT_PARAM_MAHONY_REST_BIAS_TAU 18
-
-/**
- * Parameter slot (complementary): K_P at rest, 1/s, default 1.0.
- */
-#define ORIENT_PARAM_COMPLEMENTARY_KP 24
-
-/**
- * Parameter slot (complementary): K_I at rest, 1/s^2, default 0.01.
- */
-#define ORIENT_PARAM_COMPLEMENTARY_KI 25
-
-/**
- * Parameter slot (complementary): rest threshold on |gyro - bias|, rad/s, default 0.02.
- */
-#define ORIENT_PARAM_COMPLEMENTARY_GYRO_REST 26
-
-/**
- * Parameter slot (complementary): rest threshold on | |accel| - g0 |, m/s^2, default 0.2.
- */
-#define ORIENT_PARAM_COMPLEMENTARY_ACCEL_REST 27
-
-/**
- * Parameter slot (complementary): stationary start-up period, s, default 2.
- */
-#define ORIENT_PARAM_COMPLEMENTARY_INIT_DURATION 28
-
-/**
- * Parameter slot (complementary): 1 = north from the start-up magnetometer, default 0.
- */
-#define ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING 29
-
-/**
- * Parameter slot (EKF): angular-rate correlation time tau_omega, s, default 0.2.
- */
-#define ORIENT_PARAM_EKF_TAU_OMEGA 40
-
-/**
- * Parameter slot (EKF): stationary std of the angular rate, rad/s, default 3.
- */
-#define ORIENT_PARAM_EKF_OMEGA_STD 41
-
-/**
- * Parameter slot (EKF): gyro drift correlation time tau_delta, s, default 100.
- */
-#define ORIENT_PARAM_EKF_TAU_DRIFT 42
-
-/**
- * Parameter slot (EKF): stationary std of the gyro drift, rad/s, default 0.02.
- */
-#define ORIENT_PARAM_EKF_DRIFT_STD 43
-
-/**
- * Parameter slot (EKF): gyro noise density, rad/s/sqrt(Hz), default 0.05 deg/s/sqrt(Hz).
- */
-#define ORIENT_PARAM_EKF_GYRO_NOISE 44
-
-/**
- * Parameter slot (EKF): accelerometer noise density, m/s^2/sqrt(Hz), default 32 ug/sqrt(Hz).
- */
-#define ORIENT_PARAM_EKF_ACCEL_NOISE 45
-
-/**
- * Parameter slot (EKF): linear-acceleration allowance, m/s^2, default 0.5.
- */
-#define ORIENT_PARAM_EKF_ACCEL_MOTION 46
-
-/**
- * Parameter slot (EKF): magnetometer heading std, rad, default 0.1.
- */
-#define ORIENT_PARAM_EKF_HEADING_STD 47
-
-/**
- * Parameter slot (EKF): correlation time of linear acceleration, s, default 0.5.
- */
-#define ORIENT_PARAM_EKF_MOTION_TAU 48
-
-/**
- * Parameter slot (EKF): correlation time of magnetic heading errors, s, default 1.
- */
-#define ORIENT_PARAM_EKF_HEADING_TAU 49
-
-/**
- * Parameter slot (EKF): zero-rate update std at rest, rad/s, default 0 = off.
- */
-#define ORIENT_PARAM_EKF_REST_RATE_STD 50
-
-/**
- * Parameter slot (EKF): time constant of the adaptive accelerometer noise, s, default 2; 0 = off.
- */
-#define ORIENT_PARAM_EKF_ACCEL_ADAPT_TAU 51
-
-/**
- * Parameter slot (EKF): time constant of the adaptive heading noise, s, default 2; 0 = off.
- */
-#define ORIENT_PARAM_EKF_HEADING_ADAPT_TAU 52
-
-/**
- * Parameter slot (GMVDK): SlopeAlpha, default 1.0 (paper, Appendix B.1).
- */
-#define ORIENT_PARAM_GMVDK_SLOPE_ALPHA 56
-
-/**
- * Parameter slot (GMVDK): SlopeMuk, 1/rad, default 1.5 (paper, eq. (20)).
- */
-#define ORIENT_PARAM_GMVDK_SLOPE_MUK 57
-
-/**
- * Parameter slot (GMVDK): running-minimum window of mu, s, default 0.4 (paper).
- */
-#define ORIENT_PARAM_GMVDK_MU_WINDOW 58
-
-/**
- * Parameter slot (GMVDK): static start-up period, s, default 1.
- */
-#define ORIENT_PARAM_GMVDK_INIT_DURATION 59
-
-/**
- * Parameter slot (GMVDK): time constant of the activity averages, s, default 0.1.
- */
-#define ORIENT_PARAM_GMVDK_ACTIVITY_TAU 60
-
-/**
- * Parameter slot (GMVDK): gyro activity scale, rad/s, default 0.5.
- */
-#define ORIENT_PARAM_GMVDK_GYRO_ACTIVITY 61
-
-/**
- * Parameter slot (GMVDK): accelerometer activity scale, m/s^2, default 1.0.
- */
-#define ORIENT_PARAM_GMVDK_ACCEL_ACTIVITY 62
-
-/**
- * Parameter slot (GMVDK): static run length for gyro de-biasing, s, default 1.
- */
-#define ORIENT_PARAM_GMVDK_BIAS_WINDOW 63
-
-/**
- * Parameter slot (GMVDK): alpha threshold for "static", default 0.95.
- */
-#define ORIENT_PARAM_GMVDK_STATIC_ALPHA 64
-
-/**
- * Parameter slot (GMVDK): 1 = output relative to the start-up pose, default 0.
- */
-#define ORIENT_PARAM_GMVDK_RELATIVE_OUTPUT 65
-
-/**
- * Parameter slot (robust): accelerometer low-pass time constant, s, default 2.5.
- */
-#define ORIENT_PARAM_ROBUST_TAU_ACC 80
-
-/**
- * Parameter slot (robust): magnetometer heading time constant, s, default 9.
- */
-#define ORIENT_PARAM_ROBUST_TAU_MAG 81
-
-/**
- * Parameter slot (robust): rest threshold on the gyroscope, rad/s, default 0.0349 (2 deg/s).
- */
-#define ORIENT_PARAM_ROBUST_REST_GYRO 82
-
-/**
- * Parameter slot (robust): rest threshold on the accelerometer, m/s^2, default 0.5.
- */
-#define ORIENT_PARAM_ROBUST_REST_ACCEL 83
-
-/**
- * Parameter slot (robust): time the rest conditions must hold, s, default 1.5.
- */
-#define ORIENT_PARAM_ROBUST_REST_TIME 84
-
-/**
- * Parameter slot (robust): rest-detection low-pass time constant, s, default 0.5.
- */
-#define ORIENT_PARAM_ROBUST_REST_TAU 85
-
-/**
- * Parameter slot (robust): bias time constant at rest, s, default 2.
- */
-#define ORIENT_PARAM_ROBUST_BIAS_TAU_REST 86
-
-/**
- * Parameter slot (robust): bias time constant in motion, s, default 100; 0 = off.
- */
-#define ORIENT_PARAM_ROBUST_BIAS_TAU_MOTION 87
-
-/**
- * Parameter slot (robust): largest bias the motion estimate reaches, rad/s, default 0.0349.
- */
-#define ORIENT_PARAM_ROBUST_BIAS_LIMIT 88
-
-/**
- * Parameter slot (robust): magnetic disturbance threshold on the norm, fraction, default 0.1.
- */
-#define ORIENT_PARAM_ROBUST_MAG_NORM_TH 89
-
-/**
- * Parameter slot (robust): magnetic disturbance threshold on the dip, rad, default 0.1745.
- */
-#define ORIENT_PARAM_ROBUST_MAG_DIP_TH 90
-
-/**
- * Parameter slot (robust): consistent time before hard-iron compensation, s, default 3; 0 = off.
- */
-#define ORIENT_PARAM_ROBUST_HARD_IRON_TIME 91
-
-/**
- * Parameter slot (robust): largest accelerometer tilt within a rest, rad, default 0.0087 (0.5 deg).
- */
-#define ORIENT_PARAM_ROBUST_REST_TILT 92
 
 /**
  * OrientDiagnostics.present: gyro_bias holds a value.

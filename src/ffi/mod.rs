@@ -16,11 +16,13 @@
 
 mod arrays;
 mod error;
+mod param_ids;
 mod registry;
 mod strings;
 mod types;
 
 pub use arrays::*;
+pub use param_ids::*;
 pub use types::*;
 
 use crate::filters::{Config, Filter, Init, Kind, Sample, SampleView};
@@ -826,6 +828,75 @@ mod tests {
         let mut h = core::ptr::null_mut();
         assert_eq!(orient_filter_new(c.as_ptr(), &mut h), OrientStatus::Ok);
         h
+    }
+
+    /// The C constants of the parameter slots, rendered from the kinds' tables (each
+    /// kind's `settings!` and `params::COMMON`): the text of `src/ffi/param_ids.rs`.
+    pub(crate) fn render_param_ids() -> String {
+        use crate::filters::params::{ParamSpec, COMMON};
+        use std::fmt::Write;
+        let mut out = String::from(
+            "//! Parameter slot numbers for C. Generated from the parameter tables (each kind's\n\
+             //! `settings!` and `params::COMMON`) by the test `param_ids_are_generated_from_the_tables`;\n\
+             //! do not edit. Regenerate: ORIENT_BLESS=1 cargo test -p orient --lib param_ids\n",
+        );
+        // Lines of at most 86 characters (90 with the comment marker).
+        fn wrap(text: &str) -> Vec<String> {
+            let mut lines = vec![String::new()];
+            for word in text.split_whitespace() {
+                let last = lines.last_mut().expect("one line");
+                if !last.is_empty() && last.len() + 1 + word.len() > 86 {
+                    lines.push(word.to_string());
+                } else {
+                    if !last.is_empty() {
+                        last.push(' ');
+                    }
+                    last.push_str(word);
+                }
+            }
+            lines
+        }
+        let mut entry = |prefix: &str, who: &str, p: &ParamSpec| {
+            let name = format!("ORIENT_PARAM_{prefix}{}", p.name.to_ascii_uppercase());
+            let range = if p.zero_off {
+                format!("0 (off) or {} to {}", p.min, p.max)
+            } else {
+                format!("{} to {}", p.min, p.max)
+            };
+            out.push('\n');
+            for line in wrap(&format!("Parameter slot ({who}): {}", p.doc)) {
+                let _ = writeln!(out, "/// {line}");
+            }
+            let _ = writeln!(out, "///\n/// Unit {}; range {range}; default {}.", p.unit, p.default);
+            let _ = writeln!(out, "pub const {name}: u32 = {};", p.id);
+        };
+        for p in COMMON.iter() {
+            entry("", "every kind", p);
+        }
+        for kind in Kind::ALL {
+            let prefix = format!("{}_", kind.name().to_ascii_uppercase());
+            for p in kind.params().skip(COMMON.len()) {
+                entry(&prefix, kind.name(), p);
+            }
+        }
+        out
+    }
+
+    /// The committed constants are the tables' (one place per parameter). With
+    /// ORIENT_BLESS=1 the file is written instead.
+    #[test]
+    #[cfg_attr(miri, ignore = "reads a file")]
+    fn param_ids_are_generated_from_the_tables() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/ffi/param_ids.rs");
+        let want = render_param_ids();
+        if std::env::var_os("ORIENT_BLESS").is_some() {
+            std::fs::write(path, &want).unwrap();
+        }
+        let have = std::fs::read_to_string(path).unwrap();
+        assert!(
+            have == want,
+            "src/ffi/param_ids.rs is stale: ORIENT_BLESS=1 cargo test -p orient --lib param_ids"
+        );
     }
 
     #[test]
