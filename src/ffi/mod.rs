@@ -16,11 +16,13 @@
 
 mod arrays;
 mod error;
+mod offline;
 mod registry;
 mod strings;
 mod types;
 
 pub use arrays::*;
+pub use offline::*;
 pub use types::*;
 
 use crate::filters::{Config, Filter, Init, Kind, Sample, SampleView};
