@@ -1,0 +1,116 @@
+//! The offline mode (`orient::offline`): on simulated motion with exact truth it beats
+//! the causal filter, and on the shared BROAD trials it stays within its measured
+//! bounds (docs/ACCURACY.md, "Offline mode").
+//!
+//! The BROAD test needs ../shared/data/broad beside the repository, as CI has it; set
+//! ORIENT_SKIP_SHARED_DATA=1 to skip it where it is absent.
+
+mod common;
+
+use common::sim::{inclination_error, simulate, Moment};
+use orient::eval::{score, Recording};
+use orient::{offline, Config, Filter, Kind, Quat, Sample, Vec3};
+use std::path::PathBuf;
+
+fn causal(config: &Config, samples: &[Sample]) -> Vec<Quat> {
+    let mut f = Filter::new(config).unwrap();
+    samples
+        .iter()
+        .map(|s| {
+            f.update(s).unwrap();
+            f.quaternion()
+        })
+        .collect()
+}
+
+fn rms_deg(est: &[Quat], truth: &[Quat], err: impl Fn(Quat, Quat) -> f64) -> f64 {
+    let s: f64 = est.iter().zip(truth).map(|(e, t)| err(*e, *t).powi(2)).sum();
+    (s / est.len() as f64).sqrt().to_degrees()
+}
+
+#[test]
+fn offline_beats_the_causal_filter_on_simulated_motion() {
+    // Two minutes of hand-held-like motion at 100 Hz with a gyro bias the filters must
+    // learn: 20 s still, then sums of sines about every axis, with linear accelerations.
+    let bias = Vec3::new(0.01, -0.008, 0.005);
+    let run =
+        simulate(Quat::from_axis_angle(Vec3::new(1.0, 0.5, 0.2), 0.6), 120.0, 100.0, (0.01, 0.1, 0.5), |t| {
+            let moving = t > 20.0;
+            let omega = if moving {
+                Vec3::new((1.3 * t).sin() * 0.8, (0.7 * t + 1.0).sin() * 0.6, (0.45 * t + 2.0).sin() * 0.9)
+            } else {
+                Vec3::ZERO
+            };
+            let linear = if moving {
+                Vec3::new((2.1 * t).sin(), (1.7 * t).cos(), (2.9 * t).sin() * 0.5)
+            } else {
+                Vec3::ZERO
+            };
+            Moment { omega, linear, bias, ..Moment::default() }
+        });
+    for kind in [Kind::Robust, Kind::Madgwick, Kind::Ekf] {
+        let config = Config::new(kind).unwrap();
+        let c = causal(&config, &run.samples);
+        let o = offline::smooth(&config, &run.samples).unwrap();
+        let total = |e: &[Quat]| rms_deg(e, &run.truth, |a, b| a.angle_to(b));
+        let incl = |e: &[Quat]| rms_deg(e, &run.truth, inclination_error);
+        println!(
+            "{kind:?}: causal {:.3} ({:.3}), offline {:.3} ({:.3})",
+            total(&c),
+            incl(&c),
+            total(&o),
+            incl(&o)
+        );
+        assert!(total(&o) < total(&c), "{kind:?}: offline {:.3} against causal {:.3}", total(&o), total(&c));
+        assert!(incl(&o) < incl(&c), "{kind:?}: offline {:.3} against causal {:.3}", incl(&o), incl(&c));
+    }
+}
+
+fn broad_dir() -> Option<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data/broad");
+    if dir.is_dir() {
+        return Some(dir);
+    }
+    if std::env::var_os("ORIENT_SKIP_SHARED_DATA").is_some() {
+        eprintln!("skipping: {} not found", dir.display());
+        return None;
+    }
+    panic!("{} not found (set ORIENT_SKIP_SHARED_DATA=1 to skip)", dir.display());
+}
+
+#[test]
+fn offline_broad_means_stay_within_their_measured_bounds() {
+    let Some(dir) = broad_dir() else { return };
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "csv"))
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), 14);
+    let config = Config::new(Kind::Robust).unwrap();
+    let scores: Vec<(f64, f64, f64, f64)> = std::thread::scope(|s| {
+        let jobs: Vec<_> = files
+            .iter()
+            .map(|p| {
+                let config = &config;
+                s.spawn(move || {
+                    let rec = Recording::read(p, true).unwrap();
+                    let samples = rec.samples();
+                    let c = score(&causal(config, &samples), &rec.truth, &rec.movement);
+                    let o = score(&offline::smooth(config, &samples).unwrap(), &rec.truth, &rec.movement);
+                    (c.total, c.inclination, o.total, o.inclination)
+                })
+            })
+            .collect();
+        jobs.into_iter().map(|j| j.join().unwrap()).collect()
+    });
+    let mean = |f: fn(&(f64, f64, f64, f64)) -> f64| scores.iter().map(f).sum::<f64>() / scores.len() as f64;
+    let (ct, ci, ot, oi) = (mean(|s| s.0), mean(|s| s.1), mean(|s| s.2), mean(|s| s.3));
+    println!("14 trials, robust 9D: causal {ct:.3} ({ci:.3}), offline {ot:.3} ({oi:.3})");
+    // Measured: offline 2.65 (0.60) against causal 2.52 (0.80). The inclination gains a
+    // quarter; the total does not reach VQF's offline 2.41 on the first eight trials
+    // (ours 2.50): the backward pass's heading is worse (docs/ACCURACY.md).
+    assert!(oi < 0.65 && oi < ci - 0.15, "offline inclination {oi:.3} against causal {ci:.3}");
+    assert!(ot < 2.70, "offline total {ot:.3}");
+}
