@@ -339,5 +339,12 @@ namespace Orient.Native
         public static extern unsafe Status orient_filter_update_arrays(
             IntPtr filter, UIntPtr n, double* dt, UIntPtr dtCount, double* gyro, double* accel, double* mag,
             Quaternion* quaternions, uint* flags, Diagnostics* diagnostics, UIntPtr* processed);
+
+        /// <summary>Offline mode: the whole recording (arrays as orient_filter_update_arrays)
+        /// smoothed forward and backward; quaternions has room for n.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern unsafe Status orient_smooth_arrays(
+            ref Config config, UIntPtr n, double* dt, UIntPtr dtCount, double* gyro, double* accel, double* mag,
+            Quaternion* quaternions, UIntPtr* processed);
     }
 }

@@ -297,6 +297,34 @@ namespace Orient
             return (int)processed;
         }
 
+        /// <summary>
+        /// Offline mode (orient_smooth_arrays): the whole recording smoothed forward and
+        /// backward through the kind and parameters of settings; every output uses the
+        /// samples before and after it. gyro holds 3n doubles (x, y, z per sample), accel and
+        /// mag likewise or null, dt 1 or n doubles. Returns the n orientations; throws
+        /// OrientException at the first bad sample (its index is in the message).
+        /// </summary>
+        public static unsafe Native.Quaternion[] Smooth(OrientSettings settings, double[] dt, double[] gyro, double[] accel, double[] mag)
+        {
+            if (settings == null) throw new ArgumentNullException("settings");
+            if (gyro == null) throw new ArgumentNullException("gyro");
+            if (dt == null) throw new ArgumentNullException("dt");
+            int n = gyro.Length / 3;
+            if (gyro.Length != 3 * n || (accel != null && accel.Length != 3 * n) || (mag != null && mag.Length != 3 * n))
+                throw new ArgumentException("gyro, accel and mag must hold 3 doubles per sample");
+            var q = new Native.Quaternion[n];
+            if (n == 0) return q;
+            UIntPtr processed = UIntPtr.Zero;
+            Status s;
+            fixed (double* pd = dt, pg = gyro, pa = accel, pm = mag)
+            fixed (Native.Quaternion* pq = q)
+            {
+                s = NativeMethods.orient_smooth_arrays(ref settings.raw, (UIntPtr)n, pd, (UIntPtr)dt.Length, pg, pa, pm, pq, &processed);
+            }
+            OrientException.Check(s);
+            return q;
+        }
+
         public int UpdateBatch(Sample[] samples, Native.Quaternion[] quaternions)
         {
             return UpdateBatch(samples, 0, samples == null ? 0 : samples.Length, quaternions);
