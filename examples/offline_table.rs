@@ -4,7 +4,10 @@
 //!     cargo run --release --example offline_table [-- DIR] [--kinds robust,gmvdk]
 //!
 //! Cells: total (inclination) RMSE in degrees, causal then offline; the last row is the
-//! mean over all trials and the mean over the first eight shared trials.
+//! mean over all trials and the mean over the first eight shared trials. The recommended
+//! kind's offline column uses the offline defaults (`orient::offline::config()`).
+//! `PASSES=1` also prints each pass's total / heading / inclination; `SETS=name=value,...`
+//! sets parameters on both columns.
 
 use orient::eval::{score, Recording};
 use orient::{offline, Config, Filter, Kind, Quat};
@@ -25,14 +28,22 @@ fn main() {
             _ => dir = PathBuf::from(a),
         }
     }
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .expect("a directory")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|x| x == "csv"))
-        .collect();
-    files.sort();
+    let files = orient::eval::csv_files(&dir).expect("a directory of recordings");
     for kind in kinds {
-        let config = Config::new(kind).expect("config");
+        let mut config = Config::new(kind).expect("config");
+        if let Ok(v) = std::env::var("SETS") {
+            for kv in v.split(',') {
+                let (k, x) = kv.split_once('=').unwrap();
+                config.set(k, x.parse().unwrap()).unwrap().unwrap();
+            }
+        }
+        let mut offline_config = if kind == Kind::Robust { offline::config() } else { config.clone() };
+        if let Ok(v) = std::env::var("SETS") {
+            for kv in v.split(',') {
+                let (k, x) = kv.split_once('=').unwrap();
+                offline_config.set(k, x.parse().unwrap()).unwrap().unwrap();
+            }
+        }
         println!("\n{} | causal 9D | offline 9D", kind.name());
         let (mut sums, mut first) = ([0.0; 4], [0.0; 4]);
         for p in &files {
@@ -47,7 +58,7 @@ fn main() {
                     f.quaternion()
                 })
                 .collect();
-            let (fore, back) = offline::passes(&config, &samples).expect("smooth");
+            let (fore, back) = offline::passes(&offline_config, &samples).expect("smooth");
             let smoothed = offline::fuse(&fore, &back);
             if std::env::var_os("PASSES").is_some() {
                 let f = score(&fore.q, &rec.truth, &rec.movement);

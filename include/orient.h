@@ -1103,6 +1103,15 @@ OrientStatus orient_filter_update_arrays(OrientFilter *filter,
                                          size_t *processed);
 
 /**
+ * Writes the offline defaults to `*config`: the recommended kind
+ * (ORIENT_KIND_ROBUST) with its defaults except for a heading time constant `tau_mag`
+ * of 27 s, three times the causal default (the forward and backward passes' heading
+ * drifts cancel in the fusion, so each can lean on the gyroscope longer). Pass it to
+ * orient_smooth_arrays, changed or not.
+ */
+OrientStatus orient_smooth_config_default(struct OrientConfig *config);
+
+/**
  * Smooths a whole recording offline (non-causal: every output uses the samples before
  * and after it) and writes the orientation at each sample to `quaternions` (room for
  * `n`, in the configuration's frame). Runs the kind and parameters of `config` forward,

@@ -175,6 +175,19 @@ impl Recording {
     }
 }
 
+/// The `.csv` files in `dir`, sorted by name.
+pub fn csv_files(dir: &Path) -> std::io::Result<Vec<std::path::PathBuf>> {
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir)? {
+        let path = entry?.path();
+        if path.extension().is_some_and(|x| x == "csv") {
+            files.push(path);
+        }
+    }
+    files.sort();
+    Ok(files)
+}
+
 /// RMSE in degrees over the scored samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Scores {

@@ -89,16 +89,22 @@ fn offline_broad_means_stay_within_their_measured_bounds() {
     files.sort();
     assert_eq!(files.len(), 14);
     let config = Config::new(Kind::Robust).unwrap();
+    let offline_config = offline::config();
+    let first_eight = |p: &PathBuf| {
+        let name = p.file_name().unwrap().to_string_lossy();
+        ["01_", "06_", "08_", "15_", "24_", "26_", "28_", "32_"].iter().any(|n| name.starts_with(n))
+    };
     let scores: Vec<(f64, f64, f64, f64)> = std::thread::scope(|s| {
         let jobs: Vec<_> = files
             .iter()
             .map(|p| {
-                let config = &config;
+                let (config, offline_config) = (&config, &offline_config);
                 s.spawn(move || {
                     let rec = Recording::read(p, true).unwrap();
                     let samples = rec.samples();
                     let c = score(&causal(config, &samples), &rec.truth, &rec.movement);
-                    let o = score(&offline::smooth(config, &samples).unwrap(), &rec.truth, &rec.movement);
+                    let o =
+                        score(&offline::smooth(offline_config, &samples).unwrap(), &rec.truth, &rec.movement);
                     (c.total, c.inclination, o.total, o.inclination)
                 })
             })
@@ -107,10 +113,12 @@ fn offline_broad_means_stay_within_their_measured_bounds() {
     });
     let mean = |f: fn(&(f64, f64, f64, f64)) -> f64| scores.iter().map(f).sum::<f64>() / scores.len() as f64;
     let (ct, ci, ot, oi) = (mean(|s| s.0), mean(|s| s.1), mean(|s| s.2), mean(|s| s.3));
-    println!("14 trials, robust 9D: causal {ct:.3} ({ci:.3}), offline {ot:.3} ({oi:.3})");
-    // Measured: offline 2.65 (0.60) against causal 2.52 (0.80). The inclination gains a
-    // quarter; the total does not reach VQF's offline 2.41 on the first eight trials
-    // (ours 2.50): the backward pass's heading is worse (docs/ACCURACY.md).
+    let first: f64 =
+        files.iter().zip(&scores).filter(|(p, _)| first_eight(p)).map(|(_, s)| s.2).sum::<f64>() / 8.0;
+    println!("14 trials, robust 9D: causal {ct:.3} ({ci:.3}), offline {ot:.3} ({oi:.3}); first 8 offline {first:.3}");
+    // Measured: offline 2.23 (0.60) against causal 2.52 (0.80); first eight 2.25, VQF's
+    // offline mode 2.41 (../shared/data/README.md, issue 19).
+    assert!(first < 2.41, "offline total over the first eight trials {first:.3} (VQF offline: 2.41)");
+    assert!(ot < 2.30 && ot < ct - 0.2, "offline total {ot:.3} against causal {ct:.3}");
     assert!(oi < 0.65 && oi < ci - 0.15, "offline inclination {oi:.3} against causal {ci:.3}");
-    assert!(ot < 2.70, "offline total {ot:.3}");
 }

@@ -120,6 +120,14 @@ public:
         return c;
     }
 
+    /// The offline defaults for orient::smooth (orient_smooth_config_default).
+    static Result<Config> offline_defaults() noexcept {
+        Config c;
+        OrientStatus s = orient_smooth_config_default(&c.raw_);
+        if (s != ORIENT_STATUS_OK) return last_error(s);
+        return c;
+    }
+
     /// Sets parameter slot `id` (ORIENT_PARAM_*), range-checked.
     OrientStatus set(uint32_t id, double value) noexcept { return orient_config_set_param(&raw_, id, value); }
 

@@ -340,6 +340,10 @@ namespace Orient.Native
             IntPtr filter, UIntPtr n, double* dt, UIntPtr dtCount, double* gyro, double* accel, double* mag,
             Quaternion* quaternions, uint* flags, Diagnostics* diagnostics, UIntPtr* processed);
 
+        /// <summary>The offline defaults for orient_smooth_arrays.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_smooth_config_default(out Config config);
+
         /// <summary>Offline mode: the whole recording (arrays as orient_filter_update_arrays)
         /// smoothed forward and backward; quaternions has room for n.</summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]

@@ -96,6 +96,19 @@ namespace Orient
             OrientException.Check(NativeMethods.orient_config_default((int)kind, out raw));
         }
 
+        private OrientSettings()
+        {
+        }
+
+        /// <summary>The offline defaults for OrientFilter.Smooth (orient_smooth_config_default):
+        /// the recommended kind with a heading time constant of 27 s.</summary>
+        public static OrientSettings Offline()
+        {
+            var s = new OrientSettings();
+            OrientException.Check(NativeMethods.orient_smooth_config_default(out s.raw));
+            return s;
+        }
+
         public Kind Kind
         {
             get { return (Kind)raw.Kind; }

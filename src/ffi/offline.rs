@@ -2,11 +2,27 @@
 //! every sample out (`orient::offline`, forward-backward smoothing).
 
 use super::{
-    config_from, fail, fail_item, from_core, guard, null, quat_to, OrientConfig, OrientQuaternion,
+    config_from, config_to, fail, fail_item, from_core, guard, null, quat_to, OrientConfig, OrientQuaternion,
     OrientStatus,
 };
 use crate::filters::Sample;
 use crate::math::Vec3;
+
+/// Writes the offline defaults to `*config`: the recommended kind
+/// (ORIENT_KIND_ROBUST) with its defaults except for a heading time constant `tau_mag`
+/// of 27 s, three times the causal default (the forward and backward passes' heading
+/// drifts cancel in the fusion, so each can lean on the gyroscope longer). Pass it to
+/// orient_smooth_arrays, changed or not.
+#[no_mangle]
+pub unsafe extern "C" fn orient_smooth_config_default(config: *mut OrientConfig) -> OrientStatus {
+    guard(|| {
+        if config.is_null() {
+            return Err(null());
+        }
+        config.write(config_to(&crate::offline::config()));
+        Ok(())
+    })
+}
 
 /// Smooths a whole recording offline (non-causal: every output uses the samples before
 /// and after it) and writes the orientation at each sample to `quaternions` (room for

@@ -1022,7 +1022,18 @@ static void offline_smoothing(void) {
             CHECK(same_quaternion(q[i], again[i]));
         }
     }
-    CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &c), ORIENT_STATUS_OK);
+    /* The offline defaults: the recommended kind, heading time constant 27 s. */
+    {
+        double tau = 0.0, tau_causal = 0.0;
+        OrientConfig causal;
+        CHECK_STATUS(orient_smooth_config_default(NULL), ORIENT_STATUS_NULL_POINTER);
+        CHECK_STATUS(orient_smooth_config_default(&c), ORIENT_STATUS_OK);
+        CHECK(c.kind == ORIENT_KIND_ROBUST);
+        CHECK_STATUS(orient_config_get_param(&c, ORIENT_PARAM_ROBUST_TAU_MAG, &tau), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &causal), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_config_get_param(&causal, ORIENT_PARAM_ROBUST_TAU_MAG, &tau_causal), ORIENT_STATUS_OK);
+        CHECK(tau == 27.0 && tau_causal * 3.0 == tau);
+    }
     again[0].w = 7.0;
     accel[3 * 5 + 1] = NAN;
     CHECK_STATUS(orient_smooth_arrays(&c, N, &dt, 1, gyro, accel, mag, again, &processed), ORIENT_STATUS_NON_FINITE);

@@ -256,6 +256,8 @@ static void offline() {
     for (const OrientQuaternion& q : out) {
         CHECK(std::fabs(q.w * std::cos(roll / 2) + q.x * std::sin(roll / 2)) > std::cos(0.005));
     }
+    auto off = orient::Config::offline_defaults();
+    CHECK(off.ok() && off.value().get(ORIENT_PARAM_ROBUST_TAU_MAG) == 27.0);
     accel[3 * 5 + 2] = NAN;
     CHECK(orient::smooth(config.value(), n, &dt, 1, gyro.data(), accel.data(), mag.data(), out.data(), &processed) ==
           ORIENT_STATUS_NON_FINITE);

@@ -309,6 +309,9 @@ public static class OrientTests
         foreach (var x in q)
             tilted &= Math.Abs(x.W * Math.Cos(roll / 2) + x.X * Math.Sin(roll / 2)) > Math.Cos(0.005);
         Check(tilted, "Smooth finds the tilt");
+        var offline = OrientSettings.Offline();
+        Check(offline.Kind == Kind.Robust && offline[Consts.ParamRobustTauMag] == 27.0, "Offline settings");
+        Check(OrientFilter.Smooth(offline, new[] { 0.01 }, gyro, accel, mag).Length == n, "Smooth with Offline");
         accel[3 * 5 + 2] = double.NaN;
         Throws(Status.NonFinite, () => OrientFilter.Smooth(settings, new[] { 0.01 }, gyro, accel, mag), "Smooth bad sample", "sample 5");
     }

@@ -31,3 +31,11 @@ def test_smooth_names_the_bad_sample():
     with pytest.raises(orient.OrientError) as e:
         orient.Robust().smooth(GYR, acc, MAG, dt=0.01)
     assert e.value.index == 7
+
+
+def test_module_smooth_uses_the_offline_defaults():
+    q = orient.smooth(GYR, ACC, MAG, dt=0.01)
+    plain = orient.Robust().smooth(GYR, ACC, MAG, dt=0.01)
+    slow = orient.Robust(tau_mag=27.0).smooth(GYR, ACC, MAG, dt=0.01)
+    assert (q == slow).all()
+    assert q.shape == plain.shape == (N, 4)

@@ -175,6 +175,21 @@ class BatchResult:
         return self.diagnostics["rest"] == 1.0
 
 
+def smooth(
+    gyr: ArrayLike,
+    acc: Optional[ArrayLike] = None,
+    mag: Optional[ArrayLike] = None,
+    *,
+    dt: ArrayLike,
+) -> np.ndarray:
+    """Offline mode with the offline defaults (``orient_smooth_config_default``: the
+    recommended kind, heading time constant 27 s): the whole recording smoothed forward
+    and backward. Arguments and result as :meth:`Filter.smooth`."""
+    f = Robust()
+    _check(lib.orient_smooth_config_default(byref(f._config)))
+    return f.smooth(gyr, acc, mag, dt=dt)
+
+
 class Filter:
     """An orientation filter. Use a kind's class (:class:`Madgwick`, :class:`Robust`, ...)
     or ``Filter("robust", ...)``.

@@ -209,6 +209,7 @@ PROTOTYPES = {
             _P(c_size_t),
         ],
     ),
+    "orient_smooth_config_default": (c_int32, [_P(OrientConfig)]),
     "orient_smooth_arrays": (
         c_int32,
         [
