@@ -7,7 +7,8 @@
 //! mean over all trials and the mean over the first eight shared trials. The recommended
 //! kind's offline column uses the offline defaults (`orient::offline::config()`).
 //! `PASSES=1` also prints each pass's total / heading / inclination; `SETS=name=value,...`
-//! sets parameters on both columns.
+//! sets parameters on both columns; `DECIMATE=k` keeps every k-th row (gyroscope averaged
+//! over each interval, `orient::eval::decimate`).
 
 use orient::eval::{score, Recording};
 use orient::{offline, Config, Filter, Kind, Quat};
@@ -48,8 +49,11 @@ fn main() {
         let (mut sums, mut first) = ([0.0; 4], [0.0; 4]);
         for p in &files {
             let name = p.file_stem().unwrap().to_string_lossy().into_owned();
-            let rec = Recording::read(p, true).expect("recording");
-            let samples = rec.samples();
+            let mut rec = Recording::read(p, true).expect("recording");
+            let mut samples = rec.samples();
+            if let Some(k) = std::env::var("DECIMATE").ok().and_then(|v| v.parse::<usize>().ok()) {
+                (rec, samples) = orient::eval::decimate(&rec, &samples, k);
+            }
             let mut f = Filter::new(&config).expect("filter");
             let causal: Vec<Quat> = samples
                 .iter()

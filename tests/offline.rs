@@ -8,7 +8,7 @@
 mod common;
 
 use common::sim::{inclination_error, simulate, Moment};
-use orient::eval::{score, Recording};
+use orient::eval::{decimate, score, Recording};
 use orient::{offline, Config, Filter, Kind, Quat, Sample, Vec3};
 use std::path::PathBuf;
 
@@ -94,7 +94,7 @@ fn offline_broad_means_stay_within_their_measured_bounds() {
         let name = p.file_name().unwrap().to_string_lossy();
         ["01_", "06_", "08_", "15_", "24_", "26_", "28_", "32_"].iter().any(|n| name.starts_with(n))
     };
-    let scores: Vec<(f64, f64, f64, f64)> = std::thread::scope(|s| {
+    let scores: Vec<(f64, f64, f64, f64, f64)> = std::thread::scope(|s| {
         let jobs: Vec<_> = files
             .iter()
             .map(|p| {
@@ -105,14 +105,19 @@ fn offline_broad_means_stay_within_their_measured_bounds() {
                     let c = score(&causal(config, &samples), &rec.truth, &rec.movement);
                     let o =
                         score(&offline::smooth(offline_config, &samples).unwrap(), &rec.truth, &rec.movement);
-                    (c.total, c.inclination, o.total, o.inclination)
+                    // At 48 Hz (a sixth of the recording rate), as a board would log.
+                    let (low, low_samples) = decimate(&rec, &samples, 6);
+                    let l = offline::smooth(offline_config, &low_samples).unwrap();
+                    let l = score(&l, &low.truth, &low.movement);
+                    (c.total, c.inclination, o.total, o.inclination, l.total)
                 })
             })
             .collect();
         jobs.into_iter().map(|j| j.join().unwrap()).collect()
     });
-    let mean = |f: fn(&(f64, f64, f64, f64)) -> f64| scores.iter().map(f).sum::<f64>() / scores.len() as f64;
-    let (ct, ci, ot, oi) = (mean(|s| s.0), mean(|s| s.1), mean(|s| s.2), mean(|s| s.3));
+    let mean =
+        |f: fn(&(f64, f64, f64, f64, f64)) -> f64| scores.iter().map(f).sum::<f64>() / scores.len() as f64;
+    let (ct, ci, ot, oi, lt) = (mean(|s| s.0), mean(|s| s.1), mean(|s| s.2), mean(|s| s.3), mean(|s| s.4));
     let first: f64 =
         files.iter().zip(&scores).filter(|(p, _)| first_eight(p)).map(|(_, s)| s.2).sum::<f64>() / 8.0;
     println!("14 trials, robust 9D: causal {ct:.3} ({ci:.3}), offline {ot:.3} ({oi:.3}); first 8 offline {first:.3}");
@@ -121,4 +126,7 @@ fn offline_broad_means_stay_within_their_measured_bounds() {
     assert!(first < 2.41, "offline total over the first eight trials {first:.3} (VQF offline: 2.41)");
     assert!(ot < 2.30 && ot < ct - 0.2, "offline total {ot:.3} against causal {ct:.3}");
     assert!(oi < 0.65 && oi < ci - 0.15, "offline inclination {oi:.3} against causal {ci:.3}");
+    // Measured at 48 Hz: 2.22 (causal 2.53).
+    println!("offline at 48 Hz: {lt:.3}");
+    assert!(lt < 2.30, "offline total at 48 Hz {lt:.3}");
 }
