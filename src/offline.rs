@@ -218,6 +218,7 @@ mod tests {
     use super::*;
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn slerp_halves_a_rotation() {
         let z = Vec3::new(0.0, 0.0, 1.0);
         let a = Quat::from_axis_angle(z, 0.2);
@@ -229,6 +230,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn a_bad_sample_is_named() {
         let good = Sample {
             dt: 0.01,
