@@ -8,9 +8,10 @@
 //! kind's offline column uses the offline defaults (`orient::offline::config()`).
 //! `PASSES=1` also prints each pass's total / heading / inclination; `SETS=name=value,...`
 //! sets parameters on both columns; `DECIMATE=k` keeps every k-th row (gyroscope averaged
-//! over each interval, `orient::eval::decimate`).
+//! over each interval, `orient::eval::decimate`); `SIXD=1` drops the magnetometer and
+//! removes one heading offset per trial (6D*).
 
-use orient::eval::{score, Recording};
+use orient::eval::{remove_heading_offset, score, Recording};
 use orient::{offline, Config, Filter, Kind, Quat};
 use std::path::PathBuf;
 
@@ -51,6 +52,11 @@ fn main() {
             let name = p.file_stem().unwrap().to_string_lossy().into_owned();
             let mut rec = Recording::read(p, true).expect("recording");
             let mut samples = rec.samples();
+            if std::env::var_os("SIXD").is_some() {
+                for s in samples.iter_mut() {
+                    s.mag = None;
+                }
+            }
             if let Some(k) = std::env::var("DECIMATE").ok().and_then(|v| v.parse::<usize>().ok()) {
                 (rec, samples) = orient::eval::decimate(&rec, &samples, k);
             }
@@ -71,6 +77,11 @@ fn main() {
                     "  fore {:.2}/{:.2}/{:.2} back {:.2}/{:.2}/{:.2}",
                     f.total, f.heading, f.inclination, b.total, b.heading, b.inclination
                 );
+            }
+            let (mut causal, mut smoothed) = (causal, smoothed);
+            if std::env::var_os("SIXD").is_some() {
+                remove_heading_offset(&mut causal, &rec.truth, &rec.movement);
+                remove_heading_offset(&mut smoothed, &rec.truth, &rec.movement);
             }
             let c = score(&causal, &rec.truth, &rec.movement);
             let o = score(&smoothed, &rec.truth, &rec.movement);
