@@ -1279,6 +1279,43 @@ OrientStatus orient_filter_update_arrays(OrientFilter *filter,
                                          struct OrientDiagnostics *diagnostics,
                                          size_t *processed);
 
+/**
+ * Writes the offline defaults to `*config`: the recommended kind
+ * (ORIENT_KIND_ROBUST) with its defaults except for a heading time constant `tau_mag`
+ * of 27 s, three times the causal default (the forward and backward passes' heading
+ * drifts cancel in the fusion, so each can lean on the gyroscope longer). Pass it to
+ * orient_smooth_arrays, changed or not.
+ */
+OrientStatus orient_smooth_config_default(struct OrientConfig *config);
+
+/**
+ * Smooths a whole recording offline (non-causal: every output uses the samples before
+ * and after it) and writes the orientation at each sample to `quaternions` (room for
+ * `n`, in the configuration's frame). Runs the kind and parameters of `config` forward,
+ * then backward over the time-reversed recording, then forward again, and fuses the two
+ * directions at each sample by a SLERP weighted by each direction's confidence. For
+ * motion-capture post-processing; allocates memory for the recording, unlike
+ * orient_filter_update.
+ *
+ * The arrays are those of orient_filter_update_arrays: `gyro` holds `3 n` doubles (x,
+ * y, z of sample 0, then of sample 1, ...), `accel` and `mag` likewise or NULL, `dt`
+ * holds `dt_count` doubles, 1 or `n` (any other count is
+ * ORIENT_STATUS_INVALID_ARGUMENT). A sample that orient_filter_update would refuse in a
+ * forward run of a new filter of this configuration fails the call with that status;
+ * `*processed` (when not NULL) is then its index and `quaternions` is left unwritten. On
+ * success `*processed` is `n`. `gyro`, `dt` and `quaternions` may be NULL only when `n`
+ * is 0.
+ */
+OrientStatus orient_smooth_arrays(const struct OrientConfig *config,
+                                  size_t n,
+                                  const double *dt,
+                                  size_t dt_count,
+                                  const double *gyro,
+                                  const double *accel,
+                                  const double *mag,
+                                  struct OrientQuaternion *quaternions,
+                                  size_t *processed);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

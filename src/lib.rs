@@ -27,6 +27,8 @@ pub mod filters;
 mod isa;
 /// cbindgen:ignore
 pub mod math;
+/// cbindgen:ignore
+pub mod offline;
 
 pub mod ffi;
 

@@ -120,6 +120,14 @@ public:
         return c;
     }
 
+    /// The offline defaults for orient::smooth (orient_smooth_config_default).
+    static Result<Config> offline_defaults() noexcept {
+        Config c;
+        OrientStatus s = orient_smooth_config_default(&c.raw_);
+        if (s != ORIENT_STATUS_OK) return last_error(s);
+        return c;
+    }
+
     /// Sets parameter slot `id` (ORIENT_PARAM_*), range-checked.
     OrientStatus set(uint32_t id, double value) noexcept { return orient_config_set_param(&raw_, id, value); }
 
@@ -283,6 +291,16 @@ private:
 inline OrientStatus update_rig(OrientFilter* const* handles, const OrientSample* samples, std::size_t n,
                                OrientQuaternion* out = nullptr, std::size_t* processed = nullptr) noexcept {
     return orient_filters_update(handles, samples, n, out, processed);
+}
+
+/// Offline mode (orient_smooth_arrays): the whole recording smoothed forward and backward
+/// through the kind and parameters of `config`. Arrays as Filter's update_arrays: `gyro`
+/// 3n doubles, `accel` and `mag` 3n or nullptr, `dt` 1 or n doubles; `out` has room for n.
+/// On a bad sample its status is returned, its index in *processed, and `out` is unwritten.
+inline OrientStatus smooth(const Config& config, std::size_t n, const double* dt, std::size_t dt_count,
+                           const double* gyro, const double* accel, const double* mag, OrientQuaternion* out,
+                           std::size_t* processed = nullptr) noexcept {
+    return orient_smooth_arrays(&config.raw(), n, dt, dt_count, gyro, accel, mag, out, processed);
 }
 
 }  // namespace orient

@@ -114,6 +114,22 @@ namespace Orient
             }
         }
 
+        private OrientSettings()
+        {
+        }
+
+        /// <summary>The offline defaults for OrientFilter.Smooth (orient_smooth_config_default):
+        /// the recommended kind with a heading time constant of 27 s.</summary>
+        public static unsafe OrientSettings Offline()
+        {
+            var s = new OrientSettings();
+            fixed (Config* c = &s.raw)
+            {
+                OrientException.Check(NativeMethods.orient_smooth_config_default(c));
+            }
+            return s;
+        }
+
         public Kind Kind
         {
             get { return (Kind)raw.Kind; }
@@ -331,6 +347,35 @@ namespace Orient
             GC.KeepAlive(this);
             OrientException.Check(s);
             return (int)processed;
+        }
+
+        /// <summary>
+        /// Offline mode (orient_smooth_arrays): the whole recording smoothed forward and
+        /// backward through the kind and parameters of settings; every output uses the
+        /// samples before and after it. gyro holds 3n doubles (x, y, z per sample), accel and
+        /// mag likewise or null, dt 1 or n doubles. Returns the n orientations; throws
+        /// OrientException at the first bad sample (its index is in the message).
+        /// </summary>
+        public static unsafe Native.Quaternion[] Smooth(OrientSettings settings, double[] dt, double[] gyro, double[] accel, double[] mag)
+        {
+            if (settings == null) throw new ArgumentNullException("settings");
+            if (gyro == null) throw new ArgumentNullException("gyro");
+            if (dt == null) throw new ArgumentNullException("dt");
+            int n = gyro.Length / 3;
+            if (gyro.Length != 3 * n || (accel != null && accel.Length != 3 * n) || (mag != null && mag.Length != 3 * n))
+                throw new ArgumentException("gyro, accel and mag must hold 3 doubles per sample");
+            var q = new Native.Quaternion[n];
+            if (n == 0) return q;
+            UIntPtr processed = UIntPtr.Zero;
+            Status s;
+            fixed (double* pd = dt, pg = gyro, pa = accel, pm = mag)
+            fixed (Native.Quaternion* pq = q)
+            fixed (Config* pc = &settings.raw)
+            {
+                s = NativeMethods.orient_smooth_arrays(pc, (UIntPtr)n, pd, (UIntPtr)dt.Length, pg, pa, pm, pq, &processed);
+            }
+            OrientException.Check(s);
+            return q;
         }
 
         public int UpdateBatch(Sample[] samples, Native.Quaternion[] quaternions)

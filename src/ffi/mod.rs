@@ -16,12 +16,14 @@
 
 mod arrays;
 mod error;
+mod offline;
 mod param_ids;
 mod registry;
 mod strings;
 mod types;
 
 pub use arrays::*;
+pub use offline::*;
 pub use param_ids::*;
 pub use types::*;
 

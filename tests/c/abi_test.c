@@ -988,6 +988,69 @@ static void multi_sensor(void) {
     madgwick_rig();
 }
 
+/* The offline mode: a tilted still recording smooths to the tilt at every sample, the
+   same bits on every call; a bad sample is named and leaves the output unwritten; the
+   argument checks of the arrays call. */
+static void offline_smoothing(void) {
+    enum { N = 600 };
+    static double gyro[3 * N], accel[3 * N], mag[3 * N];
+    static OrientQuaternion q[N], again[N];
+    OrientConfig c;
+    double dt = 0.01, s = sin(0.2), co = cos(0.2);
+    size_t processed = 99, i;
+    int k;
+    for (i = 0; i < N; i++) {
+        /* Rolled 0.4 rad about x: gravity and the field seen in the sensor frame. */
+        gyro[3 * i] = 0.001, gyro[3 * i + 1] = 0.0, gyro[3 * i + 2] = 0.0;
+        accel[3 * i] = 0.0, accel[3 * i + 1] = 9.81 * 2 * s * co, accel[3 * i + 2] = 9.81 * (co * co - s * s);
+        mag[3 * i] = 0.0, mag[3 * i + 1] = 20.0 * (co * co - s * s) - 40.0 * 2 * s * co;
+        mag[3 * i + 2] = -20.0 * 2 * s * co - 40.0 * (co * co - s * s);
+    }
+    for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_ROBUST; k++) {
+        CHECK_STATUS(orient_config_default(k, &c), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_smooth_arrays(&c, N, &dt, 1, gyro, accel, mag, q, &processed), ORIENT_STATUS_OK);
+        CHECK(processed == N);
+        CHECK_STATUS(orient_smooth_arrays(&c, N, &dt, 1, gyro, accel, mag, again, NULL), ORIENT_STATUS_OK);
+        for (i = 0; i < N; i++) {
+            /* The up axis in the sensor frame is the third row of R(q): compare with the
+               accelerometer's direction. */
+            double w = q[i].w, x = q[i].x, y = q[i].y, z = q[i].z;
+            double ux = 2 * (x * z - w * y), uy = 2 * (y * z + w * x), uz = 1 - 2 * (x * x + y * y);
+            double cosang = (uy * 2 * s * co + uz * (co * co - s * s)) / sqrt(ux * ux + uy * uy + uz * uz);
+            CHECK(cosang > cos(0.01));
+            CHECK(fabs(w * w + x * x + y * y + z * z - 1.0) < 1e-12);
+            CHECK(same_quaternion(q[i], again[i]));
+        }
+    }
+    /* The offline defaults: the recommended kind, heading time constant 27 s. */
+    {
+        double tau = 0.0, tau_causal = 0.0;
+        OrientConfig causal;
+        CHECK_STATUS(orient_smooth_config_default(NULL), ORIENT_STATUS_NULL_POINTER);
+        CHECK_STATUS(orient_smooth_config_default(&c), ORIENT_STATUS_OK);
+        CHECK(c.kind == ORIENT_KIND_ROBUST);
+        CHECK_STATUS(orient_config_get_param(&c, ORIENT_PARAM_ROBUST_TAU_MAG, &tau), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &causal), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_config_get_param(&causal, ORIENT_PARAM_ROBUST_TAU_MAG, &tau_causal), ORIENT_STATUS_OK);
+        CHECK(tau == 27.0 && tau_causal * 3.0 == tau);
+    }
+    again[0].w = 7.0;
+    accel[3 * 5 + 1] = NAN;
+    CHECK_STATUS(orient_smooth_arrays(&c, N, &dt, 1, gyro, accel, mag, again, &processed), ORIENT_STATUS_NON_FINITE);
+    CHECK(processed == 5);
+    CHECK(strstr(orient_last_error(), "sample 5") != NULL);
+    CHECK(again[0].w == 7.0);
+    accel[3 * 5 + 1] = accel[1];
+    CHECK_STATUS(orient_smooth_arrays(NULL, N, &dt, 1, gyro, accel, mag, q, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_smooth_arrays(&c, N, &dt, 1, NULL, accel, mag, q, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_smooth_arrays(&c, N, &dt, 1, gyro, accel, mag, NULL, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_smooth_arrays(&c, N, &dt, 2, gyro, accel, mag, q, NULL), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_smooth_arrays(&c, SIZE_MAX, &dt, 1, gyro, accel, mag, q, NULL),
+                 ORIENT_STATUS_COUNT_TOO_LARGE);
+    CHECK_STATUS(orient_smooth_arrays(&c, 0, NULL, 0, NULL, NULL, NULL, NULL, &processed), ORIENT_STATUS_OK);
+    CHECK(processed == 0);
+}
+
 int main(int argc, char **argv) {
     int k;
     if (argc != 2) {
@@ -1005,6 +1068,7 @@ int main(int argc, char **argv) {
         diagnostics(k);
     }
     multi_sensor();
+    offline_smoothing();
     golden(argv[1]);
     printf("%d passed, %d failed\n", passed, failed);
     return failed == 0 ? 0 : 1;

@@ -233,6 +233,37 @@ static void rig() {
     CHECK(same);
 }
 
+// orient::smooth: the offline mode finds the tilt of a still, rolled recording, with the
+// C call's bits, and names a bad sample.
+static void offline() {
+    const std::size_t n = 400;
+    const double roll = 0.4, c = std::cos(roll), s = std::sin(roll), dt = 0.01;
+    std::vector<double> gyro(3 * n, 0.0), accel(3 * n), mag(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        accel[3 * i] = 0.0, accel[3 * i + 1] = 9.81 * s, accel[3 * i + 2] = 9.81 * c;
+        mag[3 * i] = 0.0, mag[3 * i + 1] = 20.0 * c - 40.0 * s, mag[3 * i + 2] = -20.0 * s - 40.0 * c;
+    }
+    auto config = orient::Config::defaults(orient::Kind::Robust);
+    CHECK(config.ok());
+    std::vector<OrientQuaternion> out(n), direct(n);
+    std::size_t processed = 0;
+    CHECK(orient::smooth(config.value(), n, &dt, 1, gyro.data(), accel.data(), mag.data(), out.data(), &processed) ==
+          ORIENT_STATUS_OK);
+    CHECK(processed == n);
+    CHECK(orient_smooth_arrays(&config.value().raw(), n, &dt, 1, gyro.data(), accel.data(), mag.data(), direct.data(),
+                               nullptr) == ORIENT_STATUS_OK);
+    CHECK(std::memcmp(out.data(), direct.data(), n * sizeof(OrientQuaternion)) == 0);
+    for (const OrientQuaternion& q : out) {
+        CHECK(std::fabs(q.w * std::cos(roll / 2) + q.x * std::sin(roll / 2)) > std::cos(0.005));
+    }
+    auto off = orient::Config::offline_defaults();
+    CHECK(off.ok() && off.value().get(ORIENT_PARAM_ROBUST_TAU_MAG) == 27.0);
+    accel[3 * 5 + 2] = NAN;
+    CHECK(orient::smooth(config.value(), n, &dt, 1, gyro.data(), accel.data(), mag.data(), out.data(), &processed) ==
+          ORIENT_STATUS_NON_FINITE);
+    CHECK(processed == 5);
+}
+
 int main(int argc, char** argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: %s GOLDEN_FILE\n", argv[0]);
@@ -240,6 +271,7 @@ int main(int argc, char** argv) {
     }
     wrapper();
     rig();
+    offline();
 #if ORIENT_HPP_EXCEPTIONS
     exceptions();
 #endif

@@ -288,6 +288,34 @@ public static class OrientTests
         Check(up.X == 0 && up.Y == 0 && up.Z == 1, "Unity up is ENU up");
     }
 
+    // OrientFilter.Smooth: the offline mode finds the tilt of a still, rolled recording
+    // and names a bad sample.
+    static void Offline()
+    {
+        int n = 400;
+        double roll = 0.4, c = Math.Cos(roll), s = Math.Sin(roll);
+        var gyro = new double[3 * n];
+        var accel = new double[3 * n];
+        var mag = new double[3 * n];
+        for (int i = 0; i < n; i++)
+        {
+            accel[3 * i + 1] = 9.81 * s; accel[3 * i + 2] = 9.81 * c;
+            mag[3 * i + 1] = 20.0 * c - 40.0 * s; mag[3 * i + 2] = -20.0 * s - 40.0 * c;
+        }
+        var settings = new OrientSettings(Kind.Robust);
+        var q = OrientFilter.Smooth(settings, new[] { 0.01 }, gyro, accel, mag);
+        Check(q.Length == n, "Smooth length");
+        bool tilted = true;
+        foreach (var x in q)
+            tilted &= Math.Abs(x.W * Math.Cos(roll / 2) + x.X * Math.Sin(roll / 2)) > Math.Cos(0.005);
+        Check(tilted, "Smooth finds the tilt");
+        var offline = OrientSettings.Offline();
+        Check(offline.Kind == Kind.Robust && offline[Consts.ParamRobustTauMag] == 27.0, "Offline settings");
+        Check(OrientFilter.Smooth(offline, new[] { 0.01 }, gyro, accel, mag).Length == n, "Smooth with Offline");
+        accel[3 * 5 + 2] = double.NaN;
+        Throws(Status.NonFinite, () => OrientFilter.Smooth(settings, new[] { 0.01 }, gyro, accel, mag), "Smooth bad sample", "sample 5");
+    }
+
     public static int Main(string[] args)
     {
         if (args.Length != 1)
@@ -298,6 +326,7 @@ public static class OrientTests
         Layout();
         StatusPaths();
         Conversions();
+        Offline();
         Golden(args[0]);
         Console.WriteLine(passed + " passed, " + failed + " failed");
         return failed == 0 ? 0 : 1;

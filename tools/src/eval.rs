@@ -175,6 +175,39 @@ impl Recording {
     }
 }
 
+/// The `.csv` files in `dir`, sorted by name.
+pub fn csv_files(dir: &Path) -> std::io::Result<Vec<std::path::PathBuf>> {
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir)? {
+        let path = entry?.path();
+        if path.extension().is_some_and(|x| x == "csv") {
+            files.push(path);
+        }
+    }
+    files.sort();
+    Ok(files)
+}
+
+/// A recording at 1/`k` of its rate: every `k`-th row, with the gyroscope averaged
+/// (dt-weighted) over the `k` rows that end there, the other readings, truth and mask of
+/// that row, and dt the sum of the `k` steps. Returns the truth and mask as a
+/// [`Recording`] (other fields empty) and the samples.
+pub fn decimate(rec: &Recording, samples: &[Sample], k: usize) -> (Recording, Vec<Sample>) {
+    let mut out = Recording::default();
+    let mut kept = Vec::new();
+    for end in (k.max(1) - 1..samples.len()).step_by(k.max(1)) {
+        let rows = &samples[end + 1 - k.max(1)..=end];
+        let dt: f64 = rows.iter().map(|s| s.dt).sum();
+        let gyro = rows.iter().try_fold(Vec3::ZERO, |a, s| s.gyro.map(|g| a + g * (s.dt / dt)));
+        kept.push(Sample { dt, gyro, ..samples[end] });
+        if let (Some(t), Some(m)) = (rec.truth.get(end), rec.movement.get(end)) {
+            out.truth.push(*t);
+            out.movement.push(*m);
+        }
+    }
+    (out, kept)
+}
+
 /// RMSE in degrees over the scored samples.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Scores {
@@ -255,6 +288,21 @@ mod tests {
         let s = r.samples();
         assert_eq!(s[0].dt, 0.01);
         assert_eq!(s[1].dt, 0.01);
+    }
+
+    #[test]
+    fn decimation_averages_the_gyroscope_over_each_interval() {
+        let rec = Recording {
+            truth: vec![Quat::IDENTITY; 4],
+            movement: vec![false, true, false, true],
+            ..Recording::default()
+        };
+        let s = |g: f64, dt: f64| Sample { dt, gyro: Some(Vec3::new(g, 0.0, 0.0)), accel: None, mag: None };
+        let samples = [s(1.0, 0.01), s(3.0, 0.03), s(5.0, 0.01), s(5.0, 0.01)];
+        let (r, d) = decimate(&rec, &samples, 2);
+        assert_eq!(d.len(), 2);
+        assert_eq!((d[0].dt, d[0].gyro.unwrap().x), (0.04, 2.5));
+        assert_eq!(r.movement, vec![true, true]);
     }
 
     #[test]

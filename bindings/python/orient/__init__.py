@@ -25,6 +25,7 @@ from ._filter import (
     ParamInfo,
     Robust,
     params,
+    smooth,
     status_message,
     version,
 )
@@ -65,6 +66,7 @@ __all__ = [
     "Robust",
     "Status",
     "params",
+    "smooth",
     "status_message",
     "version",
 ]

@@ -175,6 +175,21 @@ class BatchResult:
         return self.diagnostics["rest"] == 1.0
 
 
+def smooth(
+    gyr: ArrayLike,
+    acc: Optional[ArrayLike] = None,
+    mag: Optional[ArrayLike] = None,
+    *,
+    dt: ArrayLike,
+) -> np.ndarray:
+    """Offline mode with the offline defaults (``orient_smooth_config_default``: the
+    recommended kind, heading time constant 27 s): the whole recording smoothed forward
+    and backward. Arguments and result as :meth:`Filter.smooth`."""
+    f = Robust()
+    _check(lib.orient_smooth_config_default(byref(f._config)))
+    return f.smooth(gyr, acc, mag, dt=dt)
+
+
 class Filter:
     """An orientation filter. Use a kind's class (:class:`Madgwick`, :class:`Robust`, ...)
     or ``Filter("robust", ...)``.
@@ -237,6 +252,7 @@ class Filter:
                 _check(lib.orient_config_set_param(byref(config), _param_id(k, name), float(value)))
             except OrientError as e:
                 raise OrientError(e.status, f"{k.name.lower()} setting '{name}': {e.message}") from None
+        self._config = config
         handle = c_void_p()
         _check(lib.orient_filter_new(byref(config), byref(handle)))
         self._handle = handle.value
@@ -391,6 +407,45 @@ class Filter:
             start = bad + 1
             if start == count:
                 return BatchResult(q, flags, diag, status)
+
+    def smooth(
+        self,
+        gyr: ArrayLike,
+        acc: Optional[ArrayLike] = None,
+        mag: Optional[ArrayLike] = None,
+        *,
+        dt: ArrayLike,
+    ) -> np.ndarray:
+        """Offline mode (``orient_smooth_arrays``): the whole recording smoothed
+        forward and backward with this filter's kind, frame and settings; every output
+        uses the samples before and after it. This filter's own state is not used or
+        changed.
+
+        Args: as :meth:`update_arrays`.
+
+        Returns:
+            (N, 4) w, x, y, z at every sample.
+
+        Raises:
+            OrientError: at the first sample a forward run would refuse, with its ``index``.
+        """
+        g = _rows(gyr, "gyr")
+        count = g.shape[0]
+        a = None if acc is None else _rows(acc, "acc", count)
+        m = None if mag is None else _rows(mag, "mag", count)
+        d = np.ascontiguousarray(dt, dtype=np.float64)
+        if d.ndim == 0:
+            d = d.reshape(1)
+        if d.shape not in ((1,), (count,)):
+            raise ValueError(f"dt must be one value or shape ({count},), got {d.shape}")
+        q = np.empty((count, 4), dtype=np.float64)
+        processed = c_size_t()
+        st = lib.orient_smooth_arrays(
+            byref(self._config), count, _ptr(d), d.shape[0], _ptr(g), _ptr(a), _ptr(m), _ptr(q), byref(processed)
+        )
+        if st != Status.OK:
+            _check(st, processed.value)
+        return q
 
     # -- outputs -----------------------------------------------------------------------
 
