@@ -20,6 +20,8 @@
 //! Unlike [`crate::Filter::update`], this allocates (one output per sample and the
 //! passes' estimates).
 
+#![forbid(unsafe_code)]
+
 use crate::filters::{Config, Error, Filter, Init, Kind, Sample};
 use crate::math::{Quat, Vec3};
 use core::fmt;

@@ -221,8 +221,8 @@ fn array<T: Copy, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
     out
 }
 
-/// `[f(0), f(1), …]`: `core::array::from_fn` everywhere else. The loop above cost the
-/// aarch64 build's update 12 % more instructions (3,425 against 3,052, EKF IMU).
+/// `[f(0), f(1), …]`: `core::array::from_fn` everywhere else, where the loop above costs
+/// more instructions (docs/PERFORMANCE.md).
 #[cfg(not(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri))))]
 #[inline(always)]
 fn array<T: Copy, const N: usize>(f: impl FnMut(usize) -> T) -> [T; N] {
@@ -299,7 +299,7 @@ type Cols<const C: usize, V = f64x4> = [V; C];
 /// triangle (the lower ones are their transposes). The model couples q with ω (through
 /// the exponential map) and ω with δ (through the gyroscope), and each measurement reads
 /// a few states, so every product below is written per block: dense 10×10 algebra spent
-/// most of its 19,800 instructions an update multiplying zeros.
+/// most of its instructions multiplying zeros (docs/PERFORMANCE.md).
 ///
 /// Each block is stored by columns, a column one SIMD value (the `wide` crate's
 /// `f64x4`), so that a product is a sum of column multiples and the rank-one

@@ -8,6 +8,8 @@
 //! [`Kind`], [`Config`], [`Sample`], [`Error`], [`flags`], [`Diagnostics`] and the
 //! snapshot format ([`state`], [`holds`]) are what every kind shares.
 
+#![forbid(unsafe_code)]
+
 pub mod complementary;
 pub mod ekf;
 pub mod gmvdk;
