@@ -566,6 +566,33 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_FLAG_REACQUIRE_PENDING 32
 
 /**
+ * `orient_filter_flags`: the last accepted sample had an accelerometer reading that the
+ * update did not use (the kind's own test turned it down, e.g. the robust kind's and the
+ * EKF's gating of linear acceleration, GMVDK's trust, McGinnis' rest gate).
+ */
+#define ORIENT_FLAG_ACCEL_REJECTED 64
+
+/**
+ * `orient_filter_flags`: the last accepted sample had a magnetometer reading that the
+ * update did not use (the kind has no heading correction, the field defines no north, or
+ * the kind turned it down).
+ */
+#define ORIENT_FLAG_MAG_REJECTED 128
+
+/**
+ * `orient_filter_flags`: the kind counts the magnetic field as disturbed now (the robust
+ * kind: the last reading failed its norm and dip tests, hard iron compensated).
+ */
+#define ORIENT_FLAG_MAG_DISTURBED 256
+
+/**
+ * `orient_filter_flags`: the kind counts the sensor as resting now (McGinnis' and the
+ * robust kind's rest detection; the EKF, Madgwick and Mahony with their rest options on,
+ * rest_rate_std and rest_bias_tau; GMVDK never sets it).
+ */
+#define ORIENT_FLAG_REST 512
+
+/**
  * `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
  * smallest value that has it on.
  */
@@ -985,11 +1012,13 @@ typedef struct OrientDiagnostics {
   uint32_t reserved;
   /**
    * Gyroscope bias being subtracted, rad/s, sensor frame (Mahony b, complementary
-   * omega_b, EKF drift delta, GMVDK regression bias).
+   * omega_b, EKF drift delta, GMVDK regression bias, the robust kind's estimate,
+   * Madgwick's with its rest-bias option on).
    */
   struct OrientVec3 gyro_bias;
   /**
-   * Complementary filter: 1 when the last sample counted as rest (gains on), else 0.
+   * 1 when the last sample counted as rest, else 0 (complementary: gains on; robust:
+   * its rest detector; EKF, Madgwick and Mahony: with their rest options on).
    */
   double rest;
   /**

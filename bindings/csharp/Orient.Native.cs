@@ -713,6 +713,33 @@ namespace Orient.Native
         public const uint FlagReacquirePending = 32;
 
         /// <summary>
+        /// `orient_filter_flags`: the last accepted sample had an accelerometer reading that the
+        /// update did not use (the kind's own test turned it down, e.g. the robust kind's and the
+        /// EKF's gating of linear acceleration, GMVDK's trust, McGinnis' rest gate).
+        /// </summary>
+        public const uint FlagAccelRejected = 64;
+
+        /// <summary>
+        /// `orient_filter_flags`: the last accepted sample had a magnetometer reading that the
+        /// update did not use (the kind has no heading correction, the field defines no north, or
+        /// the kind turned it down).
+        /// </summary>
+        public const uint FlagMagRejected = 128;
+
+        /// <summary>
+        /// `orient_filter_flags`: the kind counts the magnetic field as disturbed now (the robust
+        /// kind: the last reading failed its norm and dip tests, hard iron compensated).
+        /// </summary>
+        public const uint FlagMagDisturbed = 256;
+
+        /// <summary>
+        /// `orient_filter_flags`: the kind counts the sensor as resting now (McGinnis' and the
+        /// robust kind's rest detection; the EKF, Madgwick and Mahony with their rest options on,
+        /// rest_rate_std and rest_bias_tau; GMVDK never sets it).
+        /// </summary>
+        public const uint FlagRest = 512;
+
+        /// <summary>
         /// `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
         /// smallest value that has it on.
         /// </summary>
@@ -959,12 +986,14 @@ namespace Orient.Native
 
         /// <summary>
         /// Gyroscope bias being subtracted, rad/s, sensor frame (Mahony b, complementary
-        /// omega_b, EKF drift delta, GMVDK regression bias).
+        /// omega_b, EKF drift delta, GMVDK regression bias, the robust kind's estimate,
+        /// Madgwick's with its rest-bias option on).
         /// </summary>
         public Vec3 GyroBias;
 
         /// <summary>
-        /// Complementary filter: 1 when the last sample counted as rest (gains on), else 0.
+        /// 1 when the last sample counted as rest, else 0 (complementary: gains on; robust:
+        /// its rest detector; EKF, Madgwick and Mahony: with their rest options on).
         /// </summary>
         public double Rest;
 

@@ -920,6 +920,10 @@ mod tests {
         assert_eq!(core::mem::size_of::<OrientSample>(), 88);
         assert_eq!(core::mem::size_of::<OrientConfig>(), 1072);
         use crate::filters::diag;
+        assert_eq!(ORIENT_FLAG_ACCEL_REJECTED, flags::ACCEL_REJECTED);
+        assert_eq!(ORIENT_FLAG_MAG_REJECTED, flags::MAG_REJECTED);
+        assert_eq!(ORIENT_FLAG_MAG_DISTURBED, flags::MAG_DISTURBED);
+        assert_eq!(ORIENT_FLAG_REST, flags::REST);
         assert_eq!(ORIENT_DIAG_GYRO_BIAS, diag::GYRO_BIAS);
         assert_eq!(ORIENT_DIAG_REST, diag::REST);
         assert_eq!(ORIENT_DIAG_ALPHA, diag::ALPHA);

@@ -41,6 +41,21 @@ pub const ORIENT_FLAG_REACQUIRED: u32 = 16;
 /// orientation is held, then integrated from the gyroscope, until the next sample with an
 /// accelerometer reading, which re-acquires it (ORIENT_FLAG_REACQUIRED).
 pub const ORIENT_FLAG_REACQUIRE_PENDING: u32 = 32;
+/// `orient_filter_flags`: the last accepted sample had an accelerometer reading that the
+/// update did not use (the kind's own test turned it down, e.g. the robust kind's and the
+/// EKF's gating of linear acceleration, GMVDK's trust, McGinnis' rest gate).
+pub const ORIENT_FLAG_ACCEL_REJECTED: u32 = 64;
+/// `orient_filter_flags`: the last accepted sample had a magnetometer reading that the
+/// update did not use (the kind has no heading correction, the field defines no north, or
+/// the kind turned it down).
+pub const ORIENT_FLAG_MAG_REJECTED: u32 = 128;
+/// `orient_filter_flags`: the kind counts the magnetic field as disturbed now (the robust
+/// kind: the last reading failed its norm and dip tests, hard iron compensated).
+pub const ORIENT_FLAG_MAG_DISTURBED: u32 = 256;
+/// `orient_filter_flags`: the kind counts the sensor as resting now (McGinnis' and the
+/// robust kind's rest detection; the EKF, Madgwick and Mahony with their rest options on,
+/// rest_rate_std and rest_bias_tau; GMVDK never sets it).
+pub const ORIENT_FLAG_REST: u32 = 512;
 
 /// `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
 /// smallest value that has it on.
@@ -294,9 +309,11 @@ pub struct OrientDiagnostics {
     /// Always 0.
     pub reserved: u32,
     /// Gyroscope bias being subtracted, rad/s, sensor frame (Mahony b, complementary
-    /// omega_b, EKF drift delta, GMVDK regression bias).
+    /// omega_b, EKF drift delta, GMVDK regression bias, the robust kind's estimate,
+    /// Madgwick's with its rest-bias option on).
     pub gyro_bias: OrientVec3,
-    /// Complementary filter: 1 when the last sample counted as rest (gains on), else 0.
+    /// 1 when the last sample counted as rest, else 0 (complementary: gains on; robust:
+    /// its rest detector; EKF, Madgwick and Mahony: with their rest options on).
     pub rest: f64,
     /// GMVDK accelerometer trust alpha, [0, 1].
     pub alpha: f64,

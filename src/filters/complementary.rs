@@ -411,6 +411,10 @@ mod estimator_impl {
             d.rest = if self.at_rest() { 1.0 } else { 0.0 };
         }
 
+        fn at_rest(&self) -> bool {
+            Complementary::at_rest(self)
+        }
+
         fn codec(&mut self, c: &mut dyn Codec) {
             Complementary::codec(self, c)
         }

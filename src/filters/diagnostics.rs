@@ -23,7 +23,8 @@ pub struct Diagnostics {
     /// Gyroscope bias being subtracted (rad/s): Mahony's b, McGinnis' ω_b, the EKF's drift
     /// δ, GMVDK's regression bias.
     pub gyro_bias: Vec3,
-    /// McGinnis: the last sample counted as rest (gains active): 1.0, else 0.0.
+    /// The last sample counted as rest: 1.0, else 0.0 (McGinnis: gains active; the robust
+    /// kind: its rest detector; the EKF, Madgwick and Mahony: with their rest options on).
     pub rest: f64,
     /// GMVDK accelerometer trust α of the last update.
     pub alpha: f64,

@@ -1354,6 +1354,15 @@ mod estimator_impl {
             d.gyro_bias = self.drift();
             d.rate = self.rate();
             d.covariance = self.covariance_diagonal();
+            if self.settings.rest_rate_std > 0.0 {
+                d.rest = if Ekf::at_rest(self) { 1.0 } else { 0.0 };
+            } else {
+                d.present &= !crate::filters::diag::REST;
+            }
+        }
+
+        fn at_rest(&self) -> bool {
+            Ekf::at_rest(self)
         }
 
         fn codec(&mut self, c: &mut dyn Codec) {

@@ -51,6 +51,15 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     /// Fills the fields of [`Diagnostics`] this kind has (its `present` bits are set to
     /// [`Kind::diagnostics`] before; a kind clears those it has no value for yet).
     fn diagnose(&self, d: &mut Diagnostics);
+    /// True when the kind counts the sensor as resting now ([`super::flags::REST`]).
+    fn at_rest(&self) -> bool {
+        false
+    }
+    /// True when the kind counts the magnetic field as disturbed now
+    /// ([`super::flags::MAG_DISTURBED`]).
+    fn mag_disturbed(&self) -> bool {
+        false
+    }
     /// The state fields of a snapshot, in order.
     fn codec(&mut self, c: &mut dyn Codec);
     /// True when every value is one the kind's updates could have left (a decoded

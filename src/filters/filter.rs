@@ -228,7 +228,7 @@ impl Filter {
             Madgwick::update_lanes(&mut cores, dt, gyro, accel, mag)?
         };
         for (r, a) in runners.iter_mut().zip(accel) {
-            r.lane_done(a, step.used_mag);
+            r.lane_done(a, step, with_mag);
         }
         Some(Ok(()))
     }
@@ -284,7 +284,7 @@ impl Filter {
 
     /// [`super::flags`] bits.
     pub fn flags(&self) -> u32 {
-        each!(&self.0, r => r.flags)
+        each!(&self.0, r => r.flags())
     }
 
     /// The orientation in the configured frame (identity before initialisation).

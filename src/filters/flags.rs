@@ -20,5 +20,28 @@ pub const REACQUIRED: u32 = 16;
 /// (then integrated from the gyroscope) until the next sample that has one, which
 /// re-acquires it.
 pub const REACQUIRE_PENDING: u32 = 32;
+/// The last accepted sample had an accelerometer reading that the update did not use: the
+/// kind's own test turned it down (robust's and the EKF's adaptive gating, GMVDK's
+/// trust, McGinnis' rest gate) or it only re-acquires.
+pub const ACCEL_REJECTED: u32 = 64;
+/// The last accepted sample had a magnetometer reading that the update did not use (the
+/// kind has no heading correction, the field defines no north, or the kind turned it down).
+pub const MAG_REJECTED: u32 = 128;
+/// The kind counts the magnetic field as disturbed now (robust: the last reading failed
+/// the norm and dip tests, hard iron compensated). Read from the state, not stored.
+pub const MAG_DISTURBED: u32 = 256;
+/// The kind counts the sensor as resting now (McGinnis' and the robust kind's rest
+/// detection; the EKF, Madgwick and Mahony with their rest options on). Read from the
+/// state, not stored.
+pub const REST: u32 = 512;
+/// The bits an update stores (the others are read from the state).
+pub(crate) const STORED: u32 = INITIALIZED
+    | ACCEL_USED
+    | MAG_USED
+    | GAP
+    | REACQUIRED
+    | REACQUIRE_PENDING
+    | ACCEL_REJECTED
+    | MAG_REJECTED;
 /// Every bit above.
-pub const ALL: u32 = INITIALIZED | ACCEL_USED | MAG_USED | GAP | REACQUIRED | REACQUIRE_PENDING;
+pub const ALL: u32 = STORED | MAG_DISTURBED | REST;

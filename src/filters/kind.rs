@@ -54,14 +54,16 @@ impl Kind {
         }
     }
 
-    /// Which [`Diagnostics`] fields this kind reports.
+    /// Which [`Diagnostics`] fields this kind can report (an option that is off clears its
+    /// bits in a filter's `present`: Madgwick's bias and rest, Mahony's and the EKF's rest,
+    /// without their rest options).
     pub fn diagnostics(self) -> u32 {
         use diag::*;
         match self {
-            Kind::Madgwick => 0,
-            Kind::Mahony => GYRO_BIAS,
+            Kind::Madgwick => GYRO_BIAS | REST,
+            Kind::Mahony => GYRO_BIAS | REST,
             Kind::Complementary => GYRO_BIAS | REST,
-            Kind::Ekf => GYRO_BIAS | RATE | COVARIANCE,
+            Kind::Ekf => GYRO_BIAS | REST | RATE | COVARIANCE,
             Kind::Gmvdk => GYRO_BIAS | ALPHA | MU_KA | MU_KM | MU_K,
             Kind::Robust => GYRO_BIAS | REST,
         }

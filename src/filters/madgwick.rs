@@ -754,6 +754,7 @@ mod tests {
 /// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
 mod estimator_impl {
     use super::*;
+    use crate::filters::diag;
     use crate::filters::estimator::{Estimator, Reacquisition};
     use crate::filters::state::Codec;
     use crate::filters::{Diagnostics, Kind};
@@ -797,8 +798,17 @@ mod estimator_impl {
         }
 
         fn diagnose(&self, d: &mut Diagnostics) {
-            // The bias is reported only with the rest-bias option on.
-            let _ = d;
+            // Madgwick's filter estimates no bias; with the rest-bias option it has one.
+            if self.settings.rest_bias_tau > 0.0 {
+                d.gyro_bias = self.bias();
+                d.rest = if Madgwick::at_rest(self) { 1.0 } else { 0.0 };
+            } else {
+                d.present &= !(diag::GYRO_BIAS | diag::REST);
+            }
+        }
+
+        fn at_rest(&self) -> bool {
+            Madgwick::at_rest(self)
         }
 
         fn codec(&mut self, c: &mut dyn Codec) {

@@ -260,6 +260,7 @@ mod tests {
 /// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
 mod estimator_impl {
     use super::*;
+    use crate::filters::diag;
     use crate::filters::estimator::{Estimator, Reacquisition};
     use crate::filters::state::Codec;
     use crate::filters::{Diagnostics, Kind};
@@ -304,6 +305,15 @@ mod estimator_impl {
 
         fn diagnose(&self, d: &mut Diagnostics) {
             d.gyro_bias = self.bias();
+            if self.settings.rest_bias_tau > 0.0 {
+                d.rest = if Mahony::at_rest(self) { 1.0 } else { 0.0 };
+            } else {
+                d.present &= !diag::REST;
+            }
+        }
+
+        fn at_rest(&self) -> bool {
+            Mahony::at_rest(self)
         }
 
         fn codec(&mut self, c: &mut dyn Codec) {

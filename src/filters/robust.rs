@@ -872,6 +872,14 @@ mod estimator_impl {
             d.rest = if self.at_rest() { 1.0 } else { 0.0 };
         }
 
+        fn at_rest(&self) -> bool {
+            Robust::at_rest(self)
+        }
+
+        fn mag_disturbed(&self) -> bool {
+            Robust::mag_disturbed(self)
+        }
+
         fn codec(&mut self, c: &mut dyn Codec) {
             Robust::codec(self, c)
         }

@@ -4,7 +4,7 @@
 //! paper: the checks, the start from the first sample, gaps, frames, flags, snapshots and
 //! the outputs. [`super::Filter`] holds one `Runner` of its kind.
 
-use super::estimator::{twist_about, Estimator, Reacquisition};
+use super::estimator::{twist_about, Estimator, Reacquisition, Step};
 use super::params::{id, Settings, MAX_PARAMS};
 use super::sample::{check_quaternion, check_vector, SampleView};
 use super::state::{self, Codec, Reader, StateError, Writer};
@@ -294,8 +294,7 @@ impl<E: Estimator> Runner<E> {
                     self.has_accel = true;
                 }
                 self.flags = flags::INITIALIZED
-                    | if step.used_accel { flags::ACCEL_USED } else { 0 }
-                    | if step.used_mag { flags::MAG_USED } else { 0 }
+                    | used_flags(step, s.accel().is_some(), s.mag().is_some())
                     | if gap { flags::GAP } else { 0 }
                     | pending;
                 Ok(())
@@ -345,8 +344,7 @@ impl<E: Estimator> Runner<E> {
                     0
                 } else {
                     flags::INITIALIZED
-                        | if step.used_accel { flags::ACCEL_USED } else { 0 }
-                        | if step.used_mag { flags::MAG_USED } else { 0 }
+                        | used_flags(step, accel.is_some(), mag.is_some())
                         | if gap { flags::GAP } else { 0 }
                 };
                 Ok(())
@@ -388,7 +386,11 @@ impl<E: Estimator> Runner<E> {
         self.flags = flags::INITIALIZED
             | flags::ACCEL_USED
             | flags::REACQUIRED
-            | if used_mag { flags::MAG_USED } else { 0 }
+            | match (used_mag, mag.is_some()) {
+                (true, _) => flags::MAG_USED,
+                (false, true) => flags::MAG_REJECTED,
+                (false, false) => 0,
+            }
             | if gap { flags::GAP } else { 0 };
         Ok(())
     }
@@ -402,8 +404,8 @@ impl<E: Estimator> Runner<E> {
     }
 
     /// What a lane step leaves besides the core's state.
-    pub(crate) fn lane_done(&mut self, accel: Vec3, used_mag: bool) {
-        self.flags = flags::INITIALIZED | flags::ACCEL_USED | if used_mag { flags::MAG_USED } else { 0 };
+    pub(crate) fn lane_done(&mut self, accel: Vec3, step: Step, had_mag: bool) {
+        self.flags = flags::INITIALIZED | used_flags(step, true, had_mag);
         self.last_accel = accel;
         self.has_accel = true;
     }
@@ -467,7 +469,7 @@ impl<E: Estimator> Runner<E> {
         if !r.ok
             || r.pos != payload.len()
             || foreign
-            || fresh.flags & !flags::ALL != 0
+            || fresh.flags & !flags::STORED != 0
             || !accel_ok
             || !fresh.core.valid()
         {
@@ -475,6 +477,14 @@ impl<E: Estimator> Runner<E> {
         }
         *self = fresh;
         Ok(())
+    }
+
+    /// [`flags`] bits: those the last update stored and those read from the state.
+    #[inline]
+    pub(crate) fn flags(&self) -> u32 {
+        self.flags
+            | if self.core.at_rest() { flags::REST } else { 0 }
+            | if self.core.mag_disturbed() { flags::MAG_DISTURBED } else { 0 }
     }
 
     pub(crate) fn frame(&self) -> Frame {
@@ -501,6 +511,22 @@ impl<E: Estimator> Runner<E> {
     pub(crate) fn last_accel(&self) -> Option<Vec3> {
         self.has_accel.then_some(self.last_accel)
     }
+}
+
+/// The used and rejected bits of one update.
+#[inline(always)]
+fn used_flags(step: Step, had_accel: bool, had_mag: bool) -> u32 {
+    let bit = |used: bool, had: bool, used_bit: u32, rejected_bit: u32| {
+        if used {
+            used_bit
+        } else if had {
+            rejected_bit
+        } else {
+            0
+        }
+    };
+    bit(step.used_accel, had_accel, flags::ACCEL_USED, flags::ACCEL_REJECTED)
+        | bit(step.used_mag, had_mag, flags::MAG_USED, flags::MAG_REJECTED)
 }
 
 /// The configuration as it travels in a snapshot.

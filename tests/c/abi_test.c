@@ -832,6 +832,17 @@ static void diagnostics(int32_t kind) {
         OrientSample s = good_sample();
         CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
     }
+    {
+        /* The sample had both readings: each is used or rejected, never both or neither. */
+        uint32_t fl = 0;
+        CHECK_STATUS(orient_filter_flags(f, &fl), ORIENT_STATUS_OK);
+        CHECK(!(fl & ORIENT_FLAG_ACCEL_USED) != !(fl & ORIENT_FLAG_ACCEL_REJECTED));
+        CHECK(!(fl & ORIENT_FLAG_MAG_USED) != !(fl & ORIENT_FLAG_MAG_REJECTED));
+        /* McGinnis' filter has no heading correction after its start-up. */
+        if (kind == ORIENT_KIND_COMPLEMENTARY) CHECK(fl & ORIENT_FLAG_MAG_REJECTED);
+        /* Only the robust kind tells a disturbed field. */
+        if (kind != ORIENT_KIND_ROBUST) CHECK(!(fl & ORIENT_FLAG_MAG_DISTURBED));
+    }
     CHECK_STATUS(orient_filter_diagnostics(f, &d), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_filter_diagnostics(f, NULL), ORIENT_STATUS_NULL_POINTER);
     switch (kind) {
