@@ -1114,6 +1114,18 @@ OrientStatus orient_param_info(int32_t kind, uint32_t index, struct OrientParamI
 OrientStatus orient_param_find(int32_t kind, const char *name, uint32_t *id);
 
 /**
+ * Changes parameter slot `id` of a running filter; the estimate is kept. One setting
+ * changes what the output means, and so the output: GMVDK's relative_output switches
+ * between the earth frame and the start-up pose.
+ */
+OrientStatus orient_filter_set_param(OrientFilter *filter, uint32_t id, double value);
+
+/**
+ * Reads parameter slot `id` of a filter.
+ */
+OrientStatus orient_filter_get_param(const OrientFilter *filter, uint32_t id, double *value);
+
+/**
  * Creates a filter from `config`. On success `*out` is a new handle; on failure it is
  * set to NULL (when `out` is not NULL).
  */
@@ -1130,18 +1142,6 @@ OrientStatus orient_filter_free(OrientFilter *filter);
  * The kind (ORIENT_KIND_*) of a filter.
  */
 OrientStatus orient_filter_kind(const OrientFilter *filter, int32_t *kind);
-
-/**
- * Changes parameter slot `id` of a running filter; the estimate is kept. One setting
- * changes what the output means, and so the output: GMVDK's relative_output switches
- * between the earth frame and the start-up pose.
- */
-OrientStatus orient_filter_set_param(OrientFilter *filter, uint32_t id, double value);
-
-/**
- * Reads parameter slot `id` of a filter.
- */
-OrientStatus orient_filter_get_param(const OrientFilter *filter, uint32_t id, double *value);
 
 /**
  * One update. On any status but OK the filter's state is exactly as before.
@@ -1243,6 +1243,11 @@ OrientStatus orient_filter_diagnostics(const OrientFilter *filter,
                                        struct OrientDiagnostics *diagnostics);
 
 /**
+ * ORIENT_FLAG_* bits of the filter's state.
+ */
+OrientStatus orient_filter_flags(const OrientFilter *filter, uint32_t *flags);
+
+/**
  * Size in bytes of this filter's state blob (orient_filter_save); constant per kind.
  */
 OrientStatus orient_filter_state_size(const OrientFilter *filter, size_t *size);
@@ -1264,11 +1269,6 @@ OrientStatus orient_filter_save(const OrientFilter *filter,
  * truncated, corrupted, of another format version or of another kind.
  */
 OrientStatus orient_filter_load(OrientFilter *filter, const uint8_t *buffer, size_t size);
-
-/**
- * ORIENT_FLAG_* bits of the filter's state.
- */
-OrientStatus orient_filter_flags(const OrientFilter *filter, uint32_t *flags);
 
 /**
  * Back to the state right after orient_filter_new(); parameters set since are kept.

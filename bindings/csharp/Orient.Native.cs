@@ -1120,6 +1120,20 @@ namespace Orient.Native
         public static extern Status orient_param_find(int kind, byte* name, uint* id);
 
         /// <summary>
+        /// Changes parameter slot `id` of a running filter; the estimate is kept. One setting
+        /// changes what the output means, and so the output: GMVDK's relative_output switches
+        /// between the earth frame and the start-up pose.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_filter_set_param(IntPtr filter, uint id, double value);
+
+        /// <summary>
+        /// Reads parameter slot `id` of a filter.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_filter_get_param(IntPtr filter, uint id, double* value);
+
+        /// <summary>
         /// Creates a filter from `config`. On success `*out` is a new handle; on failure it is
         /// set to NULL (when `out` is not NULL).
         /// </summary>
@@ -1139,20 +1153,6 @@ namespace Orient.Native
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_filter_kind(IntPtr filter, int* kind);
-
-        /// <summary>
-        /// Changes parameter slot `id` of a running filter; the estimate is kept. One setting
-        /// changes what the output means, and so the output: GMVDK's relative_output switches
-        /// between the earth frame and the start-up pose.
-        /// </summary>
-        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern Status orient_filter_set_param(IntPtr filter, uint id, double value);
-
-        /// <summary>
-        /// Reads parameter slot `id` of a filter.
-        /// </summary>
-        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern Status orient_filter_get_param(IntPtr filter, uint id, double* value);
 
         /// <summary>
         /// One update. On any status but OK the filter's state is exactly as before.
@@ -1255,6 +1255,12 @@ namespace Orient.Native
         public static extern Status orient_filter_diagnostics(IntPtr filter, Diagnostics* diagnostics);
 
         /// <summary>
+        /// ORIENT_FLAG_* bits of the filter's state.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_filter_flags(IntPtr filter, uint* flags);
+
+        /// <summary>
         /// Size in bytes of this filter's state blob (orient_filter_save); constant per kind.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
@@ -1276,12 +1282,6 @@ namespace Orient.Native
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_filter_load(IntPtr filter, byte* buffer, UIntPtr size);
-
-        /// <summary>
-        /// ORIENT_FLAG_* bits of the filter's state.
-        /// </summary>
-        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern Status orient_filter_flags(IntPtr filter, uint* flags);
 
         /// <summary>
         /// Back to the state right after orient_filter_new(); parameters set since are kept.

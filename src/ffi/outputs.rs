@@ -1,0 +1,89 @@
+//! What a filter reports: orientation in its forms, gravity, linear acceleration,
+//! diagnostics and flags.
+
+use super::*;
+
+/// The orientation (sensor to earth, configured frame). Identity before initialisation.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_quaternion(
+    filter: *const OrientFilter,
+    q: *mut OrientQuaternion,
+) -> OrientStatus {
+    guard(|| put(q, || Ok(quat_to(handle(filter)?.filter.quaternion()))))
+}
+
+/// Euler angles (yaw, pitch, roll; Z-Y'-X'') of the orientation, radians.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_euler(
+    filter: *const OrientFilter,
+    euler: *mut OrientEuler,
+) -> OrientStatus {
+    guard(|| {
+        put(euler, || {
+            let e = handle(filter)?.filter.euler();
+            Ok(OrientEuler { yaw: e.yaw, pitch: e.pitch, roll: e.roll })
+        })
+    })
+}
+
+/// Rotation matrix of the orientation, row-major, 9 doubles: v_earth = R * v_sensor.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_rotation_matrix(
+    filter: *const OrientFilter,
+    matrix: *mut f64,
+) -> OrientStatus {
+    guard(|| {
+        need(matrix.is_null())?;
+        let m = handle(filter)?.filter.rotation_matrix();
+        for (i, v) in m.iter().flatten().enumerate() {
+            matrix.add(i).write(*v);
+        }
+        Ok(())
+    })
+}
+
+/// What the accelerometer reads at rest in the current orientation (gravity's reaction,
+/// pointing up), sensor frame, m/s^2, magnitude ORIENT_PARAM_GRAVITY.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_gravity(
+    filter: *const OrientFilter,
+    gravity: *mut OrientVec3,
+) -> OrientStatus {
+    guard(|| put(gravity, || Ok(vec_to(handle(filter)?.filter.gravity()))))
+}
+
+/// Last accelerometer reading minus orient_filter_gravity(), sensor frame, m/s^2.
+/// ORIENT_STATUS_NO_DATA before the first accelerometer reading (NULL_POINTER, as
+/// always, when `accel` is NULL).
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_linear_accel(
+    filter: *const OrientFilter,
+    accel: *mut OrientVec3,
+) -> OrientStatus {
+    guard(|| put(accel, || measured(handle(filter)?.filter.linear_accel())))
+}
+
+/// orient_filter_linear_accel() rotated into the earth frame, m/s^2.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_linear_accel_earth(
+    filter: *const OrientFilter,
+    accel: *mut OrientVec3,
+) -> OrientStatus {
+    guard(|| put(accel, || measured(handle(filter)?.filter.linear_accel_earth())))
+}
+
+/// Internal states (bias, trust values, rest flag, covariance), the same struct for
+/// every kind; fields that do not apply are marked absent in `present` and hold NaN.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_diagnostics(
+    filter: *const OrientFilter,
+    diagnostics: *mut OrientDiagnostics,
+) -> OrientStatus {
+    guard(|| put(diagnostics, || Ok(diagnostics_to(&handle(filter)?.filter.diagnostics()))))
+}
+
+/// ORIENT_FLAG_* bits of the filter's state.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_flags(filter: *const OrientFilter, flags: *mut u32) -> OrientStatus {
+    guard(|| put(flags, || Ok(handle(filter)?.filter.flags())))
+}

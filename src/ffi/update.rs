@@ -1,0 +1,212 @@
+//! Updates: one sample, a batch, and one sample each for many filters.
+
+use super::*;
+
+/// One update. On any status but OK the filter's state is exactly as before.
+///
+/// Checks, in order: flags and reserved (INVALID_ARGUMENT); dt finite, at least 1e-9 s
+/// and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards);
+/// gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
+/// ORIENT_PARAM_GYRO_RANGE (SATURATED), every component below 1e4 rad/s (TOO_LARGE);
+/// accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
+/// below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
+/// nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE
+/// (SATURATED), every component below its physical bound, 1e5 m/s^2 and 1e12
+/// (TOO_LARGE); until the filter has an orientation, every sample must carry an
+/// accelerometer (NOT_INITIALIZED). Subnormal components in an otherwise usable vector
+/// are accepted. Fields whose ORIENT_SAMPLE_* bit is clear are never read.
+///
+/// Recoveries that are not errors: after a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
+/// packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
+/// ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
+/// magnetometer parallel to gravity gives no heading, so that step is an IMU update
+/// (ORIENT_FLAG_MAG_USED clear). NUMERIC guards a step whose result would not be
+/// finite; the bounds on dt and on the readings keep every accepted sample from reaching
+/// it, and no test has found one that does.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_update(
+    filter: *mut OrientFilter,
+    sample: *const OrientSample,
+) -> OrientStatus {
+    guard(|| {
+        need(sample.is_null())?;
+        let h = handle_mut(filter)?;
+        let s = host_sample(&*sample)?;
+        h.filter.update_inline(&s).map_err(from_core)
+    })
+}
+
+/// The `n` items at `ptr` of a multi-item call: NULL only when `n` is 0, and `n` small
+/// enough for the items to fit in memory.
+pub(crate) unsafe fn items<'a, T>(ptr: *const T, n: usize, what: &str) -> Result<&'a [T], OrientStatus> {
+    if n == 0 {
+        return Ok(&[]);
+    }
+    if ptr.is_null() {
+        return Err(null());
+    }
+    if n > isize::MAX as usize / core::mem::size_of::<T>().max(1) {
+        return Err(fail(OrientStatus::CountTooLarge, format_args!("n = {n} {what} cannot fit in memory")));
+    }
+    Ok(core::slice::from_raw_parts(ptr, n))
+}
+
+/// A multi-item call's failure at item `i`: `*processed = i` (when not NULL) and the
+/// current detail prefixed with `what i: `.
+pub(crate) unsafe fn fail_item(
+    processed: *mut usize,
+    what: &str,
+    i: usize,
+    status: OrientStatus,
+) -> OrientStatus {
+    if !processed.is_null() {
+        processed.write(i);
+    }
+    // Copy the detail out first: fail() rewrites its buffer.
+    let detail = CStr::from_ptr(detail_ptr()).to_bytes();
+    let mut copy = [0u8; 200];
+    let len = detail.len().min(copy.len());
+    copy[..len].copy_from_slice(&detail[..len]);
+    let detail = core::str::from_utf8(&copy[..len]).unwrap_or("");
+    fail(status, format_args!("{what} {i}: {detail}"))
+}
+
+/// Updates with `n` samples in order. When `quaternions` is not NULL it receives the
+/// orientation after each sample (room for `n`; on failure the entries before
+/// `*processed` are written and the others are not). Stops at the first bad sample: the
+/// samples before it stay applied, the bad one changes nothing, and `*processed` (when
+/// not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
+/// when `n` is 0.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_update_batch(
+    filter: *mut OrientFilter,
+    samples: *const OrientSample,
+    n: usize,
+    quaternions: *mut OrientQuaternion,
+    processed: *mut usize,
+) -> OrientStatus {
+    guard(|| {
+        if !processed.is_null() {
+            processed.write(0);
+        }
+        let samples = items(samples, n, "samples")?;
+        let h = handle_mut(filter)?;
+        if n == 0 {
+            return Ok(());
+        }
+        let failed = |i: usize, status: OrientStatus| fail_item(processed, "sample", i, status);
+        // Each update reads the host's sample in place (see SampleView): nothing is
+        // copied, so nothing is read back right after it was written.
+        for (i, s) in samples.iter().enumerate() {
+            let s = host_sample(s).map_err(|status| failed(i, status))?;
+            h.filter.update_inline(&s).map_err(|e| failed(i, from_core(e)))?;
+            if !quaternions.is_null() {
+                quaternions.add(i).write(quat_to(h.filter.quaternion()));
+            }
+        }
+        if !processed.is_null() {
+            processed.write(n);
+        }
+        Ok(())
+    })
+}
+
+/// One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
+/// for i < n (say the 16-20 bones of a hand). The filters may be of any kinds; each
+/// behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
+/// receives each filter's orientation after its sample (room for `n`; on failure the
+/// entries of the filters before the bad sample are written and the others are not).
+/// Every handle is checked before any filter changes, so a NULL or foreign handle
+/// changes nothing. A bad
+/// sample stops the call: the filters before it stay updated, its filter and those
+/// after it are unchanged, and `*processed` (when not NULL) is its index; on success it
+/// is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
+/// distinct Madgwick filters with the same sensors present are updated side by side,
+/// with the same bits as separate calls.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filters_update(
+    filters: *const *mut OrientFilter,
+    samples: *const OrientSample,
+    n: usize,
+    quaternions: *mut OrientQuaternion,
+    processed: *mut usize,
+) -> OrientStatus {
+    guard(|| {
+        if !processed.is_null() {
+            processed.write(0);
+        }
+        if n == 0 {
+            return Ok(());
+        }
+        let samples = items(samples, n, "samples")?;
+        let handles = items(filters, n, "filters")?;
+        if let Some(i) = handles.iter().position(|h| h.is_null()) {
+            return Err(fail(OrientStatus::NullPointer, format_args!("filter {i} is NULL")));
+        }
+        for (i, h) in handles.iter().enumerate() {
+            if let Err(status) = handle(*h) {
+                return Err(fail(status, format_args!("filter {i}: not a live OrientFilter handle")));
+            }
+        }
+        // Reports a bad sample at `i`: its index in `*processed`, the detail prefixed.
+        let failed = |i: usize, status: OrientStatus| fail_item(processed, "filter", i, status);
+        const LANES: usize = 4;
+        let mut i = 0;
+        while i < n {
+            let group = &handles[i..n.min(i + LANES)];
+            let distinct =
+                group.len() == LANES && (0..LANES).all(|a| (a + 1..LANES).all(|b| group[a] != group[b]));
+            if distinct {
+                // Four different filters: their steps may run side by side.
+                let mut converted = [Sample::default(); LANES];
+                let mut bad = None;
+                for (k, c) in converted.iter_mut().enumerate() {
+                    match sample_from(&samples[i + k]) {
+                        Ok(s) => *c = s,
+                        Err(status) => {
+                            bad = Some((k, status));
+                            break;
+                        }
+                    }
+                }
+                let ptrs: [*mut OrientFilter; LANES] = [group[0], group[1], group[2], group[3]];
+                let mut fs = ptrs.map(|p| &mut (*p).filter);
+                let result = match bad {
+                    None => {
+                        let refs = [0, 1, 2, 3].map(|k| &converted[k]);
+                        Filter::update_group(&mut fs, refs).map_err(|(k, e)| (k, from_core(e)))
+                    }
+                    // The ones before the bad sample still get their update.
+                    Some((k, status)) => (0..k)
+                        .try_for_each(|j| fs[j].update(&converted[j]).map_err(|e| (j, from_core(e))))
+                        .and(Err((k, status))),
+                };
+                // Every filter the group updated has its output written, also when a
+                // later one in the group refused its sample.
+                let updated = result.map_or_else(|(k, _)| k, |()| LANES);
+                if !quaternions.is_null() {
+                    for (k, f) in fs[..updated].iter().enumerate() {
+                        quaternions.add(i + k).write(quat_to(f.quaternion()));
+                    }
+                }
+                result.map_err(|(k, status)| failed(i + k, status))?;
+                i += LANES;
+                continue;
+            }
+            // One mutable borrow at a time, so a handle listed twice is simply updated
+            // twice, in order.
+            let f = &mut (*handles[i]).filter;
+            sample_from(&samples[i])
+                .and_then(|s| f.update(&s).map_err(from_core))
+                .map_err(|status| failed(i, status))?;
+            if !quaternions.is_null() {
+                quaternions.add(i).write(quat_to(f.quaternion()));
+            }
+            i += 1;
+        }
+        if !processed.is_null() {
+            processed.write(n);
+        }
+        Ok(())
+    })
+}
