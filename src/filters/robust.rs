@@ -358,6 +358,20 @@ impl Butterworth {
 
 const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
 
+/// A field counts towards confirming the reference, or towards a new one, only while the
+/// sensor turns at least this fast (rad/s; VQF's `magNewMinGyr`, 20 °/s): turning is what
+/// tells a field fixed in the room from a magnet fixed to the sensor.
+const MAG_NEW_MIN_GYRO: f64 = 20.0 * core::f64::consts::PI / 180.0;
+/// Seconds of turning with the reference accepted that confirm it (VQF's
+/// `magNewFirstTime`).
+const MAG_CONFIRM_TIME: f64 = 5.0;
+/// Seconds a different, consistent field must be seen while turning before it replaces a
+/// confirmed reference (VQF's `magNewTime`).
+const MAG_NEW_TIME: f64 = 20.0;
+/// The same for a reference never confirmed by turning (learned at rest: it may be a
+/// disturbance the sensor started in).
+const MAG_FIRST_TIME: f64 = 3.0;
+
 /// The recommended filter. See the module documentation.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Robust {
@@ -388,6 +402,14 @@ pub struct Robust {
     hi_started: bool,
     hard_iron: Vec3,
     hard_iron_on: bool,
+    /// Seconds the reference field has been seen, accepted, while the sensor turned (up
+    /// to [`MAG_CONFIRM_TIME`]): a field seen only at rest may be a magnet's.
+    ref_confirmed: f64,
+    /// A candidate for a new reference: the low-passed norm and dip of the readings, and
+    /// how long they have stayed consistent while the sensor turned.
+    cand_norm: f64,
+    cand_dip: f64,
+    cand_clock: f64,
 }
 
 impl Robust {
@@ -412,6 +434,10 @@ impl Robust {
             hi_started: false,
             hard_iron: Vec3::ZERO,
             hard_iron_on: false,
+            ref_confirmed: 0.0,
+            cand_norm: 0.0,
+            cand_dip: 0.0,
+            cand_clock: 0.0,
         }
     }
 
@@ -495,6 +521,10 @@ impl Robust {
             && holds::mag_spread(self.hi_spread)
             && self.hi_clock >= 0.0
             && holds::mag(self.hard_iron)
+            && holds::within(self.ref_confirmed, 0.0, MAG_CONFIRM_TIME)
+            && holds::mag_norm(self.cand_norm)
+            && holds::within(self.cand_dip, -PI, PI)
+            && self.cand_clock >= 0.0
     }
 
     pub(crate) fn codec(&mut self, c: &mut dyn Codec) {
@@ -516,6 +546,10 @@ impl Robust {
         c.bool(&mut self.hi_started);
         c.vec3(&mut self.hard_iron);
         c.bool(&mut self.hard_iron_on);
+        c.f64(&mut self.ref_confirmed);
+        c.f64(&mut self.cand_norm);
+        c.f64(&mut self.cand_dip);
+        c.f64(&mut self.cand_clock);
     }
 
     /// Out of line for the reason given at `Complementary::update`.
@@ -544,7 +578,7 @@ impl Robust {
             time: s.rest_time,
             tau: s.rest_tau,
         };
-        if self.rest.update(dt, gyro, accel, &th) {
+        if self.rest.update_with_bias(dt, gyro, self.bias, accel, &th) {
             self.bias = self.bias + (self.rest.gyro_lp() - self.bias) * lp_gain(dt, s.bias_tau_rest);
         }
         self.q_gyr = (self.q_gyr * rotation_of(gyro - self.bias, dt)).normalized();
@@ -578,9 +612,11 @@ impl Robust {
             // -2 c.xyz / dt is the rate the bias error added.
             let drift = (self.q_inc * self.q_gyr).rotate_inverse(c.vector() * 2.0);
             let mut b = self.bias - drift * (1.0 / s.bias_tau_motion);
-            let n = b.norm();
-            if n > s.bias_limit {
-                b = b * (s.bias_limit / n);
+            // The motion estimate may not grow the bias past the limit, but a larger bias
+            // learned at rest (a drifting one, tracked through the rest gate) is kept.
+            let (n, limit) = (b.norm(), s.bias_limit.max(self.bias.norm()));
+            if n > limit {
+                b = b * (limit / n);
             }
             self.bias = b;
         }
@@ -596,19 +632,27 @@ impl Robust {
             self.ref_norm = f.norm();
             self.ref_dip = dip(f);
         }
-        let field = if self.accepts(q_e.rotate(m)) {
-            self.hard_iron_on = false;
-            self.hi_started = false;
-            self.hi_clock = 0.0;
-            Some(m)
-        } else if self.hard_iron_on && self.accepts(q_e.rotate(m - self.hard_iron)) {
+        // A compensation in use is kept while it passes: a small offset leaves the raw
+        // field within the tests at some orientations, where it would turn the heading.
+        let field = if self.hard_iron_on && self.accepts(q_e.rotate(m - self.hard_iron)) {
             Some(m - self.hard_iron)
+        } else if self.accepts(q_e.rotate(m)) {
+            // The hard-iron estimate and its clock are kept: a small offset lets the raw
+            // field pass at some orientations, and starting over at each would never let
+            // the estimate complete at high sample rates.
+            self.hard_iron_on = false;
+            Some(m)
         } else {
             self.hard_iron_on = false;
             self.estimate_hard_iron(dt, m);
             None
         };
         self.mag_disturbed = field.is_none();
+        let turning = self.rest.gyro_lp().norm() >= MAG_NEW_MIN_GYRO;
+        if field.is_some() && turning {
+            self.ref_confirmed = (self.ref_confirmed + dt).min(MAG_CONFIRM_TIME);
+        }
+        self.new_field(dt, q_e.rotate(m), turning);
         let Some(f) = field else { return false };
         let f_e = q_e.rotate(f);
         let target = libm::atan2(f_e.x, f_e.y);
@@ -620,6 +664,51 @@ impl Robust {
         self.ref_norm += (f.norm() - self.ref_norm) * kr;
         self.ref_dip += (dip(f_e) - self.ref_dip) * kr;
         true
+    }
+
+    /// Tracks a candidate field (norm and dip of the raw readings in E′, low-passed while
+    /// consistent). When the readings are rejected and the candidate has stayed
+    /// consistent while the sensor turned for [`MAG_NEW_TIME`] (or [`MAG_FIRST_TIME`]
+    /// when the reference was never confirmed by turning), it becomes the reference: the
+    /// reference was a disturbance (a start inside a magnet's field) or the place changed.
+    /// A magnet attached to the sensor changes the norm and dip as the sensor turns, so
+    /// it never becomes a consistent candidate. The heading then starts over from the new
+    /// field as at start (averaging gain), since it came from the old one.
+    fn new_field(&mut self, dt: f64, f_e: Vec3, turning: bool) {
+        let s = self.settings;
+        let (n, d) = (f_e.norm(), dip(f_e));
+        if (n - self.cand_norm).abs() <= s.mag_norm_th * self.cand_norm
+            && (d - self.cand_dip).abs() <= s.mag_dip_th
+        {
+            if turning {
+                self.cand_clock += dt;
+            }
+            let k = lp_gain(dt, s.tau_mag);
+            self.cand_norm += (n - self.cand_norm) * k;
+            self.cand_dip += (d - self.cand_dip) * k;
+        } else {
+            self.cand_clock = 0.0;
+            self.cand_norm = n;
+            self.cand_dip = d;
+        }
+        let wait = if self.ref_confirmed >= MAG_CONFIRM_TIME { MAG_NEW_TIME } else { MAG_FIRST_TIME };
+        if self.mag_disturbed && self.cand_clock >= wait {
+            // A field far from the old reference (beyond twice the disturbance tests)
+            // shows that the old one was a disturbance, and the heading learned from it
+            // wrong; a nearby one is the same place seen better, and the heading stays.
+            let far = (self.cand_norm - self.ref_norm).abs() > 2.0 * s.mag_norm_th * self.ref_norm
+                || (self.cand_dip - self.ref_dip).abs() > 2.0 * s.mag_dip_th;
+            self.ref_norm = self.cand_norm;
+            self.ref_dip = self.cand_dip;
+            self.ref_confirmed = 0.0;
+            self.cand_clock = 0.0;
+            if far {
+                self.mag_count = 1;
+            }
+            self.hard_iron_on = false;
+            self.hi_started = false;
+            self.hi_clock = 0.0;
+        }
     }
 
     fn accepts(&self, f_e: Vec3) -> bool {
@@ -655,7 +744,10 @@ impl Robust {
                 self.hard_iron_on = true;
             }
         } else {
-            self.hi_clock = 0.0;
+            // A leaky clock: a single noisy reading does not start the wait over (which
+            // would make the wait depend on the sample rate); a third of failing readings
+            // or more keeps it from ever completing.
+            self.hi_clock = (self.hi_clock - 2.0 * dt).max(0.0);
         }
     }
 }
