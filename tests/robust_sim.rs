@@ -77,7 +77,9 @@ fn recovery(run: &Run, est: &[Quat], from: f64, deg: f64) -> f64 {
 #[cfg_attr(miri, ignore = "long simulated runs: too slow under Miri")]
 fn an_attached_magnet_of_any_size_never_turns_the_heading() {
     // From 5 µT (a tenth of the field: the raw field still passes the norm test at most
-    // orientations) to 200 µT (four times the field).
+    // orientations) to 200 µT (four times the field). Measured total 1.43 / 1.40 / 2.26
+    // / 0.80 (VQF 2.04 / 3.15 / 7.34 / 10.79); before issue 19, 15 and 40 µT gave 2.65
+    // and 2.75.
     let mut failures = Vec::new();
     for size in [5.0, 15.0, 40.0, 200.0] {
         let offset = Vec3::new(0.6, -0.48, 0.64) * size;
@@ -91,7 +93,7 @@ fn an_attached_magnet_of_any_size_never_turns_the_heading() {
             "magnet {size} uT: robust total {total:.2} heading {heading:.2} worst {worst:.2} | VQF total {vt:.2} heading {vh:.2} worst {:.2}",
             worst_heading(&run, &qv, 20.0)
         );
-        if !(total < 3.0 && worst < 10.0 && total < vt) {
+        if !(total < 2.5 && worst < 10.0 && total < vt) {
             failures.push(format!("{size} uT: total {total:.2} (VQF {vt:.2}), worst heading {worst:.2}"));
         }
     }
@@ -155,4 +157,40 @@ fn hand_held_at_256_hz() {
     let (vt, vh) = rmse(&run, &qv, 5.0, 65.0);
     println!("hand-held 256 Hz: robust total {total:.2} heading {heading:.2}; VQF {vt:.2} {vh:.2}");
     assert!(total < 1.5, "{total:.2}");
+}
+
+#[test]
+#[cfg_attr(miri, ignore = "long simulated runs: too slow under Miri")]
+fn started_in_motion_it_settles_quickly() {
+    // Hand-held from the first sample (no rest), 100 Hz: the first accelerometer reading
+    // carries up to 2.9 m/s² of linear acceleration.
+    let run = common::sim::simulate(Quat::IDENTITY, 40.0, 100.0, magnetic::NOISE, |t| {
+        magnetic::hand_held_moment(t, 0.0)
+    });
+    let settle = |est: &[Quat]| {
+        // Seconds until the total error is below 3° and stays there for 5 s.
+        let mut since = None;
+        for (i, (q, g)) in est.iter().zip(&run.truth).enumerate() {
+            let bad = error_angles(*q, *g).0.to_degrees() >= 3.0;
+            match (bad, since) {
+                (true, _) => since = None,
+                (false, None) => since = Some(i),
+                (false, Some(s)) if i - s >= 500 => return run.t[s],
+                _ => {}
+            }
+        }
+        f64::INFINITY
+    };
+    let (q, _) = robust(&run);
+    let (qv, _) = vqf(&run);
+    let (r, v) = (settle(&q), settle(&qv));
+    println!("started in motion: robust settles in {r:.2} s, VQF {v:.2} s");
+    // Measured 10.8 s against VQF's 11.9: both average the heading from readings seen
+    // through the first seconds' tilt error. Two alternatives measured and not taken,
+    // since on 80 starts in motion on BROAD (examples/robust_cv --starts) they were
+    // slower: restarting that average once the accelerometer low-pass has settled (6.6 s
+    // here, BROAD 6.9 s against 5.3), and settling the low-pass on the first reading
+    // instead of averaging (3.1 s here, where the first reading happens to carry little
+    // acceleration; BROAD 10.9 s).
+    assert!(r < 12.0 && r < v, "robust {r:.2} s, VQF {v:.2} s");
 }

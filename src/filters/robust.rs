@@ -31,6 +31,11 @@
 //!    the norm and dip tests, the compensated field is used. A disturbance fixed in
 //!    the room is not a constant sensor-frame vector once the sensor moves, so it
 //!    fails the consistency test or, later, the norm and dip tests.
+//! 4. A reference learned from the first readings may itself be a disturbance (a start
+//!    next to a magnet). A different field that stays consistent while the sensor
+//!    turns replaces a rejected reference (after 3 s when the reference was never seen
+//!    while turning, else 20 s, as VQF's new-field acceptance); an attached magnet's
+//!    field changes norm and dip as the sensor turns, so it never qualifies.
 //!
 //! Structure: `q = q_δ ⊗ q_inc ⊗ q_gyr` with `q_gyr` the bias-corrected strapdown (sensor
 //! to I), `q_inc` the inclination correction (I to E′) and `q_δ` a rotation by δ about
