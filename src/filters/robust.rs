@@ -657,16 +657,19 @@ impl Robust {
     fn correct_heading(&mut self, dt: f64, m: Vec3) -> bool {
         let s = self.settings;
         let q_e = self.q_inc * self.q_gyr;
+        // The raw reading in E′, its norm and dip: computed once for the reference, the
+        // tests, the new-field candidate and the correction.
+        let raw = q_e.rotate(m);
+        let (raw_norm, raw_dip) = (raw.norm(), dip(raw));
         if self.mag_count == 0 {
-            let f = q_e.rotate(m);
-            self.ref_norm = f.norm();
-            self.ref_dip = dip(f);
+            self.ref_norm = raw_norm;
+            self.ref_dip = raw_dip;
         }
         // A compensation in use is kept while it passes: a small offset leaves the raw
         // field within the tests at some orientations, where it would turn the heading.
         let field = if self.hard_iron_on && self.accepts(q_e.rotate(m - self.hard_iron)) {
             Some(m - self.hard_iron)
-        } else if self.accepts(q_e.rotate(m)) {
+        } else if self.accepts_norm_dip(raw_norm, raw_dip) {
             // The hard-iron estimate and its clock are kept: a small offset lets the raw
             // field pass at some orientations, and starting over at each would never let
             // the estimate complete at high sample rates.
@@ -682,9 +685,14 @@ impl Robust {
         if field.is_some() && turning {
             self.ref_confirmed = (self.ref_confirmed + dt).min(MAG_CONFIRM_TIME);
         }
-        self.new_field(dt, q_e.rotate(m), turning);
+        self.new_field(dt, raw_norm, raw_dip, turning);
         let Some(f) = field else { return false };
-        let f_e = q_e.rotate(f);
+        let (f_e, f_dip) = if f == m {
+            (raw, raw_dip)
+        } else {
+            let f_e = q_e.rotate(f);
+            (f_e, dip(f_e))
+        };
         let target = libm::atan2(f_e.x, f_e.y);
         self.mag_count = self.mag_count.saturating_add(1);
         // The first samples are averaged (gain 1/n) until the exponential gain is larger.
@@ -692,7 +700,7 @@ impl Robust {
         self.delta = wrap(self.delta + k * wrap(target - self.delta));
         let kr = lp_gain(dt, 10.0 * s.tau_mag).max(1.0 / self.mag_count as f64);
         self.ref_norm += (f.norm() - self.ref_norm) * kr;
-        self.ref_dip += (dip(f_e) - self.ref_dip) * kr;
+        self.ref_dip += (f_dip - self.ref_dip) * kr;
         true
     }
 
@@ -702,11 +710,11 @@ impl Robust {
     /// when the reference was never confirmed by turning), it becomes the reference: the
     /// reference was a disturbance (a start inside a magnet's field) or the place changed.
     /// A magnet attached to the sensor changes the norm and dip as the sensor turns, so
-    /// it never becomes a consistent candidate. The heading then starts over from the new
-    /// field as at start (averaging gain), since it came from the old one.
-    fn new_field(&mut self, dt: f64, f_e: Vec3, turning: bool) {
+    /// it never becomes a consistent candidate. When the new field is far from the old
+    /// reference the heading starts over from it as at start (averaging gain), since it
+    /// came from a disturbance. `n`, `d`: norm and dip of the raw reading in E′.
+    fn new_field(&mut self, dt: f64, n: f64, d: f64, turning: bool) {
         let s = self.settings;
-        let (n, d) = (f_e.norm(), dip(f_e));
         if (n - self.cand_norm).abs() <= s.mag_norm_th * self.cand_norm
             && (d - self.cand_dip).abs() <= s.mag_dip_th
         {
@@ -742,9 +750,14 @@ impl Robust {
     }
 
     fn accepts(&self, f_e: Vec3) -> bool {
+        self.accepts_norm_dip(f_e.norm(), dip(f_e))
+    }
+
+    /// The norm and dip tests against the reference.
+    fn accepts_norm_dip(&self, norm: f64, dip: f64) -> bool {
         let s = &self.settings;
-        (f_e.norm() - self.ref_norm).abs() <= s.mag_norm_th * self.ref_norm
-            && (dip(f_e) - self.ref_dip).abs() <= s.mag_dip_th
+        (norm - self.ref_norm).abs() <= s.mag_norm_th * self.ref_norm
+            && (dip - self.ref_dip).abs() <= s.mag_dip_th
     }
 
     /// One step of the hard-iron estimate: the reading minus the reference field seen at
