@@ -57,6 +57,21 @@ impl RestDetector {
     /// True when the sensor counts as resting after this sample. Without an
     /// accelerometer reading rest cannot be told, and the period starts over.
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, th: &RestThresholds) -> bool {
+        self.update_with_bias(dt, gyro, Vec3::ZERO, accel, th)
+    }
+
+    /// [`RestDetector::update`] for a filter that knows a bias estimate: the low-passed
+    /// gyroscope must be below `th.gyro` itself *or* within `th.gyro` of `bias`, so a bias
+    /// larger than the threshold that the filter tracks (a drifting one) still lets rest
+    /// be found. With a zero bias this is `update`, bit for bit.
+    pub fn update_with_bias(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        bias: Vec3,
+        accel: Option<Vec3>,
+        th: &RestThresholds,
+    ) -> bool {
         let Some(a) = accel else {
             self.clock = 0.0;
             self.rest = false;
@@ -72,7 +87,7 @@ impl RestDetector {
         self.acc_lp = self.acc_lp + (a - self.acc_lp) * k;
         let th_g = th.gyro * th.gyro;
         let mut still = (gyro - self.gyro_lp).norm_squared() < th_g
-            && self.gyro_lp.norm_squared() < th_g
+            && self.gyro_lp.norm_squared().min((self.gyro_lp - bias).norm_squared()) < th_g
             && (a - self.acc_lp).norm_squared() < th.accel * th.accel;
         if still && self.clock == 0.0 {
             self.acc_ref = self.acc_lp;

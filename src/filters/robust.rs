@@ -31,6 +31,11 @@
 //!    the norm and dip tests, the compensated field is used. A disturbance fixed in
 //!    the room is not a constant sensor-frame vector once the sensor moves, so it
 //!    fails the consistency test or, later, the norm and dip tests.
+//! 4. A reference learned from the first readings may itself be a disturbance (a start
+//!    next to a magnet). A different field that stays consistent while the sensor
+//!    turns replaces a rejected reference (after 3 s when the reference was never seen
+//!    while turning, else 20 s, as VQF's new-field acceptance); an attached magnet's
+//!    field changes norm and dip as the sensor turns, so it never qualifies.
 //!
 //! Structure: `q = q_δ ⊗ q_inc ⊗ q_gyr` with `q_gyr` the bias-corrected strapdown (sensor
 //! to I), `q_inc` the inclination correction (I to E′) and `q_δ` a rotation by δ about
@@ -227,6 +232,10 @@ struct Butterworth {
     /// Output y and its rate ẏ (per second).
     y: Vec3,
     v: Vec3,
+    /// Started with [`Butterworth::start`] and still within the first τ: the output is
+    /// the time-weighted mean of the inputs so far (`mean_t` seconds of them).
+    warming: bool,
+    mean_t: f64,
 }
 
 impl Butterworth {
@@ -253,17 +262,34 @@ impl Butterworth {
             fresh.coefficients(self.dt, self.tau);
             self.dt > 0.0 && self.tau > 0.0 && fresh == *self
         };
-        coefficients && super::holds::accel(self.y) && self.v.max_abs() < 1e12
+        coefficients && super::holds::accel(self.y) && self.v.max_abs() < 1e12 && self.mean_t >= 0.0
     }
 
     /// Sets the state to the steady state of a constant input `x`.
     fn settle(&mut self, x: Vec3) {
         self.y = x;
         self.v = Vec3::ZERO;
+        self.warming = false;
+    }
+
+    /// Starts from one reading: for the first τ the output is the mean of the readings
+    /// so far, then the filter runs from that mean at rest. One reading taken in motion
+    /// (a linear acceleration, a vibration) would otherwise stay in the output for
+    /// several τ; the mean forgets it as 1/n. (VQF starts its low-passes the same way.)
+    fn start(&mut self, x: Vec3) {
+        self.settle(x);
+        self.warming = true;
+        self.mean_t = 0.0;
     }
 
     fn filter(&mut self, dt: f64, tau: f64, x: Vec3) -> Vec3 {
         self.coefficients(dt, tau);
+        if self.warming {
+            self.mean_t += dt;
+            self.y = self.y + (x - self.y) * (dt / self.mean_t);
+            self.warming = self.mean_t < tau;
+            return self.y;
+        }
         let e = self.y - x;
         self.y = x + e * self.ee + self.v * self.ev;
         self.v = e * self.ve + self.v * self.vv;
@@ -278,10 +304,26 @@ impl Butterworth {
         }
         c.vec3(&mut self.y);
         c.vec3(&mut self.v);
+        c.bool(&mut self.warming);
+        c.f64(&mut self.mean_t);
     }
 }
 
 const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
+
+/// A field counts towards confirming the reference, or towards a new one, only while the
+/// sensor turns at least this fast (rad/s; VQF's `magNewMinGyr`, 20 °/s): turning is what
+/// tells a field fixed in the room from a magnet fixed to the sensor.
+const MAG_NEW_MIN_GYRO: f64 = 20.0 * core::f64::consts::PI / 180.0;
+/// Seconds of turning with the reference accepted that confirm it (VQF's
+/// `magNewFirstTime`).
+const MAG_CONFIRM_TIME: f64 = 5.0;
+/// Seconds a different, consistent field must be seen while turning before it replaces a
+/// confirmed reference (VQF's `magNewTime`).
+const MAG_NEW_TIME: f64 = 20.0;
+/// The same for a reference never confirmed by turning (learned at rest: it may be a
+/// disturbance the sensor started in).
+const MAG_FIRST_TIME: f64 = 3.0;
 
 /// The recommended filter. See the module documentation.
 #[derive(Clone, Debug, PartialEq)]
@@ -313,6 +355,14 @@ pub struct Robust {
     hi_started: bool,
     hard_iron: Vec3,
     hard_iron_on: bool,
+    /// Seconds the reference field has been seen, accepted, while the sensor turned (up
+    /// to [`MAG_CONFIRM_TIME`]): a field seen only at rest may be a magnet's.
+    ref_confirmed: f64,
+    /// A candidate for a new reference: the low-passed norm and dip of the readings, and
+    /// how long they have stayed consistent while the sensor turned.
+    cand_norm: f64,
+    cand_dip: f64,
+    cand_clock: f64,
 }
 
 impl Robust {
@@ -337,6 +387,10 @@ impl Robust {
             hi_started: false,
             hard_iron: Vec3::ZERO,
             hard_iron_on: false,
+            ref_confirmed: 0.0,
+            cand_norm: 0.0,
+            cand_dip: 0.0,
+            cand_clock: 0.0,
         }
     }
 
@@ -379,7 +433,7 @@ impl Robust {
         self.q_inc = Quat::IDENTITY;
         self.delta = 0.0;
         self.q = q;
-        self.acc_lp.settle(q.rotate(r.accel));
+        self.acc_lp.start(q.rotate(r.accel));
         self.acc_seen = true;
         self.rest = RestDetector::default();
         self.hi_started = false;
@@ -420,6 +474,10 @@ impl Robust {
             && holds::mag_spread(self.hi_spread)
             && self.hi_clock >= 0.0
             && holds::mag(self.hard_iron)
+            && holds::within(self.ref_confirmed, 0.0, MAG_CONFIRM_TIME)
+            && holds::mag_norm(self.cand_norm)
+            && holds::within(self.cand_dip, -PI, PI)
+            && self.cand_clock >= 0.0
     }
 
     pub(crate) fn codec(&mut self, c: &mut dyn Codec) {
@@ -441,6 +499,10 @@ impl Robust {
         c.bool(&mut self.hi_started);
         c.vec3(&mut self.hard_iron);
         c.bool(&mut self.hard_iron_on);
+        c.f64(&mut self.ref_confirmed);
+        c.f64(&mut self.cand_norm);
+        c.f64(&mut self.cand_dip);
+        c.f64(&mut self.cand_clock);
     }
 
     /// Out of line for the reason given at `Complementary::update`.
@@ -469,7 +531,7 @@ impl Robust {
             time: s.rest_time,
             tau: s.rest_tau,
         };
-        if self.rest.update(dt, gyro, accel, &th) {
+        if self.rest.update_with_bias(dt, gyro, self.bias, accel, &th) {
             self.bias = self.bias + (self.rest.gyro_lp() - self.bias) * lp_gain(dt, s.bias_tau_rest);
         }
         self.q_gyr = (self.q_gyr * rotation_of(gyro - self.bias, dt)).normalized();
@@ -490,7 +552,7 @@ impl Robust {
         let s = self.settings;
         let a_i = self.q_gyr.rotate(a);
         if !self.acc_seen {
-            self.acc_lp.settle(a_i);
+            self.acc_lp.start(a_i);
             self.acc_seen = true;
         }
         let a_e = self.q_inc.rotate(self.acc_lp.filter(dt, s.tau_acc, a_i));
@@ -498,14 +560,18 @@ impl Robust {
             return;
         }
         let c = Quat::from_two_vectors(a_e, UP);
-        if !self.rest.at_rest() && s.bias_tau_motion > 0.0 {
+        // While the low-pass still averages its first readings the corrections undo the
+        // start's error, not a bias's drift: nothing is learned from them.
+        if !self.rest.at_rest() && s.bias_tau_motion > 0.0 && !self.acc_lp.warming {
             // The correction c undoes the drift of the last step; in the sensor frame,
             // -2 c.xyz / dt is the rate the bias error added.
             let drift = (self.q_inc * self.q_gyr).rotate_inverse(c.vector() * 2.0);
             let mut b = self.bias - drift * (1.0 / s.bias_tau_motion);
-            let n = b.norm();
-            if n > s.bias_limit {
-                b = b * (s.bias_limit / n);
+            // The motion estimate may not grow the bias past the limit, but a larger bias
+            // learned at rest (a drifting one, tracked through the rest gate) is kept.
+            let (n, limit) = (b.norm(), s.bias_limit.max(self.bias.norm()));
+            if n > limit {
+                b = b * (limit / n);
             }
             self.bias = b;
         }
@@ -516,26 +582,42 @@ impl Robust {
     fn correct_heading(&mut self, dt: f64, m: Vec3) -> bool {
         let s = self.settings;
         let q_e = self.q_inc * self.q_gyr;
+        // The raw reading in E′, its norm and dip: computed once for the reference, the
+        // tests, the new-field candidate and the correction.
+        let raw = q_e.rotate(m);
+        let (raw_norm, raw_dip) = (raw.norm(), dip(raw));
         if self.mag_count == 0 {
-            let f = q_e.rotate(m);
-            self.ref_norm = f.norm();
-            self.ref_dip = dip(f);
+            self.ref_norm = raw_norm;
+            self.ref_dip = raw_dip;
         }
-        let field = if self.accepts(q_e.rotate(m)) {
-            self.hard_iron_on = false;
-            self.hi_started = false;
-            self.hi_clock = 0.0;
-            Some(m)
-        } else if self.hard_iron_on && self.accepts(q_e.rotate(m - self.hard_iron)) {
+        // A compensation in use is kept while it passes: a small offset leaves the raw
+        // field within the tests at some orientations, where it would turn the heading.
+        let field = if self.hard_iron_on && self.accepts(q_e.rotate(m - self.hard_iron)) {
             Some(m - self.hard_iron)
+        } else if self.accepts_norm_dip(raw_norm, raw_dip) {
+            // The hard-iron estimate and its clock are kept: a small offset lets the raw
+            // field pass at some orientations, and starting over at each would never let
+            // the estimate complete at high sample rates.
+            self.hard_iron_on = false;
+            Some(m)
         } else {
             self.hard_iron_on = false;
             self.estimate_hard_iron(dt, m);
             None
         };
         self.mag_disturbed = field.is_none();
+        let turning = self.rest.gyro_lp().norm() >= MAG_NEW_MIN_GYRO;
+        if field.is_some() && turning {
+            self.ref_confirmed = (self.ref_confirmed + dt).min(MAG_CONFIRM_TIME);
+        }
+        self.new_field(dt, raw_norm, raw_dip, turning);
         let Some(f) = field else { return false };
-        let f_e = q_e.rotate(f);
+        let (f_e, f_dip) = if f == m {
+            (raw, raw_dip)
+        } else {
+            let f_e = q_e.rotate(f);
+            (f_e, dip(f_e))
+        };
         let target = libm::atan2(f_e.x, f_e.y);
         self.mag_count = self.mag_count.saturating_add(1);
         // The first samples are averaged (gain 1/n) until the exponential gain is larger.
@@ -543,14 +625,64 @@ impl Robust {
         self.delta = wrap(self.delta + k * wrap(target - self.delta));
         let kr = lp_gain(dt, 10.0 * s.tau_mag).max(1.0 / self.mag_count as f64);
         self.ref_norm += (f.norm() - self.ref_norm) * kr;
-        self.ref_dip += (dip(f_e) - self.ref_dip) * kr;
+        self.ref_dip += (f_dip - self.ref_dip) * kr;
         true
     }
 
+    /// Tracks a candidate field (norm and dip of the raw readings in E′, low-passed while
+    /// consistent). When the readings are rejected and the candidate has stayed
+    /// consistent while the sensor turned for [`MAG_NEW_TIME`] (or [`MAG_FIRST_TIME`]
+    /// when the reference was never confirmed by turning), it becomes the reference: the
+    /// reference was a disturbance (a start inside a magnet's field) or the place changed.
+    /// A magnet attached to the sensor changes the norm and dip as the sensor turns, so
+    /// it never becomes a consistent candidate. When the new field is far from the old
+    /// reference the heading starts over from it as at start (averaging gain), since it
+    /// came from a disturbance. `n`, `d`: norm and dip of the raw reading in E′.
+    fn new_field(&mut self, dt: f64, n: f64, d: f64, turning: bool) {
+        let s = self.settings;
+        if (n - self.cand_norm).abs() <= s.mag_norm_th * self.cand_norm
+            && (d - self.cand_dip).abs() <= s.mag_dip_th
+        {
+            if turning {
+                self.cand_clock += dt;
+            }
+            let k = lp_gain(dt, s.tau_mag);
+            self.cand_norm += (n - self.cand_norm) * k;
+            self.cand_dip += (d - self.cand_dip) * k;
+        } else {
+            self.cand_clock = 0.0;
+            self.cand_norm = n;
+            self.cand_dip = d;
+        }
+        let wait = if self.ref_confirmed >= MAG_CONFIRM_TIME { MAG_NEW_TIME } else { MAG_FIRST_TIME };
+        if self.mag_disturbed && self.cand_clock >= wait {
+            // A field far from the old reference (beyond twice the disturbance tests)
+            // shows that the old one was a disturbance, and the heading learned from it
+            // wrong; a nearby one is the same place seen better, and the heading stays.
+            let far = (self.cand_norm - self.ref_norm).abs() > 2.0 * s.mag_norm_th * self.ref_norm
+                || (self.cand_dip - self.ref_dip).abs() > 2.0 * s.mag_dip_th;
+            self.ref_norm = self.cand_norm;
+            self.ref_dip = self.cand_dip;
+            self.ref_confirmed = 0.0;
+            self.cand_clock = 0.0;
+            if far {
+                self.mag_count = 1;
+            }
+            self.hard_iron_on = false;
+            self.hi_started = false;
+            self.hi_clock = 0.0;
+        }
+    }
+
     fn accepts(&self, f_e: Vec3) -> bool {
+        self.accepts_norm_dip(f_e.norm(), dip(f_e))
+    }
+
+    /// The norm and dip tests against the reference.
+    fn accepts_norm_dip(&self, norm: f64, dip: f64) -> bool {
         let s = &self.settings;
-        (f_e.norm() - self.ref_norm).abs() <= s.mag_norm_th * self.ref_norm
-            && (dip(f_e) - self.ref_dip).abs() <= s.mag_dip_th
+        (norm - self.ref_norm).abs() <= s.mag_norm_th * self.ref_norm
+            && (dip - self.ref_dip).abs() <= s.mag_dip_th
     }
 
     /// One step of the hard-iron estimate: the reading minus the reference field seen at
@@ -580,7 +712,10 @@ impl Robust {
                 self.hard_iron_on = true;
             }
         } else {
-            self.hi_clock = 0.0;
+            // A leaky clock: a single noisy reading does not start the wait over (which
+            // would make the wait depend on the sample rate); a third of failing readings
+            // or more keeps it from ever completing.
+            self.hi_clock = (self.hi_clock - 2.0 * dt).max(0.0);
         }
     }
 }
@@ -729,7 +864,12 @@ mod tests {
             let t = i as f64 * DT;
             let lin = Vec3::new(4.0 * libm::sin(core::f64::consts::TAU * t), 0.0, 0.0);
             f.update(DT, Vec3::ZERO, Some(q.rotate_inverse(G + lin)), None).unwrap();
-            worst = worst.max(inclination(f.quaternion(), q));
+            // The first tau_acc averages the readings so far (a mean over 2.5 periods
+            // still carries 0.5 m/s² of the acceleration, 3°); the low-pass, started from
+            // that mean, has shed it by 2 tau_acc.
+            if t >= 2.0 * RobustSettings::default().tau_acc {
+                worst = worst.max(inclination(f.quaternion(), q));
+            }
         }
         assert!(worst.to_degrees() < 1.5, "{}", worst.to_degrees());
     }

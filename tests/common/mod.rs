@@ -1,3 +1,4 @@
 pub mod golden;
+pub mod magnetic;
 pub mod native;
 pub mod sim;
