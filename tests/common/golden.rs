@@ -99,7 +99,7 @@ fn unhex(s: &str) -> f64 {
 pub fn write(cases: &[Case]) -> String {
     let mut out = String::new();
     out.push_str("# orient golden vectors, format v1 (tests/common/golden.rs).\n");
-    out.push_str("# Regenerate after an intended algorithm change: cargo run --example make_golden\n");
+    out.push_str("# Regenerate after an intended algorithm change: cargo run --bin make_golden\n");
     for c in cases {
         let q = c.initial;
         out.push_str(&format!(
