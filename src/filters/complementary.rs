@@ -365,45 +365,13 @@ mod tests {
 /// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
 mod estimator_impl {
     use super::*;
-    use crate::filters::estimator::{Estimator, Reacquisition};
-    use crate::filters::state::Codec;
-    use crate::filters::{Diagnostics, Kind};
-    use crate::math::Frame;
+    use crate::filters::estimator::estimator;
+    use crate::filters::Diagnostics;
 
-    impl Estimator for Complementary {
-        type Settings = ComplementarySettings;
-        const KIND: Kind = Kind::Complementary;
-        const NATIVE: Frame = Frame::Enu;
-        const OWN_STARTUP: bool = true;
-
-        fn create(settings: ComplementarySettings) -> Self {
-            Complementary::new(settings)
-        }
-
-        fn settings(&self) -> &ComplementarySettings {
-            &self.settings
-        }
-
-        fn configure(&mut self, settings: ComplementarySettings) {
-            self.settings = settings;
-        }
-
+    estimator!(impl for Complementary { settings: ComplementarySettings, native: Enu, own_startup: true } {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-            Self::update(self, dt, gyro, accel, mag)
-        }
-
-        #[inline(always)]
-        fn quaternion(&self) -> Quat {
-            Complementary::quaternion(self)
-        }
-
-        fn set_quaternion(&mut self, q: Quat) {
-            Complementary::set_quaternion(self, q)
-        }
-
-        fn reacquire(&mut self, r: &Reacquisition) -> bool {
-            Complementary::reacquire(self, r)
+            Complementary::update(self, dt, gyro, accel, mag)
         }
 
         fn diagnose(&self, d: &mut Diagnostics) {
@@ -414,13 +382,5 @@ mod estimator_impl {
         fn at_rest(&self) -> bool {
             Complementary::at_rest(self)
         }
-
-        fn codec(&mut self, c: &mut dyn Codec) {
-            Complementary::codec(self, c)
-        }
-
-        fn valid(&self) -> bool {
-            Complementary::valid(self)
-        }
-    }
+    });
 }

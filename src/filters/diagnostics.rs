@@ -54,3 +54,36 @@ impl Default for Diagnostics {
         }
     }
 }
+
+impl Diagnostics {
+    /// Sets every field whose bit in `present` is clear back to NaN, so that an absent
+    /// field never holds a value a kind computed anyway.
+    pub(crate) fn clear_absent(&mut self) {
+        let absent = Diagnostics::default();
+        let keep = |bit: u32| self.present & bit != 0;
+        if !keep(diag::GYRO_BIAS) {
+            self.gyro_bias = absent.gyro_bias;
+        }
+        if !keep(diag::REST) {
+            self.rest = absent.rest;
+        }
+        if !keep(diag::ALPHA) {
+            self.alpha = absent.alpha;
+        }
+        if !keep(diag::MU_KA) {
+            self.mu_ka = absent.mu_ka;
+        }
+        if !keep(diag::MU_KM) {
+            self.mu_km = absent.mu_km;
+        }
+        if !keep(diag::MU_K) {
+            self.mu_k = absent.mu_k;
+        }
+        if !keep(diag::RATE) {
+            self.rate = absent.rate;
+        }
+        if !keep(diag::COVARIANCE) {
+            self.covariance = absent.covariance;
+        }
+    }
+}

@@ -1309,68 +1309,33 @@ mod tests {
 /// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
 mod estimator_impl {
     use super::*;
-    use crate::filters::estimator::{Estimator, Reacquisition};
-    use crate::filters::state::Codec;
-    use crate::filters::{Diagnostics, Kind};
-    use crate::math::Frame;
+    use crate::filters::estimator::estimator;
+    use crate::filters::Diagnostics;
 
-    impl Estimator for Ekf {
-        type Settings = EkfSettings;
-        const KIND: Kind = Kind::Ekf;
-        const NATIVE: Frame = Frame::Ned;
-        const OWN_STARTUP: bool = false;
-
-        fn create(settings: EkfSettings) -> Self {
-            Ekf::new(settings)
-        }
-
-        fn settings(&self) -> &EkfSettings {
-            &self.settings
-        }
-
-        fn configure(&mut self, settings: EkfSettings) {
-            self.settings = settings;
-        }
-
+    estimator!(impl for Ekf { settings: EkfSettings, native: Ned, own_startup: false } {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-            Self::update(self, dt, gyro, accel, mag)
-        }
-
-        #[inline(always)]
-        fn quaternion(&self) -> Quat {
-            Ekf::quaternion(self)
-        }
-
-        fn set_quaternion(&mut self, q: Quat) {
-            Ekf::set_quaternion(self, q)
-        }
-
-        fn reacquire(&mut self, r: &Reacquisition) -> bool {
-            Ekf::reacquire(self, r)
+            Ekf::update(self, dt, gyro, accel, mag)
         }
 
         fn diagnose(&self, d: &mut Diagnostics) {
             d.gyro_bias = self.drift();
             d.rate = self.rate();
             d.covariance = self.covariance_diagonal();
+            d.rest = if Ekf::at_rest(self) { 1.0 } else { 0.0 };
+        }
+
+        fn fields(&self) -> u32 {
+            let all = crate::filters::Kind::Ekf.diagnostics();
             if self.settings.rest_rate_std > 0.0 {
-                d.rest = if Ekf::at_rest(self) { 1.0 } else { 0.0 };
+                all
             } else {
-                d.present &= !crate::filters::diag::REST;
+                all & !crate::filters::diag::REST
             }
         }
 
         fn at_rest(&self) -> bool {
             Ekf::at_rest(self)
         }
-
-        fn codec(&mut self, c: &mut dyn Codec) {
-            Ekf::codec(self, c)
-        }
-
-        fn valid(&self) -> bool {
-            Ekf::valid(self)
-        }
-    }
+    });
 }

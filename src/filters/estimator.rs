@@ -21,8 +21,11 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
 
     fn create(settings: Self::Settings) -> Self;
     fn settings(&self) -> &Self::Settings;
+    fn settings_mut(&mut self) -> &mut Self::Settings;
     /// Takes new settings; the state is kept.
-    fn configure(&mut self, settings: Self::Settings);
+    fn configure(&mut self, settings: Self::Settings) {
+        *self.settings_mut() = settings;
+    }
     /// Back to the state of [`Estimator::create`] with these settings, without touching
     /// the heap.
     fn restart(&mut self, settings: Self::Settings) {
@@ -48,8 +51,13 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     /// takes one, starts its low-passes and detectors over and keeps its bias estimate.
     /// Returns true when the magnetometer's attitude was taken.
     fn reacquire(&mut self, r: &Reacquisition) -> bool;
-    /// Fills the fields of [`Diagnostics`] this kind has (its `present` bits are set to
-    /// [`Kind::diagnostics`] before; a kind clears those it has no value for yet).
+    /// The [`Diagnostics`] fields this filter reports with its settings: those of
+    /// [`Kind::diagnostics`], less those of an option that is off.
+    fn fields(&self) -> u32 {
+        Self::KIND.diagnostics()
+    }
+    /// Fills the fields of [`Diagnostics`] this filter has (its `present` bits are set to
+    /// [`Estimator::fields`] before; a kind clears those it has no value for yet).
     fn diagnose(&self, d: &mut Diagnostics);
     /// True when the kind counts the sensor as resting now ([`super::flags::REST`]).
     fn at_rest(&self) -> bool {
@@ -107,3 +115,54 @@ pub struct Step {
     /// The filter is still in its start-up period and has no orientation yet.
     pub initializing: bool,
 }
+
+/// An [`Estimator`] impl: the kind's identity and the items every kind writes the same
+/// way (construction, settings, and the forwards to its inherent `quaternion`,
+/// `set_quaternion`, `reacquire`, `codec` and `valid`), then the kind's own items in
+/// braces (`update`, `diagnose`, and whatever it overrides).
+macro_rules! estimator {
+    (impl for $T:ident { settings: $S:ty, native: $frame:ident, own_startup: $own:expr $(,)? } { $($item:tt)* }) => {
+        impl $crate::filters::estimator::Estimator for $T {
+            type Settings = $S;
+            const KIND: $crate::filters::Kind = $crate::filters::Kind::$T;
+            const NATIVE: $crate::math::Frame = $crate::math::Frame::$frame;
+            const OWN_STARTUP: bool = $own;
+
+            fn create(settings: $S) -> Self {
+                $T::new(settings)
+            }
+
+            fn settings(&self) -> &$S {
+                &self.settings
+            }
+
+            fn settings_mut(&mut self) -> &mut $S {
+                &mut self.settings
+            }
+
+            #[inline(always)]
+            fn quaternion(&self) -> $crate::math::Quat {
+                $T::quaternion(self)
+            }
+
+            fn set_quaternion(&mut self, q: $crate::math::Quat) {
+                $T::set_quaternion(self, q)
+            }
+
+            fn reacquire(&mut self, r: &$crate::filters::estimator::Reacquisition) -> bool {
+                $T::reacquire(self, r)
+            }
+
+            fn codec(&mut self, c: &mut dyn $crate::filters::state::Codec) {
+                $T::codec(self, c)
+            }
+
+            fn valid(&self) -> bool {
+                $T::valid(self)
+            }
+
+            $($item)*
+        }
+    };
+}
+pub(crate) use estimator;

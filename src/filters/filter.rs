@@ -260,6 +260,14 @@ impl Filter {
         each!(&self.0, r => r.diagnostics())
     }
 
+    /// The [`super::diag`] bits of the [`Diagnostics`] fields this filter reports with its
+    /// settings: [`Kind::diagnostics`] less those of an option that is off (Madgwick's bias
+    /// and rest, Mahony's and the EKF's rest without their rest options). GMVDK's μ values
+    /// are among them, though absent until its first magnetometer reading.
+    pub fn diagnostic_fields(&self) -> u32 {
+        each!(&self.0, r => r.diagnostic_fields())
+    }
+
     /// Size in bytes of [`Filter::save`]'s blob for this filter (constant per kind).
     pub fn state_size(&self) -> usize {
         each!(&self.0, r => r.state_size())

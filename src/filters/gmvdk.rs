@@ -789,29 +789,10 @@ mod tests {
 mod estimator_impl {
     use super::*;
     use crate::filters::diag;
-    use crate::filters::estimator::{Estimator, Reacquisition};
-    use crate::filters::state::Codec;
-    use crate::filters::{Diagnostics, Kind};
-    use crate::math::Frame;
+    use crate::filters::estimator::estimator;
+    use crate::filters::Diagnostics;
 
-    impl Estimator for Gmvdk {
-        type Settings = GmvdkSettings;
-        const KIND: Kind = Kind::Gmvdk;
-        const NATIVE: Frame = Frame::Enu;
-        const OWN_STARTUP: bool = true;
-
-        fn create(settings: GmvdkSettings) -> Self {
-            Gmvdk::new(settings)
-        }
-
-        fn settings(&self) -> &GmvdkSettings {
-            &self.settings
-        }
-
-        fn configure(&mut self, settings: GmvdkSettings) {
-            self.settings = settings;
-        }
-
+    estimator!(impl for Gmvdk { settings: GmvdkSettings, native: Enu, own_startup: true } {
         fn restart(&mut self, settings: GmvdkSettings) {
             // Keeps the boxed μ window: no allocation.
             self.settings = settings;
@@ -831,19 +812,6 @@ mod estimator_impl {
             gmvdk_update(self, dt, gyro, accel, mag)
         }
 
-        #[inline(always)]
-        fn quaternion(&self) -> Quat {
-            Gmvdk::quaternion(self)
-        }
-
-        fn set_quaternion(&mut self, q: Quat) {
-            Gmvdk::set_quaternion(self, q)
-        }
-
-        fn reacquire(&mut self, r: &Reacquisition) -> bool {
-            Gmvdk::reacquire(self, r)
-        }
-
         fn diagnose(&self, d: &mut Diagnostics) {
             d.gyro_bias = self.bias();
             let t = self.trust();
@@ -856,15 +824,7 @@ mod estimator_impl {
                 d.present &= !(diag::MU_KA | diag::MU_KM | diag::MU_K);
             }
         }
-
-        fn codec(&mut self, c: &mut dyn Codec) {
-            Gmvdk::codec(self, c)
-        }
-
-        fn valid(&self) -> bool {
-            Gmvdk::valid(self)
-        }
-    }
+    });
 }
 
 /// GMVDK's update in the widest copy the CPU has (crate::isa::widest). Out of line: its

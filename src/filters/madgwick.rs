@@ -755,25 +755,10 @@ mod tests {
 mod estimator_impl {
     use super::*;
     use crate::filters::diag;
-    use crate::filters::estimator::{Estimator, Reacquisition};
-    use crate::filters::state::Codec;
-    use crate::filters::{Diagnostics, Kind};
-    use crate::math::Frame;
+    use crate::filters::estimator::estimator;
+    use crate::filters::Diagnostics;
 
-    impl Estimator for Madgwick {
-        type Settings = MadgwickSettings;
-        const KIND: Kind = Kind::Madgwick;
-        const NATIVE: Frame = Frame::Nwu;
-        const OWN_STARTUP: bool = false;
-
-        fn create(settings: MadgwickSettings) -> Self {
-            Madgwick::new(settings)
-        }
-
-        fn settings(&self) -> &MadgwickSettings {
-            &self.settings
-        }
-
+    estimator!(impl for Madgwick { settings: MadgwickSettings, native: Nwu, own_startup: false } {
         fn configure(&mut self, settings: MadgwickSettings) {
             self.settings = settings;
             self.rest.prepare(settings.rest_bias_tau > 0.0);
@@ -781,42 +766,25 @@ mod estimator_impl {
 
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-            Self::update(self, dt, gyro, accel, mag)
+            Madgwick::update(self, dt, gyro, accel, mag)
         }
 
-        #[inline(always)]
-        fn quaternion(&self) -> Quat {
-            Madgwick::quaternion(self)
-        }
-
-        fn set_quaternion(&mut self, q: Quat) {
-            Madgwick::set_quaternion(self, q)
-        }
-
-        fn reacquire(&mut self, r: &Reacquisition) -> bool {
-            Madgwick::reacquire(self, r)
+        fn fields(&self) -> u32 {
+            // Madgwick's filter estimates no bias; with the rest-bias option it has one.
+            if self.settings.rest_bias_tau > 0.0 {
+                diag::GYRO_BIAS | diag::REST
+            } else {
+                0
+            }
         }
 
         fn diagnose(&self, d: &mut Diagnostics) {
-            // Madgwick's filter estimates no bias; with the rest-bias option it has one.
-            if self.settings.rest_bias_tau > 0.0 {
-                d.gyro_bias = self.bias();
-                d.rest = if Madgwick::at_rest(self) { 1.0 } else { 0.0 };
-            } else {
-                d.present &= !(diag::GYRO_BIAS | diag::REST);
-            }
+            d.gyro_bias = self.bias();
+            d.rest = if Madgwick::at_rest(self) { 1.0 } else { 0.0 };
         }
 
         fn at_rest(&self) -> bool {
             Madgwick::at_rest(self)
         }
-
-        fn codec(&mut self, c: &mut dyn Codec) {
-            Madgwick::codec(self, c)
-        }
-
-        fn valid(&self) -> bool {
-            Madgwick::valid(self)
-        }
-    }
+    });
 }

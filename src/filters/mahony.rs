@@ -261,25 +261,10 @@ mod tests {
 mod estimator_impl {
     use super::*;
     use crate::filters::diag;
-    use crate::filters::estimator::{Estimator, Reacquisition};
-    use crate::filters::state::Codec;
-    use crate::filters::{Diagnostics, Kind};
-    use crate::math::Frame;
+    use crate::filters::estimator::estimator;
+    use crate::filters::Diagnostics;
 
-    impl Estimator for Mahony {
-        type Settings = MahonySettings;
-        const KIND: Kind = Kind::Mahony;
-        const NATIVE: Frame = Frame::Nwu;
-        const OWN_STARTUP: bool = false;
-
-        fn create(settings: MahonySettings) -> Self {
-            Mahony::new(settings)
-        }
-
-        fn settings(&self) -> &MahonySettings {
-            &self.settings
-        }
-
+    estimator!(impl for Mahony { settings: MahonySettings, native: Nwu, own_startup: false } {
         fn configure(&mut self, settings: MahonySettings) {
             self.settings = settings;
             self.rest.prepare(settings.rest_bias_tau > 0.0);
@@ -287,41 +272,24 @@ mod estimator_impl {
 
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-            Self::update(self, dt, gyro, accel, mag)
+            Mahony::update(self, dt, gyro, accel, mag)
         }
 
-        #[inline(always)]
-        fn quaternion(&self) -> Quat {
-            Mahony::quaternion(self)
-        }
-
-        fn set_quaternion(&mut self, q: Quat) {
-            Mahony::set_quaternion(self, q)
-        }
-
-        fn reacquire(&mut self, r: &Reacquisition) -> bool {
-            Mahony::reacquire(self, r)
+        fn fields(&self) -> u32 {
+            if self.settings.rest_bias_tau > 0.0 {
+                diag::GYRO_BIAS | diag::REST
+            } else {
+                diag::GYRO_BIAS
+            }
         }
 
         fn diagnose(&self, d: &mut Diagnostics) {
             d.gyro_bias = self.bias();
-            if self.settings.rest_bias_tau > 0.0 {
-                d.rest = if Mahony::at_rest(self) { 1.0 } else { 0.0 };
-            } else {
-                d.present &= !diag::REST;
-            }
+            d.rest = if Mahony::at_rest(self) { 1.0 } else { 0.0 };
         }
 
         fn at_rest(&self) -> bool {
             Mahony::at_rest(self)
         }
-
-        fn codec(&mut self, c: &mut dyn Codec) {
-            Mahony::codec(self, c)
-        }
-
-        fn valid(&self) -> bool {
-            Mahony::valid(self)
-        }
-    }
+    });
 }

@@ -966,45 +966,13 @@ mod tests {
 /// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
 mod estimator_impl {
     use super::*;
-    use crate::filters::estimator::{Estimator, Reacquisition};
-    use crate::filters::state::Codec;
-    use crate::filters::{Diagnostics, Kind};
-    use crate::math::Frame;
+    use crate::filters::estimator::estimator;
+    use crate::filters::Diagnostics;
 
-    impl Estimator for Robust {
-        type Settings = RobustSettings;
-        const KIND: Kind = Kind::Robust;
-        const NATIVE: Frame = Frame::Enu;
-        const OWN_STARTUP: bool = false;
-
-        fn create(settings: RobustSettings) -> Self {
-            Robust::new(settings)
-        }
-
-        fn settings(&self) -> &RobustSettings {
-            &self.settings
-        }
-
-        fn configure(&mut self, settings: RobustSettings) {
-            self.settings = settings;
-        }
-
+    estimator!(impl for Robust { settings: RobustSettings, native: Enu, own_startup: false } {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-            Self::update(self, dt, gyro, accel, mag)
-        }
-
-        #[inline(always)]
-        fn quaternion(&self) -> Quat {
-            Robust::quaternion(self)
-        }
-
-        fn set_quaternion(&mut self, q: Quat) {
-            Robust::set_quaternion(self, q)
-        }
-
-        fn reacquire(&mut self, r: &Reacquisition) -> bool {
-            Robust::reacquire(self, r)
+            Robust::update(self, dt, gyro, accel, mag)
         }
 
         fn diagnose(&self, d: &mut Diagnostics) {
@@ -1019,13 +987,5 @@ mod estimator_impl {
         fn mag_disturbed(&self) -> bool {
             Robust::mag_disturbed(self)
         }
-
-        fn codec(&mut self, c: &mut dyn Codec) {
-            Robust::codec(self, c)
-        }
-
-        fn valid(&self) -> bool {
-            Robust::valid(self)
-        }
-    }
+    });
 }

@@ -410,9 +410,14 @@ impl<E: Estimator> Runner<E> {
         self.has_accel = true;
     }
 
+    pub(crate) fn diagnostic_fields(&self) -> u32 {
+        self.core.fields()
+    }
+
     pub(crate) fn diagnostics(&self) -> Diagnostics {
-        let mut d = Diagnostics { present: E::KIND.diagnostics(), ..Diagnostics::default() };
+        let mut d = Diagnostics { present: self.core.fields(), ..Diagnostics::default() };
         self.core.diagnose(&mut d);
+        d.clear_absent();
         d
     }
 

@@ -270,7 +270,7 @@ fn replay(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Samp
     let mut estimates: Vec<Quat> = Vec::with_capacity(samples.len());
     let mut sample_flags: Vec<u32> = Vec::with_capacity(samples.len());
     let mut rest: Vec<bool> = Vec::with_capacity(samples.len());
-    let columns = extra_columns(kind.diagnostics());
+    let columns = extra_columns(filter.diagnostic_fields());
     let mut extras: Vec<Vec<f64>> = Vec::with_capacity(if args.out.is_some() { samples.len() } else { 0 });
     let mut rejected = 0usize;
     let mut first_rejection = None;
@@ -290,7 +290,7 @@ fn replay(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Samp
             rest.push(accepted && filter.diagnostics().rest == 1.0);
         }
         if args.out.is_some() {
-            extras.push(extra_values(&filter.diagnostics(), kind.diagnostics()));
+            extras.push(extra_values(&filter.diagnostics(), filter.diagnostic_fields()));
         }
     }
     let elapsed = start.elapsed();
