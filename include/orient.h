@@ -864,6 +864,67 @@ typedef struct OrientQuaternion {
 } OrientQuaternion;
 
 /**
+ * A 3-vector.
+ */
+typedef struct OrientVec3 {
+  double x;
+  double y;
+  double z;
+} OrientVec3;
+
+/**
+ * Internal states for display, the same struct for every kind. A field whose
+ * ORIENT_DIAG_* bit is clear in `present` does not apply (to this kind, or yet) and
+ * holds NaN; it is never a made-up zero.
+ */
+typedef struct OrientDiagnostics {
+  /**
+   * ORIENT_DIAG_* bits of the fields that hold values.
+   */
+  uint32_t present;
+  /**
+   * Always 0.
+   */
+  uint32_t reserved;
+  /**
+   * Gyroscope bias being subtracted, rad/s, sensor frame (Mahony b, complementary
+   * omega_b, EKF drift delta, GMVDK regression bias, the robust kind's estimate,
+   * Madgwick's with its rest-bias option on).
+   */
+  struct OrientVec3 gyro_bias;
+  /**
+   * 1 when the last sample counted as rest, else 0 (complementary: gains on; robust:
+   * its rest detector; EKF, Madgwick and Mahony: with their rest options on).
+   */
+  double rest;
+  /**
+   * GMVDK accelerometer trust alpha, [0, 1].
+   */
+  double alpha;
+  /**
+   * GMVDK magnetometer angle trust mu_KA, [0, 1].
+   */
+  double mu_ka;
+  /**
+   * GMVDK magnetometer magnitude trust mu_KM, [0, 1].
+   */
+  double mu_km;
+  /**
+   * GMVDK magnetometer trust mu_K = mu_2 * alpha, [0, 1].
+   */
+  double mu_k;
+  /**
+   * EKF angular-rate state, rad/s, sensor frame.
+   */
+  struct OrientVec3 rate;
+  /**
+   * EKF covariance diagonal, state order [q0, q1, q2, q3, omega_xyz, drift_xyz]
+   * (the quaternion in the filter's native North-East-Down frame).
+   */
+  double covariance[10];
+} OrientDiagnostics;
+
+/**
  * A filter configuration (1072 bytes). Fill it with orient_config_default(), then
  * change fields or parameters.
  *
@@ -939,13 +1000,22 @@ typedef struct OrientParamInfo {
 } OrientParamInfo;
 
 /**
- * A 3-vector.
+ * Euler angles, radians, intrinsic Z-Y'-X'': R = Rz(yaw) * Ry(pitch) * Rx(roll).
  */
-typedef struct OrientVec3 {
-  double x;
-  double y;
-  double z;
-} OrientVec3;
+typedef struct OrientEuler {
+  /**
+   * About the earth z axis, (-pi, pi].
+   */
+  double yaw;
+  /**
+   * [-pi/2, pi/2].
+   */
+  double pitch;
+  /**
+   * (-pi, pi].
+   */
+  double roll;
+} OrientEuler;
 
 /**
  * One sensor sample (88 bytes).
@@ -978,107 +1048,36 @@ typedef struct OrientSample {
   uint32_t reserved;
 } OrientSample;
 
-/**
- * Euler angles, radians, intrinsic Z-Y'-X'': R = Rz(yaw) * Ry(pitch) * Rx(roll).
- */
-typedef struct OrientEuler {
-  /**
-   * About the earth z axis, (-pi, pi].
-   */
-  double yaw;
-  /**
-   * [-pi/2, pi/2].
-   */
-  double pitch;
-  /**
-   * (-pi, pi].
-   */
-  double roll;
-} OrientEuler;
-
-/**
- * Internal states for display, the same struct for every kind. A field whose
- * ORIENT_DIAG_* bit is clear in `present` does not apply (to this kind, or yet) and
- * holds NaN; it is never a made-up zero.
- */
-typedef struct OrientDiagnostics {
-  /**
-   * ORIENT_DIAG_* bits of the fields that hold values.
-   */
-  uint32_t present;
-  /**
-   * Always 0.
-   */
-  uint32_t reserved;
-  /**
-   * Gyroscope bias being subtracted, rad/s, sensor frame (Mahony b, complementary
-   * omega_b, EKF drift delta, GMVDK regression bias, the robust kind's estimate,
-   * Madgwick's with its rest-bias option on).
-   */
-  struct OrientVec3 gyro_bias;
-  /**
-   * 1 when the last sample counted as rest, else 0 (complementary: gains on; robust:
-   * its rest detector; EKF, Madgwick and Mahony: with their rest options on).
-   */
-  double rest;
-  /**
-   * GMVDK accelerometer trust alpha, [0, 1].
-   */
-  double alpha;
-  /**
-   * GMVDK magnetometer angle trust mu_KA, [0, 1].
-   */
-  double mu_ka;
-  /**
-   * GMVDK magnetometer magnitude trust mu_KM, [0, 1].
-   */
-  double mu_km;
-  /**
-   * GMVDK magnetometer trust mu_K = mu_2 * alpha, [0, 1].
-   */
-  double mu_k;
-  /**
-   * EKF angular-rate state, rad/s, sensor frame.
-   */
-  struct OrientVec3 rate;
-  /**
-   * EKF covariance diagonal, state order [q0, q1, q2, q3, omega_xyz, drift_xyz]
-   * (the quaternion in the filter's native North-East-Down frame).
-   */
-  double covariance[10];
-} OrientDiagnostics;
-
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
 
 /**
- * The library version, e.g. "0.1.0" (static, NUL-terminated).
+ * Updates with `n` samples given as arrays, in order; the same updates as
+ * orient_filter_update_batch with the same samples, bit for bit.
+ *
+ * `gyro` holds `3 n` doubles (x, y, z of sample 0, then of sample 1, ...; a C-ordered
+ * n x 3 array); `accel` and `mag` likewise, or NULL when the samples have no such
+ * reading. `dt` holds `dt_count` doubles: 1 (every sample takes `dt[0]`) or `n` (one
+ * per sample); any other count is ORIENT_STATUS_INVALID_ARGUMENT. After each sample,
+ * `quaternions[i]`, `flags[i]` (orient_filter_flags) and `diagnostics[i]`
+ * (orient_filter_diagnostics) receive the filter's outputs; each may be NULL when not
+ * wanted. Stops at the first bad sample exactly as orient_filter_update_batch does: the
+ * samples before it stay applied, the bad one changes nothing, and `*processed` (when
+ * not NULL) is its index; on success it is `n`. `gyro` and `dt` may be NULL only when
+ * `n` is 0.
  */
-const char *orient_version(void);
-
-/**
- * ORIENT_ABI_VERSION of the loaded library; compare with the header's to detect a
- * mismatched binary.
- */
-uint32_t orient_abi_version(void);
-
-/**
- * A fixed English message for a status code (static, NUL-terminated; never NULL).
- */
-const char *orient_status_message(int32_t status);
-
-/**
- * Detail of the last failed call on this thread (NUL-terminated, "" if none). Valid
- * until the next failing orient call on the same thread; never NULL.
- */
-const char *orient_last_error(void);
-
-/**
- * beta from the maximum gyroscope error of each axis, Madgwick 2010 eq. (33):
- * beta = sqrt(3/4) * gyro_error (both rad/s). NaN for a negative or non-finite input.
- */
-double orient_madgwick_beta(double gyro_error);
+OrientStatus orient_filter_update_arrays(OrientFilter *filter,
+                                         size_t n,
+                                         const double *dt,
+                                         size_t dt_count,
+                                         const double *gyro,
+                                         const double *accel,
+                                         const double *mag,
+                                         struct OrientQuaternion *quaternions,
+                                         uint32_t *flags,
+                                         struct OrientDiagnostics *diagnostics,
+                                         size_t *processed);
 
 /**
  * Fills `config` with the defaults of `kind` (one of ORIENT_KIND_*): ENU, initial
@@ -1144,63 +1143,69 @@ OrientStatus orient_filter_free(OrientFilter *filter);
 OrientStatus orient_filter_kind(const OrientFilter *filter, int32_t *kind);
 
 /**
- * One update. On any status but OK the filter's state is exactly as before.
- *
- * Checks, in order: flags and reserved (INVALID_ARGUMENT); dt finite, at least 1e-9 s
- * and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards);
- * gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
- * ORIENT_PARAM_GYRO_RANGE (SATURATED), every component below 1e4 rad/s (TOO_LARGE);
- * accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
- * below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
- * nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE
- * (SATURATED), every component below its physical bound, 1e5 m/s^2 and 1e12
- * (TOO_LARGE); until the filter has an orientation, every sample must carry an
- * accelerometer (NOT_INITIALIZED). Subnormal components in an otherwise usable vector
- * are accepted. Fields whose ORIENT_SAMPLE_* bit is clear are never read.
- *
- * Recoveries that are not errors: after a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
- * packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
- * ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
- * magnetometer parallel to gravity gives no heading, so that step is an IMU update
- * (ORIENT_FLAG_MAG_USED clear). NUMERIC guards a step whose result would not be
- * finite; the bounds on dt and on the readings keep every accepted sample from reaching
- * it, and no test has found one that does.
+ * The library version, e.g. "0.1.0" (static, NUL-terminated).
  */
-OrientStatus orient_filter_update(OrientFilter *filter, const struct OrientSample *sample);
+const char *orient_version(void);
 
 /**
- * Updates with `n` samples in order. When `quaternions` is not NULL it receives the
- * orientation after each sample (room for `n`; on failure the entries before
- * `*processed` are written and the others are not). Stops at the first bad sample: the
- * samples before it stay applied, the bad one changes nothing, and `*processed` (when
- * not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
- * when `n` is 0.
+ * ORIENT_ABI_VERSION of the loaded library; compare with the header's to detect a
+ * mismatched binary.
  */
-OrientStatus orient_filter_update_batch(OrientFilter *filter,
-                                        const struct OrientSample *samples,
-                                        size_t n,
-                                        struct OrientQuaternion *quaternions,
-                                        size_t *processed);
+uint32_t orient_abi_version(void);
 
 /**
- * One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
- * for i < n (say the 16-20 bones of a hand). The filters may be of any kinds; each
- * behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
- * receives each filter's orientation after its sample (room for `n`; on failure the
- * entries of the filters before the bad sample are written and the others are not).
- * Every handle is checked before any filter changes, so a NULL or foreign handle
- * changes nothing. A bad
- * sample stops the call: the filters before it stay updated, its filter and those
- * after it are unchanged, and `*processed` (when not NULL) is its index; on success it
- * is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
- * distinct Madgwick filters with the same sensors present are updated side by side,
- * with the same bits as separate calls.
+ * A fixed English message for a status code (static, NUL-terminated; never NULL).
  */
-OrientStatus orient_filters_update(OrientFilter *const *filters,
-                                   const struct OrientSample *samples,
-                                   size_t n,
-                                   struct OrientQuaternion *quaternions,
-                                   size_t *processed);
+const char *orient_status_message(int32_t status);
+
+/**
+ * Detail of the last failed call on this thread (NUL-terminated, "" if none). Valid
+ * until the next failing orient call on the same thread; never NULL.
+ */
+const char *orient_last_error(void);
+
+/**
+ * beta from the maximum gyroscope error of each axis, Madgwick 2010 eq. (33):
+ * beta = sqrt(3/4) * gyro_error (both rad/s). NaN for a negative or non-finite input.
+ */
+double orient_madgwick_beta(double gyro_error);
+
+/**
+ * Writes the offline defaults to `*config`: the recommended kind
+ * (ORIENT_KIND_ROBUST) with its defaults except for a heading time constant `tau_mag`
+ * of 27 s, three times the causal default (the forward and backward passes' heading
+ * drifts cancel in the fusion, so each can lean on the gyroscope longer). Pass it to
+ * orient_smooth_arrays, changed or not.
+ */
+OrientStatus orient_smooth_config_default(struct OrientConfig *config);
+
+/**
+ * Smooths a whole recording offline (non-causal: every output uses the samples before
+ * and after it) and writes the orientation at each sample to `quaternions` (room for
+ * `n`, in the configuration's frame). Runs the kind and parameters of `config` forward,
+ * then backward over the time-reversed recording, then forward again, and fuses the two
+ * directions at each sample by a SLERP weighted by each direction's confidence. For
+ * motion-capture post-processing; allocates memory for the recording, unlike
+ * orient_filter_update.
+ *
+ * The arrays are those of orient_filter_update_arrays: `gyro` holds `3 n` doubles (x,
+ * y, z of sample 0, then of sample 1, ...), `accel` and `mag` likewise or NULL, `dt`
+ * holds `dt_count` doubles, 1 or `n` (any other count is
+ * ORIENT_STATUS_INVALID_ARGUMENT). A sample that orient_filter_update would refuse in a
+ * forward run of a new filter of this configuration fails the call with that status;
+ * `*processed` (when not NULL) is then its index and `quaternions` is left unwritten. On
+ * success `*processed` is `n`. `gyro`, `dt` and `quaternions` may be NULL only when `n`
+ * is 0.
+ */
+OrientStatus orient_smooth_arrays(const struct OrientConfig *config,
+                                  size_t n,
+                                  const double *dt,
+                                  size_t dt_count,
+                                  const double *gyro,
+                                  const double *accel,
+                                  const double *mag,
+                                  struct OrientQuaternion *quaternions,
+                                  size_t *processed);
 
 /**
  * The orientation (sensor to earth, configured frame). Identity before initialisation.
@@ -1282,68 +1287,63 @@ OrientStatus orient_filter_reset(OrientFilter *filter);
 OrientStatus orient_filter_set_quaternion(OrientFilter *filter, const struct OrientQuaternion *q);
 
 /**
- * Updates with `n` samples given as arrays, in order; the same updates as
- * orient_filter_update_batch with the same samples, bit for bit.
+ * One update. On any status but OK the filter's state is exactly as before.
  *
- * `gyro` holds `3 n` doubles (x, y, z of sample 0, then of sample 1, ...; a C-ordered
- * n x 3 array); `accel` and `mag` likewise, or NULL when the samples have no such
- * reading. `dt` holds `dt_count` doubles: 1 (every sample takes `dt[0]`) or `n` (one
- * per sample); any other count is ORIENT_STATUS_INVALID_ARGUMENT. After each sample,
- * `quaternions[i]`, `flags[i]` (orient_filter_flags) and `diagnostics[i]`
- * (orient_filter_diagnostics) receive the filter's outputs; each may be NULL when not
- * wanted. Stops at the first bad sample exactly as orient_filter_update_batch does: the
+ * Checks, in order: flags and reserved (INVALID_ARGUMENT); dt finite, at least 1e-9 s
+ * and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards);
+ * gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
+ * ORIENT_PARAM_GYRO_RANGE (SATURATED), every component below 1e4 rad/s (TOO_LARGE);
+ * accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
+ * below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
+ * nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE
+ * (SATURATED), every component below its physical bound, 1e5 m/s^2 and 1e12
+ * (TOO_LARGE); until the filter has an orientation, every sample must carry an
+ * accelerometer (NOT_INITIALIZED). Subnormal components in an otherwise usable vector
+ * are accepted. Fields whose ORIENT_SAMPLE_* bit is clear are never read.
+ *
+ * Recoveries that are not errors: after a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
+ * packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
+ * ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
+ * magnetometer parallel to gravity gives no heading, so that step is an IMU update
+ * (ORIENT_FLAG_MAG_USED clear). NUMERIC guards a step whose result would not be
+ * finite; the bounds on dt and on the readings keep every accepted sample from reaching
+ * it, and no test has found one that does.
+ */
+OrientStatus orient_filter_update(OrientFilter *filter, const struct OrientSample *sample);
+
+/**
+ * Updates with `n` samples in order. When `quaternions` is not NULL it receives the
+ * orientation after each sample (room for `n`; on failure the entries before
+ * `*processed` are written and the others are not). Stops at the first bad sample: the
  * samples before it stay applied, the bad one changes nothing, and `*processed` (when
- * not NULL) is its index; on success it is `n`. `gyro` and `dt` may be NULL only when
- * `n` is 0.
+ * not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
+ * when `n` is 0.
  */
-OrientStatus orient_filter_update_arrays(OrientFilter *filter,
-                                         size_t n,
-                                         const double *dt,
-                                         size_t dt_count,
-                                         const double *gyro,
-                                         const double *accel,
-                                         const double *mag,
-                                         struct OrientQuaternion *quaternions,
-                                         uint32_t *flags,
-                                         struct OrientDiagnostics *diagnostics,
-                                         size_t *processed);
+OrientStatus orient_filter_update_batch(OrientFilter *filter,
+                                        const struct OrientSample *samples,
+                                        size_t n,
+                                        struct OrientQuaternion *quaternions,
+                                        size_t *processed);
 
 /**
- * Writes the offline defaults to `*config`: the recommended kind
- * (ORIENT_KIND_ROBUST) with its defaults except for a heading time constant `tau_mag`
- * of 27 s, three times the causal default (the forward and backward passes' heading
- * drifts cancel in the fusion, so each can lean on the gyroscope longer). Pass it to
- * orient_smooth_arrays, changed or not.
+ * One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
+ * for i < n (say the 16-20 bones of a hand). The filters may be of any kinds; each
+ * behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
+ * receives each filter's orientation after its sample (room for `n`; on failure the
+ * entries of the filters before the bad sample are written and the others are not).
+ * Every handle is checked before any filter changes, so a NULL or foreign handle
+ * changes nothing. A bad
+ * sample stops the call: the filters before it stay updated, its filter and those
+ * after it are unchanged, and `*processed` (when not NULL) is its index; on success it
+ * is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
+ * distinct Madgwick filters with the same sensors present are updated side by side,
+ * with the same bits as separate calls.
  */
-OrientStatus orient_smooth_config_default(struct OrientConfig *config);
-
-/**
- * Smooths a whole recording offline (non-causal: every output uses the samples before
- * and after it) and writes the orientation at each sample to `quaternions` (room for
- * `n`, in the configuration's frame). Runs the kind and parameters of `config` forward,
- * then backward over the time-reversed recording, then forward again, and fuses the two
- * directions at each sample by a SLERP weighted by each direction's confidence. For
- * motion-capture post-processing; allocates memory for the recording, unlike
- * orient_filter_update.
- *
- * The arrays are those of orient_filter_update_arrays: `gyro` holds `3 n` doubles (x,
- * y, z of sample 0, then of sample 1, ...), `accel` and `mag` likewise or NULL, `dt`
- * holds `dt_count` doubles, 1 or `n` (any other count is
- * ORIENT_STATUS_INVALID_ARGUMENT). A sample that orient_filter_update would refuse in a
- * forward run of a new filter of this configuration fails the call with that status;
- * `*processed` (when not NULL) is then its index and `quaternions` is left unwritten. On
- * success `*processed` is `n`. `gyro`, `dt` and `quaternions` may be NULL only when `n`
- * is 0.
- */
-OrientStatus orient_smooth_arrays(const struct OrientConfig *config,
-                                  size_t n,
-                                  const double *dt,
-                                  size_t dt_count,
-                                  const double *gyro,
-                                  const double *accel,
-                                  const double *mag,
-                                  struct OrientQuaternion *quaternions,
-                                  size_t *processed);
+OrientStatus orient_filters_update(OrientFilter *const *filters,
+                                   const struct OrientSample *samples,
+                                   size_t n,
+                                   struct OrientQuaternion *quaternions,
+                                   size_t *processed);
 
 #ifdef __cplusplus
 }  // extern "C"

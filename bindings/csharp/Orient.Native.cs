@@ -803,6 +803,82 @@ namespace Orient.Native
     }
 
     /// <summary>
+    /// A 3-vector.
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public partial struct Vec3
+    {
+        public double X;
+
+        public double Y;
+
+        public double Z;
+    }
+
+    /// <summary>
+    /// Internal states for display, the same struct for every kind. A field whose
+    /// ORIENT_DIAG_* bit is clear in `present` does not apply (to this kind, or yet) and
+    /// holds NaN; it is never a made-up zero.
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe partial struct Diagnostics
+    {
+        /// <summary>
+        /// ORIENT_DIAG_* bits of the fields that hold values.
+        /// </summary>
+        public uint Present;
+
+        /// <summary>
+        /// Always 0.
+        /// </summary>
+        public uint Reserved;
+
+        /// <summary>
+        /// Gyroscope bias being subtracted, rad/s, sensor frame (Mahony b, complementary
+        /// omega_b, EKF drift delta, GMVDK regression bias, the robust kind's estimate,
+        /// Madgwick's with its rest-bias option on).
+        /// </summary>
+        public Vec3 GyroBias;
+
+        /// <summary>
+        /// 1 when the last sample counted as rest, else 0 (complementary: gains on; robust:
+        /// its rest detector; EKF, Madgwick and Mahony: with their rest options on).
+        /// </summary>
+        public double Rest;
+
+        /// <summary>
+        /// GMVDK accelerometer trust alpha, [0, 1].
+        /// </summary>
+        public double Alpha;
+
+        /// <summary>
+        /// GMVDK magnetometer angle trust mu_KA, [0, 1].
+        /// </summary>
+        public double MuKa;
+
+        /// <summary>
+        /// GMVDK magnetometer magnitude trust mu_KM, [0, 1].
+        /// </summary>
+        public double MuKm;
+
+        /// <summary>
+        /// GMVDK magnetometer trust mu_K = mu_2 * alpha, [0, 1].
+        /// </summary>
+        public double MuK;
+
+        /// <summary>
+        /// EKF angular-rate state, rad/s, sensor frame.
+        /// </summary>
+        public Vec3 Rate;
+
+        /// <summary>
+        /// EKF covariance diagonal, state order [q0, q1, q2, q3, omega_xyz, drift_xyz]
+        /// (the quaternion in the filter's native North-East-Down frame).
+        /// </summary>
+        public fixed double Covariance[10];
+    }
+
+    /// <summary>
     /// A filter configuration (1072 bytes). Fill it with orient_config_default(), then
     /// change fields or parameters.
     ///
@@ -894,16 +970,25 @@ namespace Orient.Native
     }
 
     /// <summary>
-    /// A 3-vector.
+    /// Euler angles, radians, intrinsic Z-Y'-X'': R = Rz(yaw) * Ry(pitch) * Rx(roll).
     /// </summary>
     [StructLayout(LayoutKind.Sequential)]
-    public partial struct Vec3
+    public partial struct Euler
     {
-        public double X;
+        /// <summary>
+        /// About the earth z axis, (-pi, pi].
+        /// </summary>
+        public double Yaw;
 
-        public double Y;
+        /// <summary>
+        /// [-pi/2, pi/2].
+        /// </summary>
+        public double Pitch;
 
-        public double Z;
+        /// <summary>
+        /// (-pi, pi].
+        /// </summary>
+        public double Roll;
     }
 
     /// <summary>
@@ -945,91 +1030,6 @@ namespace Orient.Native
     }
 
     /// <summary>
-    /// Euler angles, radians, intrinsic Z-Y'-X'': R = Rz(yaw) * Ry(pitch) * Rx(roll).
-    /// </summary>
-    [StructLayout(LayoutKind.Sequential)]
-    public partial struct Euler
-    {
-        /// <summary>
-        /// About the earth z axis, (-pi, pi].
-        /// </summary>
-        public double Yaw;
-
-        /// <summary>
-        /// [-pi/2, pi/2].
-        /// </summary>
-        public double Pitch;
-
-        /// <summary>
-        /// (-pi, pi].
-        /// </summary>
-        public double Roll;
-    }
-
-    /// <summary>
-    /// Internal states for display, the same struct for every kind. A field whose
-    /// ORIENT_DIAG_* bit is clear in `present` does not apply (to this kind, or yet) and
-    /// holds NaN; it is never a made-up zero.
-    /// </summary>
-    [StructLayout(LayoutKind.Sequential)]
-    public unsafe partial struct Diagnostics
-    {
-        /// <summary>
-        /// ORIENT_DIAG_* bits of the fields that hold values.
-        /// </summary>
-        public uint Present;
-
-        /// <summary>
-        /// Always 0.
-        /// </summary>
-        public uint Reserved;
-
-        /// <summary>
-        /// Gyroscope bias being subtracted, rad/s, sensor frame (Mahony b, complementary
-        /// omega_b, EKF drift delta, GMVDK regression bias, the robust kind's estimate,
-        /// Madgwick's with its rest-bias option on).
-        /// </summary>
-        public Vec3 GyroBias;
-
-        /// <summary>
-        /// 1 when the last sample counted as rest, else 0 (complementary: gains on; robust:
-        /// its rest detector; EKF, Madgwick and Mahony: with their rest options on).
-        /// </summary>
-        public double Rest;
-
-        /// <summary>
-        /// GMVDK accelerometer trust alpha, [0, 1].
-        /// </summary>
-        public double Alpha;
-
-        /// <summary>
-        /// GMVDK magnetometer angle trust mu_KA, [0, 1].
-        /// </summary>
-        public double MuKa;
-
-        /// <summary>
-        /// GMVDK magnetometer magnitude trust mu_KM, [0, 1].
-        /// </summary>
-        public double MuKm;
-
-        /// <summary>
-        /// GMVDK magnetometer trust mu_K = mu_2 * alpha, [0, 1].
-        /// </summary>
-        public double MuK;
-
-        /// <summary>
-        /// EKF angular-rate state, rad/s, sensor frame.
-        /// </summary>
-        public Vec3 Rate;
-
-        /// <summary>
-        /// EKF covariance diagonal, state order [q0, q1, q2, q3, omega_xyz, drift_xyz]
-        /// (the quaternion in the filter's native North-East-Down frame).
-        /// </summary>
-        public fixed double Covariance[10];
-    }
-
-    /// <summary>
     /// The C functions, one to one. Pointer parameters are C# pointers (pass
     /// `&amp;local`, or a `fixed` array); handles are IntPtr (Orient.cs keeps them in a
     /// SafeHandle).
@@ -1048,37 +1048,22 @@ namespace Orient.Native
 #endif
 
         /// <summary>
-        /// The library version, e.g. "0.1.0" (static, NUL-terminated).
+        /// Updates with `n` samples given as arrays, in order; the same updates as
+        /// orient_filter_update_batch with the same samples, bit for bit.
+        ///
+        /// `gyro` holds `3 n` doubles (x, y, z of sample 0, then of sample 1, ...; a C-ordered
+        /// n x 3 array); `accel` and `mag` likewise, or NULL when the samples have no such
+        /// reading. `dt` holds `dt_count` doubles: 1 (every sample takes `dt[0]`) or `n` (one
+        /// per sample); any other count is ORIENT_STATUS_INVALID_ARGUMENT. After each sample,
+        /// `quaternions[i]`, `flags[i]` (orient_filter_flags) and `diagnostics[i]`
+        /// (orient_filter_diagnostics) receive the filter's outputs; each may be NULL when not
+        /// wanted. Stops at the first bad sample exactly as orient_filter_update_batch does: the
+        /// samples before it stay applied, the bad one changes nothing, and `*processed` (when
+        /// not NULL) is its index; on success it is `n`. `gyro` and `dt` may be NULL only when
+        /// `n` is 0.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern IntPtr orient_version();
-
-        /// <summary>
-        /// ORIENT_ABI_VERSION of the loaded library; compare with the header's to detect a
-        /// mismatched binary.
-        /// </summary>
-        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern uint orient_abi_version();
-
-        /// <summary>
-        /// A fixed English message for a status code (static, NUL-terminated; never NULL).
-        /// </summary>
-        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern IntPtr orient_status_message(int status);
-
-        /// <summary>
-        /// Detail of the last failed call on this thread (NUL-terminated, "" if none). Valid
-        /// until the next failing orient call on the same thread; never NULL.
-        /// </summary>
-        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern IntPtr orient_last_error();
-
-        /// <summary>
-        /// beta from the maximum gyroscope error of each axis, Madgwick 2010 eq. (33):
-        /// beta = sqrt(3/4) * gyro_error (both rad/s). NaN for a negative or non-finite input.
-        /// </summary>
-        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern double orient_madgwick_beta(double gyroError);
+        public static extern Status orient_filter_update_arrays(IntPtr filter, UIntPtr n, double* dt, UIntPtr dtCount, double* gyro, double* accel, double* mag, Quaternion* quaternions, uint* flags, Diagnostics* diagnostics, UIntPtr* processed);
 
         /// <summary>
         /// Fills `config` with the defaults of `kind` (one of ORIENT_KIND_*): ENU, initial
@@ -1155,58 +1140,68 @@ namespace Orient.Native
         public static extern Status orient_filter_kind(IntPtr filter, int* kind);
 
         /// <summary>
-        /// One update. On any status but OK the filter's state is exactly as before.
-        ///
-        /// Checks, in order: flags and reserved (INVALID_ARGUMENT); dt finite, at least 1e-9 s
-        /// and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards);
-        /// gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
-        /// ORIENT_PARAM_GYRO_RANGE (SATURATED), every component below 1e4 rad/s (TOO_LARGE);
-        /// accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
-        /// below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
-        /// nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE
-        /// (SATURATED), every component below its physical bound, 1e5 m/s^2 and 1e12
-        /// (TOO_LARGE); until the filter has an orientation, every sample must carry an
-        /// accelerometer (NOT_INITIALIZED). Subnormal components in an otherwise usable vector
-        /// are accepted. Fields whose ORIENT_SAMPLE_* bit is clear are never read.
-        ///
-        /// Recoveries that are not errors: after a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
-        /// packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
-        /// ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
-        /// magnetometer parallel to gravity gives no heading, so that step is an IMU update
-        /// (ORIENT_FLAG_MAG_USED clear). NUMERIC guards a step whose result would not be
-        /// finite; the bounds on dt and on the readings keep every accepted sample from reaching
-        /// it, and no test has found one that does.
+        /// The library version, e.g. "0.1.0" (static, NUL-terminated).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern Status orient_filter_update(IntPtr filter, Sample* sample);
+        public static extern IntPtr orient_version();
 
         /// <summary>
-        /// Updates with `n` samples in order. When `quaternions` is not NULL it receives the
-        /// orientation after each sample (room for `n`; on failure the entries before
-        /// `*processed` are written and the others are not). Stops at the first bad sample: the
-        /// samples before it stay applied, the bad one changes nothing, and `*processed` (when
-        /// not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
-        /// when `n` is 0.
+        /// ORIENT_ABI_VERSION of the loaded library; compare with the header's to detect a
+        /// mismatched binary.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern Status orient_filter_update_batch(IntPtr filter, Sample* samples, UIntPtr n, Quaternion* quaternions, UIntPtr* processed);
+        public static extern uint orient_abi_version();
 
         /// <summary>
-        /// One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
-        /// for i &lt; n (say the 16-20 bones of a hand). The filters may be of any kinds; each
-        /// behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
-        /// receives each filter's orientation after its sample (room for `n`; on failure the
-        /// entries of the filters before the bad sample are written and the others are not).
-        /// Every handle is checked before any filter changes, so a NULL or foreign handle
-        /// changes nothing. A bad
-        /// sample stops the call: the filters before it stay updated, its filter and those
-        /// after it are unchanged, and `*processed` (when not NULL) is its index; on success it
-        /// is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
-        /// distinct Madgwick filters with the same sensors present are updated side by side,
-        /// with the same bits as separate calls.
+        /// A fixed English message for a status code (static, NUL-terminated; never NULL).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern Status orient_filters_update(IntPtr* filters, Sample* samples, UIntPtr n, Quaternion* quaternions, UIntPtr* processed);
+        public static extern IntPtr orient_status_message(int status);
+
+        /// <summary>
+        /// Detail of the last failed call on this thread (NUL-terminated, "" if none). Valid
+        /// until the next failing orient call on the same thread; never NULL.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern IntPtr orient_last_error();
+
+        /// <summary>
+        /// beta from the maximum gyroscope error of each axis, Madgwick 2010 eq. (33):
+        /// beta = sqrt(3/4) * gyro_error (both rad/s). NaN for a negative or non-finite input.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern double orient_madgwick_beta(double gyroError);
+
+        /// <summary>
+        /// Writes the offline defaults to `*config`: the recommended kind
+        /// (ORIENT_KIND_ROBUST) with its defaults except for a heading time constant `tau_mag`
+        /// of 27 s, three times the causal default (the forward and backward passes' heading
+        /// drifts cancel in the fusion, so each can lean on the gyroscope longer). Pass it to
+        /// orient_smooth_arrays, changed or not.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_smooth_config_default(Config* config);
+
+        /// <summary>
+        /// Smooths a whole recording offline (non-causal: every output uses the samples before
+        /// and after it) and writes the orientation at each sample to `quaternions` (room for
+        /// `n`, in the configuration's frame). Runs the kind and parameters of `config` forward,
+        /// then backward over the time-reversed recording, then forward again, and fuses the two
+        /// directions at each sample by a SLERP weighted by each direction's confidence. For
+        /// motion-capture post-processing; allocates memory for the recording, unlike
+        /// orient_filter_update.
+        ///
+        /// The arrays are those of orient_filter_update_arrays: `gyro` holds `3 n` doubles (x,
+        /// y, z of sample 0, then of sample 1, ...), `accel` and `mag` likewise or NULL, `dt`
+        /// holds `dt_count` doubles, 1 or `n` (any other count is
+        /// ORIENT_STATUS_INVALID_ARGUMENT). A sample that orient_filter_update would refuse in a
+        /// forward run of a new filter of this configuration fails the call with that status;
+        /// `*processed` (when not NULL) is then its index and `quaternions` is left unwritten. On
+        /// success `*processed` is `n`. `gyro`, `dt` and `quaternions` may be NULL only when `n`
+        /// is 0.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_smooth_arrays(Config* config, UIntPtr n, double* dt, UIntPtr dtCount, double* gyro, double* accel, double* mag, Quaternion* quaternions, UIntPtr* processed);
 
         /// <summary>
         /// The orientation (sensor to earth, configured frame). Identity before initialisation.
@@ -1297,52 +1292,57 @@ namespace Orient.Native
         public static extern Status orient_filter_set_quaternion(IntPtr filter, Quaternion* q);
 
         /// <summary>
-        /// Updates with `n` samples given as arrays, in order; the same updates as
-        /// orient_filter_update_batch with the same samples, bit for bit.
+        /// One update. On any status but OK the filter's state is exactly as before.
         ///
-        /// `gyro` holds `3 n` doubles (x, y, z of sample 0, then of sample 1, ...; a C-ordered
-        /// n x 3 array); `accel` and `mag` likewise, or NULL when the samples have no such
-        /// reading. `dt` holds `dt_count` doubles: 1 (every sample takes `dt[0]`) or `n` (one
-        /// per sample); any other count is ORIENT_STATUS_INVALID_ARGUMENT. After each sample,
-        /// `quaternions[i]`, `flags[i]` (orient_filter_flags) and `diagnostics[i]`
-        /// (orient_filter_diagnostics) receive the filter's outputs; each may be NULL when not
-        /// wanted. Stops at the first bad sample exactly as orient_filter_update_batch does: the
+        /// Checks, in order: flags and reserved (INVALID_ARGUMENT); dt finite, at least 1e-9 s
+        /// and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards);
+        /// gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
+        /// ORIENT_PARAM_GYRO_RANGE (SATURATED), every component below 1e4 rad/s (TOO_LARGE);
+        /// accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
+        /// below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
+        /// nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE
+        /// (SATURATED), every component below its physical bound, 1e5 m/s^2 and 1e12
+        /// (TOO_LARGE); until the filter has an orientation, every sample must carry an
+        /// accelerometer (NOT_INITIALIZED). Subnormal components in an otherwise usable vector
+        /// are accepted. Fields whose ORIENT_SAMPLE_* bit is clear are never read.
+        ///
+        /// Recoveries that are not errors: after a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
+        /// packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
+        /// ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
+        /// magnetometer parallel to gravity gives no heading, so that step is an IMU update
+        /// (ORIENT_FLAG_MAG_USED clear). NUMERIC guards a step whose result would not be
+        /// finite; the bounds on dt and on the readings keep every accepted sample from reaching
+        /// it, and no test has found one that does.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_filter_update(IntPtr filter, Sample* sample);
+
+        /// <summary>
+        /// Updates with `n` samples in order. When `quaternions` is not NULL it receives the
+        /// orientation after each sample (room for `n`; on failure the entries before
+        /// `*processed` are written and the others are not). Stops at the first bad sample: the
         /// samples before it stay applied, the bad one changes nothing, and `*processed` (when
-        /// not NULL) is its index; on success it is `n`. `gyro` and `dt` may be NULL only when
-        /// `n` is 0.
+        /// not NULL) is its index; on success `*processed` is `n`. `samples` may be NULL only
+        /// when `n` is 0.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern Status orient_filter_update_arrays(IntPtr filter, UIntPtr n, double* dt, UIntPtr dtCount, double* gyro, double* accel, double* mag, Quaternion* quaternions, uint* flags, Diagnostics* diagnostics, UIntPtr* processed);
+        public static extern Status orient_filter_update_batch(IntPtr filter, Sample* samples, UIntPtr n, Quaternion* quaternions, UIntPtr* processed);
 
         /// <summary>
-        /// Writes the offline defaults to `*config`: the recommended kind
-        /// (ORIENT_KIND_ROBUST) with its defaults except for a heading time constant `tau_mag`
-        /// of 27 s, three times the causal default (the forward and backward passes' heading
-        /// drifts cancel in the fusion, so each can lean on the gyroscope longer). Pass it to
-        /// orient_smooth_arrays, changed or not.
+        /// One frame of a multi-sensor rig in one call: updates `filters[i]` with `samples[i]`
+        /// for i &lt; n (say the 16-20 bones of a hand). The filters may be of any kinds; each
+        /// behaves exactly as with orient_filter_update. When `quaternions` is not NULL it
+        /// receives each filter's orientation after its sample (room for `n`; on failure the
+        /// entries of the filters before the bad sample are written and the others are not).
+        /// Every handle is checked before any filter changes, so a NULL or foreign handle
+        /// changes nothing. A bad
+        /// sample stops the call: the filters before it stay updated, its filter and those
+        /// after it are unchanged, and `*processed` (when not NULL) is its index; on success it
+        /// is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
+        /// distinct Madgwick filters with the same sensors present are updated side by side,
+        /// with the same bits as separate calls.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern Status orient_smooth_config_default(Config* config);
-
-        /// <summary>
-        /// Smooths a whole recording offline (non-causal: every output uses the samples before
-        /// and after it) and writes the orientation at each sample to `quaternions` (room for
-        /// `n`, in the configuration's frame). Runs the kind and parameters of `config` forward,
-        /// then backward over the time-reversed recording, then forward again, and fuses the two
-        /// directions at each sample by a SLERP weighted by each direction's confidence. For
-        /// motion-capture post-processing; allocates memory for the recording, unlike
-        /// orient_filter_update.
-        ///
-        /// The arrays are those of orient_filter_update_arrays: `gyro` holds `3 n` doubles (x,
-        /// y, z of sample 0, then of sample 1, ...), `accel` and `mag` likewise or NULL, `dt`
-        /// holds `dt_count` doubles, 1 or `n` (any other count is
-        /// ORIENT_STATUS_INVALID_ARGUMENT). A sample that orient_filter_update would refuse in a
-        /// forward run of a new filter of this configuration fails the call with that status;
-        /// `*processed` (when not NULL) is then its index and `quaternions` is left unwritten. On
-        /// success `*processed` is `n`. `gyro`, `dt` and `quaternions` may be NULL only when `n`
-        /// is 0.
-        /// </summary>
-        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern Status orient_smooth_arrays(Config* config, UIntPtr n, double* dt, UIntPtr dtCount, double* gyro, double* accel, double* mag, Quaternion* quaternions, UIntPtr* processed);
+        public static extern Status orient_filters_update(IntPtr* filters, Sample* samples, UIntPtr n, Quaternion* quaternions, UIntPtr* processed);
     }
 }
