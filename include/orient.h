@@ -1102,6 +1102,98 @@ OrientStatus orient_filter_update_arrays(OrientFilter *filter,
                                          struct OrientDiagnostics *diagnostics,
                                          size_t *processed);
 
+/**
+ * Sets the mounting: the rotation from the sensor's frame to its body segment's
+ * (v_segment = m v_sensor; normalised). From then on orient_filter_quaternion,
+ * orient_filter_euler, orient_filter_rotation_matrix and
+ * orient_filter_linear_accel_earth give the segment's orientation (sensor orientation
+ * times the mounting's inverse); orient_filter_gravity and orient_filter_linear_accel
+ * stay in the sensor's frame. Kept by orient_filter_reset and saved in snapshots.
+ * NON_FINITE, ZERO_VECTOR or TOO_LARGE for an unusable quaternion.
+ */
+OrientStatus orient_filter_set_mounting(OrientFilter *filter,
+                                        const struct OrientQuaternion *mounting);
+
+/**
+ * The mounting (sensor to segment): the identity unless set. Its inverse (w, -x, -y,
+ * -z) takes the segment's frame to the sensor's.
+ */
+OrientStatus orient_filter_mounting(const OrientFilter *filter, struct OrientQuaternion *mounting);
+
+/**
+ * The sensor's own orientation (sensor to earth), with the heading offset and the
+ * declination applied but not the mounting; with the identity mounting it equals
+ * orient_filter_quaternion. Identity before initialisation.
+ */
+OrientStatus orient_filter_sensor_quaternion(const OrientFilter *filter,
+                                             struct OrientQuaternion *q);
+
+/**
+ * Turns the outputs about the vertical so that the yaw of orient_filter_euler becomes
+ * `yaw` (radians, wrapped to (-pi, pi]); inclination and mounting are kept and the
+ * filter's own estimate is untouched, so a magnetometer does not undo it. The offset
+ * is kept by orient_filter_reset and saved in snapshots. NOT_INITIALIZED before the
+ * filter has an orientation, NON_FINITE for a NaN or infinite `yaw`.
+ */
+OrientStatus orient_filter_set_heading(OrientFilter *filter, double yaw);
+
+/**
+ * orient_filter_set_heading(filter, 0): the yaw becomes 0, the inclination is kept.
+ */
+OrientStatus orient_filter_reset_heading(OrientFilter *filter);
+
+/**
+ * The heading offset (radians, in (-pi, pi]) set by orient_filter_set_heading and the
+ * rig calls; 0 unless set.
+ */
+OrientStatus orient_filter_heading_offset(const OrientFilter *filter, double *offset);
+
+/**
+ * Sets the magnetic declination (radians, east positive, within [-pi, pi]), the angle
+ * from true north to magnetic north: the outputs' heading is turned by it, so that a
+ * heading from the magnetometer reads against true north (the NED yaw grows by it, the
+ * ENU and NWU yaws shrink by it). Kept by orient_filter_reset and saved in snapshots.
+ * NON_FINITE for NaN or infinity, TOO_LARGE beyond pi.
+ */
+OrientStatus orient_filter_set_declination(OrientFilter *filter, double declination);
+
+/**
+ * The magnetic declination (radians); 0 unless set.
+ */
+OrientStatus orient_filter_declination(const OrientFilter *filter, double *declination);
+
+/**
+ * Rig calibration from a reference posture. While the rig's segments hold known
+ * orientations (an N-pose, a T-pose, a hand flat on a table), `references[i]` is the
+ * orientation of `filters[i]`'s segment (segment to the posture's frame). The call
+ * sets every filter's heading offset to one common value and its mounting so that
+ * each filter reads its reference exactly, and its segment's orientation afterwards.
+ * `heading` is the yaw (radians, about the frame's z axis) of the posture's frame in
+ * the filters' earth frame (the way the subject faces); the outputs are then in the
+ * posture's frame. A NaN `heading` estimates it: the yaw that brings the sensors'
+ * headings nearest their segments' on average, exact when the mountings have no
+ * heading part on average. The filters must share one earth frame (a magnetometer,
+ * or headings aligned before); declinations are kept. Every handle and reference is
+ * checked before anything changes: INVALID_ARGUMENT for n = 0 or a handle listed
+ * twice, NOT_INITIALIZED, NON_FINITE or ZERO_VECTOR (the detail names the index), and
+ * NON_FINITE for an infinite `heading`.
+ */
+OrientStatus orient_rig_calibrate(OrientFilter *const *filters,
+                                  const struct OrientQuaternion *references,
+                                  size_t n,
+                                  double heading);
+
+/**
+ * Rig heading alignment: while the segments hold `references[i]` (as for
+ * orient_rig_calibrate), turns each filter's heading offset so that its segment's
+ * heading is its reference's; mountings and inclinations are kept. For rigs whose
+ * mountings are known or were calibrated before, and whose headings drifted apart
+ * (IMU-only filters, a restart). Errors and checks as orient_rig_calibrate.
+ */
+OrientStatus orient_rig_align_heading(OrientFilter *const *filters,
+                                      const struct OrientQuaternion *references,
+                                      size_t n);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

@@ -17,10 +17,12 @@
 mod arrays;
 mod error;
 mod registry;
+mod rig; // issue 20
 mod strings;
 mod types;
 
 pub use arrays::*;
+pub use rig::*; // issue 20
 pub use types::*;
 
 use crate::filters::{Config, Filter, Init, Kind, Sample, SampleView};

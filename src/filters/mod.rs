@@ -5,6 +5,7 @@
 pub mod complementary;
 pub mod ekf;
 pub mod gmvdk;
+mod host; // issue 20: mounting, heading, declination, rig calibration
 pub mod madgwick;
 pub mod mahony;
 pub mod params;
@@ -18,11 +19,12 @@ use complementary::{Complementary, ComplementarySettings};
 use core::fmt;
 use ekf::{Ekf, EkfSettings};
 use gmvdk::{Gmvdk, GmvdkSettings};
+pub use host::RigHeading;
 use madgwick::{Madgwick, MadgwickSettings, LANES};
 use mahony::{Mahony, MahonySettings};
 use params::{id, ParamSpec, COMMON, MAX_PARAMS};
 use robust::{Robust, RobustSettings};
-use state::{Codec, Reader, StateError, Writer};
+use state::{Codec, Reader, StateError, Writer}; // issue 20
 
 /// The filter kinds. Hosts swap filters by changing this value alone.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -125,6 +127,8 @@ pub enum Field {
     Accel,
     Mag,
     Quaternion,
+    /// An angle argument (heading, declination).
+    Angle,
 }
 
 impl Field {
@@ -135,6 +139,7 @@ impl Field {
             Field::Accel => "accelerometer",
             Field::Mag => "magnetometer",
             Field::Quaternion => "quaternion",
+            Field::Angle => "angle",
         }
     }
 }
@@ -738,6 +743,8 @@ pub struct Filter {
     last_accel: Option<Vec3>,
     /// The sample limits of the configuration, kept ready for each update.
     limits: Limits,
+    /// issue 20: mounting, heading offset and declination around the outputs (host.rs).
+    host: host::Host,
 }
 
 /// The thresholds the per-sample checks compare with, from the configuration's slots:
@@ -779,7 +786,15 @@ impl Filter {
         }
         let core = Core::new(&config);
         let limits = Limits::of(&config);
-        let mut filter = Filter { config, core, to_frame: None, flags: 0, last_accel: None, limits };
+        let mut filter = Filter {
+            config,
+            core,
+            to_frame: None,
+            flags: 0,
+            last_accel: None,
+            limits,
+            host: host::Host::default(),
+        };
         filter.to_frame = filter.frame_rotation();
         filter.reset();
         Ok(filter)
@@ -832,7 +847,8 @@ impl Filter {
     /// initialised afterwards.
     pub fn set_quaternion(&mut self, q: Quat) -> Result<(), Error> {
         check_quaternion(q)?;
-        self.set_frame_quaternion(q.normalized());
+        // issue 20: `q` is the output's (segment's) orientation.
+        self.set_frame_quaternion(self.host.sensor_for(q.normalized()));
         Ok(())
     }
 
@@ -1143,6 +1159,10 @@ impl Filter {
         head.codec(c);
         c.u32(&mut self.flags);
         c.opt_vec3(&mut self.last_accel);
+        // issue 20 (format version 3): the host's frames.
+        c.quat(&mut self.host.mounting);
+        c.f64(&mut self.host.heading);
+        c.f64(&mut self.host.declination);
         self.core.codec(c);
     }
 
@@ -1180,6 +1200,10 @@ impl Filter {
         let mut fresh = Filter::new(&config).map_err(|_| StateError::Corrupt)?;
         r.u32(&mut fresh.flags);
         r.opt_vec3(&mut fresh.last_accel);
+        r.quat(&mut fresh.host.mounting);
+        r.f64(&mut fresh.host.heading);
+        r.f64(&mut fresh.host.declination);
+        fresh.host.refresh(fresh.config.frame.up().z);
         fresh.core.codec(&mut r);
         // Slots this kind does not use are zero in every snapshot it writes: a blob of
         // another kind relabelled (with a fresh checksum) has its own kind's slots set.
@@ -1192,6 +1216,7 @@ impl Filter {
             || foreign
             || fresh.flags & !flags::ALL != 0
             || !accel_ok
+            || !fresh.host.valid()
             || !fresh.core.valid()
         {
             return Err(StateError::Corrupt);
@@ -1210,8 +1235,15 @@ impl Filter {
         self.flags
     }
 
-    /// The orientation in the configured frame (identity before initialisation).
+    /// The orientation in the configured frame (identity before initialisation): the
+    /// segment's when a mounting is set, with the heading offset and declination applied
+    /// (see `host.rs`).
     pub fn quaternion(&self) -> Quat {
+        self.host.output(self.frame_quaternion()) // issue 20
+    }
+
+    /// The sensor's orientation as the core estimates it, in the configured frame.
+    fn frame_quaternion(&self) -> Quat {
         if !self.is_initialized() {
             return Quat::IDENTITY;
         }
@@ -1235,7 +1267,7 @@ impl Filter {
     /// What the accelerometer reads at rest in the current orientation: gravity's
     /// reaction (pointing up) in the sensor frame, m/s², magnitude `gravity`.
     pub fn gravity(&self) -> Vec3 {
-        let up = self.quaternion().rotate_inverse(self.config.frame.up());
+        let up = self.frame_quaternion().rotate_inverse(self.config.frame.up()); // issue 20
         up * self.config.slot(id::GRAVITY)
     }
 
@@ -1247,7 +1279,8 @@ impl Filter {
 
     /// [`Filter::linear_accel`] rotated into the earth frame.
     pub fn linear_accel_earth(&self) -> Option<Vec3> {
-        self.linear_accel().map(|a| self.quaternion().rotate(a))
+        self.linear_accel().map(|a| self.host.earth(self.frame_quaternion().rotate(a)))
+        // issue 20
     }
 }
 
