@@ -36,6 +36,8 @@ static uint64_t bits(double v) {
     return u;
 }
 
+#include "rig_test.h" /* issue 20 */
+
 static double unhex(const char *s) {
     uint64_t u = (uint64_t)strtoull(s, NULL, 16);
     double v;
@@ -1005,6 +1007,7 @@ int main(int argc, char **argv) {
         diagnostics(k);
     }
     multi_sensor();
+    rig_calls(); /* issue 20 */
     golden(argv[1]);
     printf("%d passed, %d failed\n", passed, failed);
     return failed == 0 ? 0 : 1;

@@ -1,0 +1,150 @@
+/*
+ * Issue 20 from C: mounting, heading, declination and rig calibration.
+ * Included by abi_test.c (uses its CHECK macros).
+ */
+
+/* The angle of the rotation from a to b (radians), well conditioned near 0. */
+static double quat_angle(OrientQuaternion a, OrientQuaternion b) {
+    double w = a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
+    double x = a.w * b.x - a.x * b.w - a.y * b.z + a.z * b.y;
+    double y = a.w * b.y + a.x * b.z - a.y * b.w - a.z * b.x;
+    double z = a.w * b.z - a.x * b.y + a.y * b.x - a.z * b.w;
+    return 2.0 * atan2(sqrt(x * x + y * y + z * z), fabs(w));
+}
+
+static OrientFilter *rig_filter(void) {
+    OrientConfig c;
+    OrientFilter *f = NULL;
+    OrientQuaternion q0 = {0.9, 0.1, -0.3, 0.2};
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_MADGWICK, &c), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_quaternion(f, &q0), ORIENT_STATUS_OK);
+    return f;
+}
+
+static void rig_calls(void) {
+    OrientFilter *f = rig_filter();
+    OrientFilter *g = rig_filter();
+    OrientFilter *fresh = NULL;
+    OrientFilter *both[2];
+    OrientFilter *twice[2];
+    OrientConfig c;
+    OrientQuaternion m = {0.8, 0.2, 0.5, -0.1}, got, sensor, seg, refs[2];
+    OrientEuler e, before;
+    double v = 1.0;
+    uint32_t flags;
+
+    /* Mounting: the segment's orientation is the sensor's times the mounting's inverse. */
+    CHECK_STATUS(orient_filter_mounting(f, &got), ORIENT_STATUS_OK);
+    CHECK(got.w == 1.0 && got.x == 0.0 && got.y == 0.0 && got.z == 0.0);
+    CHECK_STATUS(orient_filter_set_mounting(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_set_mounting(NULL, &m), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_sensor_quaternion(f, &sensor), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_mounting(f, &m), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_mounting(f, &got), ORIENT_STATUS_OK);
+    CHECK(fabs(got.w * got.w + got.x * got.x + got.y * got.y + got.z * got.z - 1.0) < 1e-12);
+    CHECK_STATUS(orient_filter_quaternion(f, &seg), ORIENT_STATUS_OK);
+    {
+        /* sensor * conj(mounting) */
+        OrientQuaternion a = sensor, b = {got.w, -got.x, -got.y, -got.z}, p;
+        p.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
+        p.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
+        p.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
+        p.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
+        CHECK(quat_angle(p, seg) < 1e-12);
+    }
+    CHECK_STATUS(orient_filter_sensor_quaternion(f, &got), ORIENT_STATUS_OK);
+    CHECK(quat_angle(got, sensor) < 1e-12);
+    m.w = NAN;
+    CHECK_STATUS(orient_filter_set_mounting(f, &m), ORIENT_STATUS_NON_FINITE);
+    /* Kept by reset. */
+    CHECK_STATUS(orient_filter_reset(f), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_mounting(f, &got), ORIENT_STATUS_OK);
+    CHECK(got.w != 1.0);
+    m.w = 0.9;
+    m.x = 0.1;
+    m.y = -0.3;
+    m.z = 0.2;
+    CHECK_STATUS(orient_filter_set_quaternion(f, &m), ORIENT_STATUS_OK);
+
+    /* Heading. */
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_MAHONY, &c), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_new(&c, &fresh), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_heading(fresh, 1.0), ORIENT_STATUS_NOT_INITIALIZED);
+    CHECK_STATUS(orient_filter_euler(g, &before), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_heading(g, 2.0), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_euler(g, &e), ORIENT_STATUS_OK);
+    CHECK(fabs(e.yaw - 2.0) < 1e-12 && fabs(e.pitch - before.pitch) < 1e-12 && fabs(e.roll - before.roll) < 1e-12);
+    CHECK_STATUS(orient_filter_heading_offset(g, &v), ORIENT_STATUS_OK);
+    CHECK(fabs(v - (2.0 - before.yaw)) < 1e-12);
+    CHECK_STATUS(orient_filter_set_heading(g, INFINITY), ORIENT_STATUS_NON_FINITE);
+    CHECK_STATUS(orient_filter_reset_heading(g), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_euler(g, &e), ORIENT_STATUS_OK);
+    CHECK(fabs(e.yaw) < 1e-12 && fabs(e.pitch - before.pitch) < 1e-12);
+
+    /* Declination: the ENU yaw shrinks by an east declination. */
+    CHECK_STATUS(orient_filter_declination(g, &v), ORIENT_STATUS_OK);
+    CHECK(v == 0.0);
+    CHECK_STATUS(orient_filter_set_declination(g, 0.25), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_euler(g, &e), ORIENT_STATUS_OK);
+    CHECK(fabs(e.yaw + 0.25) < 1e-12);
+    CHECK_STATUS(orient_filter_set_declination(g, 4.0), ORIENT_STATUS_TOO_LARGE);
+    CHECK_STATUS(orient_filter_set_declination(g, NAN), ORIENT_STATUS_NON_FINITE);
+    CHECK_STATUS(orient_filter_declination(g, &v), ORIENT_STATUS_OK);
+    CHECK(v == 0.25);
+    CHECK_STATUS(orient_filter_declination(g, NULL), ORIENT_STATUS_NULL_POINTER);
+
+    /* Rig calibration: each filter reads its reference afterwards. */
+    refs[0].w = 1.0; refs[0].x = 0.0; refs[0].y = 0.0; refs[0].z = 0.0;
+    refs[1].w = cos(0.4); refs[1].x = sin(0.4); refs[1].y = 0.0; refs[1].z = 0.0;
+    both[0] = f;
+    both[1] = g;
+    twice[0] = f;
+    twice[1] = f;
+    CHECK_STATUS(orient_rig_calibrate(both, refs, 0, NAN), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_rig_calibrate(twice, refs, 2, NAN), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_rig_calibrate(both, NULL, 2, NAN), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_rig_calibrate(both, refs, 2, INFINITY), ORIENT_STATUS_NON_FINITE);
+    both[1] = fresh;
+    CHECK_STATUS(orient_rig_calibrate(both, refs, 2, NAN), ORIENT_STATUS_NOT_INITIALIZED);
+    CHECK(strncmp(orient_last_error(), "filter 1: ", 10) == 0);
+    both[1] = g;
+    CHECK_STATUS(orient_rig_calibrate(both, refs, 2, 0.5), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(f, &got), ORIENT_STATUS_OK);
+    CHECK(quat_angle(got, refs[0]) < 1e-9);
+    CHECK_STATUS(orient_filter_quaternion(g, &got), ORIENT_STATUS_OK);
+    CHECK(quat_angle(got, refs[1]) < 1e-9);
+    CHECK_STATUS(orient_filter_heading_offset(g, &v), ORIENT_STATUS_OK);
+    CHECK(fabs(v + 0.5) < 1e-12);
+    CHECK_STATUS(orient_rig_calibrate(both, refs, 2, NAN), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(g, &got), ORIENT_STATUS_OK);
+    CHECK(quat_angle(got, refs[1]) < 1e-9);
+
+    /* Heading alignment: turn one filter away, align it back. */
+    CHECK_STATUS(orient_filter_set_heading(g, 1.5), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_rig_align_heading(both, refs, 2), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(g, &got), ORIENT_STATUS_OK);
+    CHECK(quat_angle(got, refs[1]) < 1e-9);
+
+    /* A snapshot carries mounting, heading offset and declination. */
+    {
+        uint8_t blob[4096];
+        size_t size = 0, written = 0;
+        OrientFilter *h = rig_filter();
+        CHECK_STATUS(orient_filter_state_size(g, &size), ORIENT_STATUS_OK);
+        CHECK(size <= sizeof blob);
+        CHECK_STATUS(orient_filter_save(g, blob, sizeof blob, &written), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_load(h, blob, written), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_quaternion(h, &sensor), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_quaternion(g, &got), ORIENT_STATUS_OK);
+        CHECK(bits(sensor.w) == bits(got.w) && bits(sensor.z) == bits(got.z));
+        CHECK_STATUS(orient_filter_declination(h, &v), ORIENT_STATUS_OK);
+        CHECK(v == 0.25);
+        CHECK_STATUS(orient_filter_free(h), ORIENT_STATUS_OK);
+    }
+    CHECK_STATUS(orient_filter_flags(g, &flags), ORIENT_STATUS_OK);
+    CHECK((flags & ORIENT_FLAG_INITIALIZED) != 0);
+    CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_free(g), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_free(fresh), ORIENT_STATUS_OK);
+}
