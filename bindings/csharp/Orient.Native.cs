@@ -332,6 +332,41 @@ namespace Orient.Native
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern Status orient_filter_set_quaternion(IntPtr filter, ref Quaternion q);
 
+        // ---- mounting, heading, declination, rig calibration (issue 20) ----
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_set_mounting(IntPtr filter, ref Quaternion mounting);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_mounting(IntPtr filter, out Quaternion mounting);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_sensor_quaternion(IntPtr filter, out Quaternion q);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_set_heading(IntPtr filter, double yaw);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_reset_heading(IntPtr filter);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_heading_offset(IntPtr filter, out double offset);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_set_declination(IntPtr filter, double declination);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_declination(IntPtr filter, out double declination);
+
+        /// <summary>Rig calibration: n filters and n reference orientations; heading NaN = estimate.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern unsafe Status orient_rig_calibrate(
+            IntPtr* filters, Quaternion* references, UIntPtr n, double heading);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern unsafe Status orient_rig_align_heading(
+            IntPtr* filters, Quaternion* references, UIntPtr n);
+
         /// <summary>Batch update from arrays: gyro, accel and mag hold 3n doubles each
         /// (accel and mag may be null), dt holds dtCount (1 or n) doubles.</summary>
         /// <param name="quaternions">null, or room for n quaternions; flags and diagnostics likewise.</param>

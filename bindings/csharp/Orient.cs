@@ -321,6 +321,84 @@ namespace Orient
             }
         }
 
+        // ---- mounting and heading (issue 20) ----
+
+        /// <summary>Sensor-to-segment rotation (v_segment = m v_sensor): Quaternion, Euler
+        /// and the rotation matrix become the segment's. Identity unless set; kept by Reset
+        /// and saved in snapshots. Its conjugate maps the segment's frame to the sensor's.</summary>
+        public Native.Quaternion Mounting
+        {
+            get
+            {
+                Native.Quaternion q;
+                OrientException.Check(NativeMethods.orient_filter_mounting(H, out q));
+                GC.KeepAlive(this);
+                return q;
+            }
+            set
+            {
+                OrientException.Check(NativeMethods.orient_filter_set_mounting(H, ref value));
+                GC.KeepAlive(this);
+            }
+        }
+
+        /// <summary>The sensor's own orientation: heading offset and declination applied,
+        /// the mounting not.</summary>
+        public Native.Quaternion SensorQuaternion
+        {
+            get
+            {
+                Native.Quaternion q;
+                OrientException.Check(NativeMethods.orient_filter_sensor_quaternion(H, out q));
+                GC.KeepAlive(this);
+                return q;
+            }
+        }
+
+        /// <summary>Turns the outputs about the vertical so that Euler.Yaw becomes yaw
+        /// (radians); inclination and mounting kept. Throws before initialisation.</summary>
+        public void SetHeading(double yaw)
+        {
+            OrientException.Check(NativeMethods.orient_filter_set_heading(H, yaw));
+            GC.KeepAlive(this);
+        }
+
+        /// <summary>SetHeading(0): yaw 0, inclination kept.</summary>
+        public void ResetHeading()
+        {
+            OrientException.Check(NativeMethods.orient_filter_reset_heading(H));
+            GC.KeepAlive(this);
+        }
+
+        /// <summary>The heading offset (radians) kept by SetHeading and the rig calls.</summary>
+        public double HeadingOffset
+        {
+            get
+            {
+                double v;
+                OrientException.Check(NativeMethods.orient_filter_heading_offset(H, out v));
+                GC.KeepAlive(this);
+                return v;
+            }
+        }
+
+        /// <summary>Magnetic declination (radians, east positive, within [-pi, pi]).</summary>
+        public double Declination
+        {
+            get
+            {
+                double v;
+                OrientException.Check(NativeMethods.orient_filter_declination(H, out v));
+                GC.KeepAlive(this);
+                return v;
+            }
+            set
+            {
+                OrientException.Check(NativeMethods.orient_filter_set_declination(H, value));
+                GC.KeepAlive(this);
+            }
+        }
+
         public Euler Euler
         {
             get
@@ -622,6 +700,45 @@ namespace Orient
                 {
                     s = NativeMethods.orient_filters_update(ph, ps, (UIntPtr)filters.Length, null, null);
                 }
+            }
+            GC.KeepAlive(filters);
+            OrientException.Check(s);
+        }
+
+        /// <summary>
+        /// Rig calibration while the segments hold a reference posture (N-pose, T-pose, a
+        /// hand flat on a table): references[i] is filter i's segment orientation. Sets a
+        /// common heading offset and every mounting so that each filter reads its
+        /// reference now and its segment afterwards. heading is the posture frame's yaw in
+        /// the filters' earth frame (radians); NaN (the default) estimates it.
+        /// </summary>
+        public void Calibrate(Native.Quaternion[] references, double heading = double.NaN)
+        {
+            RigCall(references, heading, false);
+        }
+
+        /// <summary>Heading-only alignment to the reference posture: mountings kept.</summary>
+        public void AlignHeading(Native.Quaternion[] references)
+        {
+            RigCall(references, double.NaN, true);
+        }
+
+        private unsafe void RigCall(Native.Quaternion[] references, double heading, bool headingOnly)
+        {
+            if (references == null) throw new ArgumentNullException("references");
+            if (references.Length != filters.Length)
+                throw new ArgumentException("one reference per filter", "references");
+            for (int i = 0; i < filters.Length; i++)
+            {
+                handles[i] = filters[i].NativeHandle;
+            }
+            Status s;
+            fixed (IntPtr* ph = handles)
+            fixed (Native.Quaternion* pr = references)
+            {
+                s = headingOnly
+                    ? NativeMethods.orient_rig_align_heading(ph, pr, (UIntPtr)filters.Length)
+                    : NativeMethods.orient_rig_calibrate(ph, pr, (UIntPtr)filters.Length, heading);
             }
             GC.KeepAlive(filters);
             OrientException.Check(s);

@@ -288,6 +288,69 @@ public static class OrientTests
         Check(up.X == 0 && up.Y == 0 && up.Z == 1, "Unity up is ENU up");
     }
 
+    /// The rotation angle from a to b (radians), well conditioned near 0.
+    static double Angle(Orient.Native.Quaternion a, Orient.Native.Quaternion b)
+    {
+        double w = a.W * b.W + a.X * b.X + a.Y * b.Y + a.Z * b.Z;
+        double x = a.W * b.X - a.X * b.W - a.Y * b.Z + a.Z * b.Y;
+        double y = a.W * b.Y + a.X * b.Z - a.Y * b.W - a.Z * b.X;
+        double z = a.W * b.Z - a.X * b.Y + a.Y * b.X - a.Z * b.W;
+        return 2 * Math.Atan2(Math.Sqrt(x * x + y * y + z * z), Math.Abs(w));
+    }
+
+    /// Issue 20: mounting, heading, declination and rig calibration.
+    static void MountingAndHeading()
+    {
+        var fs = new OrientFilter[3];
+        for (int k = 0; k < 3; k++)
+        {
+            fs[k] = new OrientFilter(Kind.Mahony);
+            for (int i = 0; i < 50; i++)
+            {
+                fs[k].Update(OrientFilter.Marg(0.01, new Vec3(0.1 * k, 0.2, 0), new Vec3(0.3 * k, 0.5, 9.7),
+                    new Vec3(20, 3 * k, -40)));
+            }
+        }
+        var f = fs[0];
+        var sensor = f.SensorQuaternion;
+        Check(Same(sensor, f.Quaternion), "sensor = output without mounting");
+        f.Mounting = new Orient.Native.Quaternion(0.8, 0.2, 0.5, -0.1);
+        Check(Angle(f.SensorQuaternion, sensor) < 1e-9, "mounting leaves the sensor's orientation");
+        Check(Angle(f.Quaternion, sensor) > 0.1, "mounting changes the output");
+        Check(f.Mounting.W != 1.0, "mounting read back");
+        Throws(Status.NonFinite, () => { f.Mounting = new Orient.Native.Quaternion(double.NaN, 0, 0, 0); }, "NaN mounting");
+        f.SetHeading(1.25);
+        Check(Math.Abs(f.Euler.Yaw - 1.25) < 1e-12, "SetHeading");
+        Check(f.HeadingOffset != 0, "HeadingOffset");
+        f.ResetHeading();
+        Check(Math.Abs(f.Euler.Yaw) < 1e-12, "ResetHeading");
+        f.Declination = 0.1;
+        Check(f.Declination == 0.1, "Declination");
+        Throws(Status.TooLarge, () => { f.Declination = 4; }, "declination beyond pi");
+        using (var fresh = new OrientFilter(Kind.Ekf))
+        {
+            Throws(Status.NotInitialized, () => fresh.SetHeading(1), "SetHeading before init");
+        }
+
+        var rig = new OrientRig(fs);
+        var refs = new[]
+        {
+            new Orient.Native.Quaternion(1, 0, 0, 0),
+            new Orient.Native.Quaternion(Math.Cos(0.3), 0, Math.Sin(0.3), 0),
+            new Orient.Native.Quaternion(0, 0, 0, 1),
+        };
+        rig.Calibrate(refs, 0.4);
+        for (int k = 0; k < 3; k++) Check(Angle(fs[k].Quaternion, refs[k]) < 1e-9, "calibrated filter " + k);
+        rig.Calibrate(refs);
+        for (int k = 0; k < 3; k++) Check(Angle(fs[k].Quaternion, refs[k]) < 1e-9, "estimated heading " + k);
+        fs[1].SetHeading(-2);
+        rig.AlignHeading(refs);
+        Check(Angle(fs[1].Quaternion, refs[1]) < 1e-9, "AlignHeading");
+        Throws(Status.NotInitialized, () => new OrientRig(fs[0], new OrientFilter(Kind.Ekf)).Calibrate(
+            new[] { refs[0], refs[1] }), "rig with an uninitialised filter", "filter 1");
+        foreach (var g in fs) g.Dispose();
+    }
+
     public static int Main(string[] args)
     {
         if (args.Length != 1)
@@ -298,6 +361,7 @@ public static class OrientTests
         Layout();
         StatusPaths();
         Conversions();
+        MountingAndHeading();
         Golden(args[0]);
         Console.WriteLine(passed + " passed, " + failed + " failed");
         return failed == 0 ? 0 : 1;
