@@ -1,3 +1,4 @@
 pub mod golden;
 pub mod native;
+pub mod rig_sim;
 pub mod sim;
