@@ -24,6 +24,8 @@ from ._filter import (
     OrientError,
     ParamInfo,
     Robust,
+    align_rig_heading,
+    calibrate_rig,
     params,
     status_message,
     version,
@@ -44,6 +46,8 @@ from ._native import (
 __version__ = version()
 
 __all__ = [
+    "align_rig_heading",
+    "calibrate_rig",
     "BatchResult",
     "Complementary",
     "DIAGNOSTICS_DTYPE",

@@ -509,6 +509,88 @@ class Filter:
             raise ValueError(f"a quaternion has 4 values, got shape {a.shape}")
         _check(lib.orient_filter_set_quaternion(self._h, byref(n.OrientQuaternion(*map(float, a)))))
 
+    # -- mounting and heading (issue 20) -------------------------------------------------
+
+    @property
+    def mounting(self) -> np.ndarray:
+        """(4,) w, x, y, z: sensor to segment (v_segment = m v_sensor); identity unless
+        set. Setting it makes quaternion, euler and rotation_matrix the segment's; it is
+        kept by reset() and saved by save()."""
+        q = n.OrientQuaternion()
+        _check(lib.orient_filter_mounting(self._h, byref(q)))
+        return np.array([q.w, q.x, q.y, q.z])
+
+    @mounting.setter
+    def mounting(self, m: ArrayLike) -> None:
+        _check(lib.orient_filter_set_mounting(self._h, byref(_quat(m))))
+
+    @property
+    def sensor_quaternion(self) -> np.ndarray:
+        """(4,) the sensor's own orientation: heading offset and declination applied,
+        the mounting not."""
+        q = n.OrientQuaternion()
+        _check(lib.orient_filter_sensor_quaternion(self._h, byref(q)))
+        return np.array([q.w, q.x, q.y, q.z])
+
+    def set_heading(self, yaw: float) -> None:
+        """Turns the outputs about the vertical so that euler's yaw becomes `yaw` (rad);
+        the inclination is kept. OrientError NOT_INITIALIZED before initialisation."""
+        _check(lib.orient_filter_set_heading(self._h, float(yaw)))
+
+    def reset_heading(self) -> None:
+        """set_heading(0)."""
+        _check(lib.orient_filter_reset_heading(self._h))
+
+    @property
+    def heading_offset(self) -> float:
+        """The heading offset (rad) kept by set_heading() and the rig calls."""
+        v = c_double()
+        _check(lib.orient_filter_heading_offset(self._h, byref(v)))
+        return v.value
+
+    @property
+    def declination(self) -> float:
+        """Magnetic declination (rad, east positive, within [-pi, pi]); 0 unless set."""
+        v = c_double()
+        _check(lib.orient_filter_declination(self._h, byref(v)))
+        return v.value
+
+    @declination.setter
+    def declination(self, value: float) -> None:
+        _check(lib.orient_filter_set_declination(self._h, float(value)))
+
+
+def _quat(q: ArrayLike) -> n.OrientQuaternion:
+    a = np.asarray(q, dtype=np.float64)
+    if a.shape != (4,):
+        raise ValueError(f"a quaternion has 4 values, got shape {a.shape}")
+    return n.OrientQuaternion(*map(float, a))
+
+
+def _rig_args(filters: Sequence[Filter], references: ArrayLike) -> Tuple[Any, Any, int]:
+    refs = np.asarray(references, dtype=np.float64)
+    if refs.shape != (len(filters), 4):
+        raise ValueError(f"references must have shape ({len(filters)}, 4), got {refs.shape}")
+    handles = (c_void_p * len(filters))(*[f._h for f in filters])
+    quats = (n.OrientQuaternion * len(filters))(*[n.OrientQuaternion(*map(float, r)) for r in refs])
+    return handles, quats, len(filters)
+
+
+def calibrate_rig(filters: Sequence[Filter], references: ArrayLike, heading: Optional[float] = None) -> None:
+    """Rig calibration from a reference posture: while the segments hold `references`
+    ((n, 4) w, x, y, z, segment to posture frame), sets a common heading offset and every
+    mounting so that filters[i] reads references[i] now and its segment afterwards.
+    `heading` is the posture frame's yaw in the filters' earth frame (rad); None
+    estimates it from the rig."""
+    h, q, count = _rig_args(filters, references)
+    _check(lib.orient_rig_calibrate(h, q, count, float("nan") if heading is None else float(heading)))
+
+
+def align_rig_heading(filters: Sequence[Filter], references: ArrayLike) -> None:
+    """Heading-only alignment to the reference posture; mountings are kept."""
+    h, q, count = _rig_args(filters, references)
+    _check(lib.orient_rig_align_heading(h, q, count))
+
 
 class Madgwick(Filter):
     """Madgwick 2010 gradient descent, IMU and MARG."""

@@ -222,6 +222,17 @@ PROTOTYPES = {
     "orient_filter_flags": (c_int32, [c_void_p, _P(c_uint32)]),
     "orient_filter_reset": (c_int32, [c_void_p]),
     "orient_filter_set_quaternion": (c_int32, [c_void_p, _P(OrientQuaternion)]),
+    # issue 20: mounting, heading, declination, rig calibration
+    "orient_filter_set_mounting": (c_int32, [c_void_p, _P(OrientQuaternion)]),
+    "orient_filter_mounting": (c_int32, [c_void_p, _P(OrientQuaternion)]),
+    "orient_filter_sensor_quaternion": (c_int32, [c_void_p, _P(OrientQuaternion)]),
+    "orient_filter_set_heading": (c_int32, [c_void_p, c_double]),
+    "orient_filter_reset_heading": (c_int32, [c_void_p]),
+    "orient_filter_heading_offset": (c_int32, [c_void_p, _P(c_double)]),
+    "orient_filter_set_declination": (c_int32, [c_void_p, c_double]),
+    "orient_filter_declination": (c_int32, [c_void_p, _P(c_double)]),
+    "orient_rig_calibrate": (c_int32, [_P(c_void_p), _P(OrientQuaternion), c_size_t, c_double]),
+    "orient_rig_align_heading": (c_int32, [_P(c_void_p), _P(OrientQuaternion), c_size_t]),
 }
 
 
