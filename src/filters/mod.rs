@@ -2,6 +2,7 @@
 //!
 //! Everything here is safe Rust with no FFI types; `update` does not allocate.
 
+pub mod calibration; // issue 20: sensor models and estimators
 pub mod complementary;
 pub mod ekf;
 pub mod gmvdk;
@@ -745,6 +746,8 @@ pub struct Filter {
     limits: Limits,
     /// issue 20: mounting, heading offset and declination around the outputs (host.rs).
     host: host::Host,
+    /// issue 20: sensor models applied before the update (calibration.rs).
+    models: calibration::Models,
 }
 
 /// The thresholds the per-sample checks compare with, from the configuration's slots:
@@ -794,6 +797,7 @@ impl Filter {
             last_accel: None,
             limits,
             host: host::Host::default(),
+            models: Default::default(),
         };
         filter.to_frame = filter.frame_rotation();
         filter.reset();
@@ -962,6 +966,9 @@ impl Filter {
     /// on store-to-load forwarding).
     #[inline(always)]
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        if self.models.any() {
+            return self.update_calibrated(s); // issue 20: sensor models first
+        }
         self.check_view(s)?;
         // check() guarantees a gyro reading.
         let gyro = s.gyro().unwrap_or_default();
@@ -1100,6 +1107,7 @@ impl Filter {
         let with_mag = samples[0].mag.is_some();
         for (f, s) in filters.iter().zip(samples) {
             let eligible = matches!(f.core, Core::Madgwick(_))
+                && !f.models.any() // issue 20
                 && f.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED
                 && s.dt <= f.limits.gap
                 && s.accel.is_some()
@@ -1163,6 +1171,7 @@ impl Filter {
         c.quat(&mut self.host.mounting);
         c.f64(&mut self.host.heading);
         c.f64(&mut self.host.declination);
+        calibration::codec(&mut self.models, c);
         self.core.codec(c);
     }
 
@@ -1203,6 +1212,7 @@ impl Filter {
         r.quat(&mut fresh.host.mounting);
         r.f64(&mut fresh.host.heading);
         r.f64(&mut fresh.host.declination);
+        calibration::codec(&mut fresh.models, &mut r);
         fresh.host.refresh(fresh.config.frame.up().z);
         fresh.core.codec(&mut r);
         // Slots this kind does not use are zero in every snapshot it writes: a blob of
@@ -1217,6 +1227,7 @@ impl Filter {
             || fresh.flags & !flags::ALL != 0
             || !accel_ok
             || !fresh.host.valid()
+            || !fresh.models.valid()
             || !fresh.core.valid()
         {
             return Err(StateError::Corrupt);

@@ -66,3 +66,27 @@ pub fn rig(references: &[Quat], mountings: &[Quat], heading: f64, still: f64, mo
         })
         .collect()
 }
+
+/// A soft-iron matrix (symmetric, as a soft-iron distortion is) and a hard-iron offset
+/// (µT) for the magnetometer checks.
+pub const SOFT_IRON: [[f64; 3]; 3] = [[1.12, 0.06, -0.04], [0.06, 0.88, 0.03], [-0.04, 0.03, 1.03]];
+pub const HARD_IRON: Vec3 = Vec3::new(15.0, -8.0, 30.0);
+
+/// `SOFT_IRON v + HARD_IRON`: what a distorted magnetometer reads for the field `v`.
+pub fn distort(v: Vec3) -> Vec3 {
+    let m = SOFT_IRON;
+    Vec3::new(
+        m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+        m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+        m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z,
+    ) + HARD_IRON
+}
+
+/// `seconds` of a sensor tumbling through every orientation at 50 Hz (turning about
+/// all three axes at incommensurate rates), with small noise.
+pub fn tumble(seconds: f64) -> Run {
+    simulate(Quat::IDENTITY, seconds, 50.0, (0.001, 0.02, 0.2), |t| Moment {
+        omega: Vec3::new(0.9 * (0.31 * t).sin(), 0.7 * (0.23 * t).cos(), 0.8 + 0.3 * (0.17 * t).sin()),
+        ..Moment::default()
+    })
+}
