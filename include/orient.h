@@ -51,6 +51,21 @@
 typedef struct OrientFilter OrientFilter;
 
 /**
+ * orient_filter_set_sensor_model's `sensor`: the gyroscope.
+ */
+#define ORIENT_SENSOR_GYRO 0
+
+/**
+ * The accelerometer.
+ */
+#define ORIENT_SENSOR_ACCEL 1
+
+/**
+ * The magnetometer.
+ */
+#define ORIENT_SENSOR_MAG 2
+
+/**
  * Version of the C ABI described by this header. It changes only when an existing
  * function, struct layout or constant changes meaning; additions keep it.
  */
@@ -842,6 +857,61 @@ typedef struct OrientDiagnostics {
   double covariance[10];
 } OrientDiagnostics;
 
+/**
+ * A sensor model: calibrated = matrix (raw - offset), `matrix` row-major. For the
+ * gyroscope and accelerometer the matrix is the misalignment times the sensitivity;
+ * for the magnetometer it is the soft-iron matrix and `offset` the hard-iron offset.
+ */
+typedef struct OrientSensorModel {
+  double matrix[9];
+  struct OrientVec3 offset;
+} OrientSensorModel;
+
+/**
+ * A magnetometer calibrator's state, owned by the host (on its stack or in its own
+ * struct): initialise it with orient_mag_calibrator_init, feed it readings with
+ * orient_mag_calibrator_add (no allocation, no samples kept), solve it with
+ * orient_mag_calibrator_solve. Its fields are the fit's sums; do not write them.
+ */
+typedef struct OrientMagCalibrator {
+  double sums[55];
+  double scale;
+  struct OrientVec3 mean;
+  uint64_t count;
+  uint64_t bins;
+} OrientMagCalibrator;
+
+/**
+ * What orient_mag_calibrator_solve found.
+ */
+typedef struct OrientMagFit {
+  /**
+   * calibrated = soft_iron (raw - hard_iron): pass to orient_filter_set_sensor_model
+   * with ORIENT_SENSOR_MAG.
+   */
+  struct OrientSensorModel model;
+  /**
+   * The field's magnitude after calibration (the readings' unit).
+   */
+  double field;
+  /**
+   * RMS of |calibrated| / field - 1 over the readings: 0.01 is 1 %.
+   */
+  double residual;
+  /**
+   * Fraction of 54 direction bins on the sphere that readings fell in (1: all), the
+   * directions taken from the readings' running mean: a sensor that sweeps the sphere
+   * in order (one latitude after another) gets less than it covered.
+   */
+  double coverage;
+  uint64_t samples;
+  /**
+   * 1 when coverage >= 0.5 and residual < 0.02 (the fit can be trusted), else 0.
+   */
+  int32_t trustworthy;
+  int32_t reserved;
+} OrientMagFit;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1101,6 +1171,61 @@ OrientStatus orient_filter_update_arrays(OrientFilter *filter,
                                          uint32_t *flags,
                                          struct OrientDiagnostics *diagnostics,
                                          size_t *processed);
+
+/**
+ * Sets the model applied to one sensor's readings (ORIENT_SENSOR_*) before every
+ * update, in every kind; NULL clears it (the readings are used as they come). The raw
+ * reading is checked first (finite, within its range and physical bound), then the
+ * calibrated one. Kept by orient_filter_reset and saved in snapshots.
+ * INVALID_ARGUMENT for an unknown sensor, NON_FINITE for a NaN or infinite entry,
+ * ZERO_VECTOR for a singular matrix; nothing changes then.
+ */
+OrientStatus orient_filter_set_sensor_model(OrientFilter *filter,
+                                            uint32_t sensor,
+                                            const struct OrientSensorModel *model);
+
+/**
+ * The model set for `sensor`; NO_DATA when none is set.
+ */
+OrientStatus orient_filter_sensor_model(const OrientFilter *filter,
+                                        uint32_t sensor,
+                                        struct OrientSensorModel *model);
+
+/**
+ * Initialises a magnetometer calibrator: no readings yet.
+ */
+OrientStatus orient_mag_calibrator_init(struct OrientMagCalibrator *calibrator);
+
+/**
+ * Adds one magnetometer reading (any unit; raw, before any model). Rotate the sensor
+ * over as many directions as possible. NON_FINITE for a NaN or infinite reading,
+ * ZERO_VECTOR for a first reading of zero, INVALID_ARGUMENT for a struct that is not a
+ * calibrator's state; nothing changes then.
+ */
+OrientStatus orient_mag_calibrator_add(struct OrientMagCalibrator *calibrator,
+                                       const struct OrientVec3 *mag);
+
+/**
+ * Solves the ellipsoid fit of the readings so far (the calibrator is not changed, so
+ * it can be solved again after more readings). NO_DATA with fewer than 10 readings or
+ * when they do not determine an ellipsoid (all on a plane, say); check `trustworthy`
+ * (or coverage and residual) before using the model.
+ */
+OrientStatus orient_mag_calibrator_solve(const struct OrientMagCalibrator *calibrator,
+                                         struct OrientMagFit *fit);
+
+/**
+ * The gyroscope offset from `n` readings (rad/s) taken while the sensor was still: the
+ * model that removes their mean (identity matrix, offset = mean), for
+ * orient_filter_set_sensor_model with ORIENT_SENSOR_GYRO. `*spread` (when not NULL)
+ * receives the readings' RMS deviation from the mean (rad/s): the still period's
+ * noise; a much larger value says the sensor moved. INVALID_ARGUMENT for n = 0,
+ * NON_FINITE for a NaN or infinite reading.
+ */
+OrientStatus orient_gyro_offset(const struct OrientVec3 *readings,
+                                size_t n,
+                                struct OrientSensorModel *model,
+                                double *spread);
 
 /**
  * Sets the mounting: the rotation from the sensor's frame to its body segment's

@@ -15,6 +15,7 @@
 #![allow(clippy::missing_safety_doc)]
 
 mod arrays;
+mod calib; // issue 20
 mod error;
 mod registry;
 mod rig; // issue 20
@@ -22,6 +23,7 @@ mod strings;
 mod types;
 
 pub use arrays::*;
+pub use calib::*; // issue 20
 pub use rig::*; // issue 20
 pub use types::*;
 

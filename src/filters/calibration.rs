@@ -191,7 +191,8 @@ pub struct MagFit {
     /// (`(|c|²/field² - 1) / 2`, first order): 0.01 is 1 % of the field.
     pub residual: f64,
     /// Fraction of the 54 direction bins (directions from the readings' running mean)
-    /// that readings fell in: 1 is a full sphere.
+    /// that readings fell in: 1 is a full sphere. Measured from the running mean, it is
+    /// less than the directions covered when the sphere is swept in order.
     pub coverage: f64,
     pub samples: u64,
 }
@@ -233,7 +234,57 @@ fn bin_of(d: Vec3) -> Option<u32> {
     Some((face * 9 + cell(others.0) * 3 + cell(others.1)) as u32)
 }
 
+/// A [`MagCalibrator`]'s state as plain values (for a host-owned C struct): the scatter
+/// matrix's upper triangle row by row, the scale, the running mean, the count and the
+/// coverage bits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MagCalibratorParts {
+    pub sums: [f64; 55],
+    pub scale: f64,
+    pub mean: Vec3,
+    pub count: u64,
+    pub bins: u64,
+}
+
 impl MagCalibrator {
+    pub fn to_parts(&self) -> MagCalibratorParts {
+        let mut sums = [0.0; 55];
+        let mut k = 0;
+        for i in 0..10 {
+            for j in i..10 {
+                sums[k] = self.dtd[i][j];
+                k += 1;
+            }
+        }
+        MagCalibratorParts { sums, scale: self.scale, mean: self.mean, count: self.count, bins: self.bins }
+    }
+
+    /// The calibrator of [`MagCalibrator::to_parts`]'s values; `None` for values no
+    /// calibrator holds (non-finite, a scale not positive, bits beyond the 54 bins).
+    pub fn from_parts(p: &MagCalibratorParts) -> Option<MagCalibrator> {
+        let ok = p.sums.iter().all(|x| x.is_finite())
+            && p.scale.is_finite()
+            && p.scale > 0.0
+            && p.mean.is_finite()
+            && p.bins >> COVERAGE_BINS == 0;
+        if !ok {
+            return None;
+        }
+        let mut c = MagCalibrator::new();
+        let mut k = 0;
+        for i in 0..10 {
+            for j in i..10 {
+                c.dtd[i][j] = p.sums[k];
+                k += 1;
+            }
+        }
+        c.scale = p.scale;
+        c.mean = p.mean;
+        c.count = p.count;
+        c.bins = p.bins;
+        Some(c)
+    }
+
     pub fn new() -> MagCalibrator {
         MagCalibrator { dtd: [[0.0; 10]; 10], count: 0, scale: 1.0, mean: Vec3::ZERO, bins: 0 }
     }

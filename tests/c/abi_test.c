@@ -1008,6 +1008,7 @@ int main(int argc, char **argv) {
     }
     multi_sensor();
     rig_calls(); /* issue 20 */
+    calibration_calls();
     golden(argv[1]);
     printf("%d passed, %d failed\n", passed, failed);
     return failed == 0 ? 0 : 1;

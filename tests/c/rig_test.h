@@ -148,3 +148,89 @@ static void rig_calls(void) {
     CHECK_STATUS(orient_filter_free(g), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_filter_free(fresh), ORIENT_STATUS_OK);
 }
+
+/* Issue 20: sensor models, the magnetometer calibrator, the gyroscope offset. */
+static void calibration_calls(void) {
+    OrientFilter *f = rig_filter(), *g = rig_filter();
+    OrientSensorModel gm, accel_model, got, mag_model;
+    OrientMagCalibrator cal;
+    OrientMagFit fit;
+    OrientSample s, pre;
+    OrientQuaternion a, b;
+    OrientVec3 still[4] = {{0.011, -0.02, 0.03}, {0.009, -0.02, 0.03}, {0.01, -0.021, 0.03}, {0.01, -0.019, 0.03}};
+    double spread = -1.0;
+    int i;
+
+    memset(&gm, 0, sizeof gm);
+    CHECK_STATUS(orient_gyro_offset(still, 4, &gm, &spread), ORIENT_STATUS_OK);
+    CHECK(fabs(gm.offset.x - 0.01) < 1e-12 && fabs(gm.offset.y + 0.02) < 1e-12 && fabs(gm.offset.z - 0.03) < 1e-12);
+    CHECK(gm.matrix[0] == 1.0 && gm.matrix[4] == 1.0 && gm.matrix[8] == 1.0 && gm.matrix[1] == 0.0);
+    CHECK(spread > 0.0 && spread < 0.001);
+    CHECK_STATUS(orient_gyro_offset(still, 0, &gm, NULL), ORIENT_STATUS_INVALID_ARGUMENT);
+
+    /* A model gives the same bits as feeding the calibrated readings. */
+    memset(&accel_model, 0, sizeof accel_model);
+    accel_model.matrix[0] = 1.01; accel_model.matrix[1] = 0.02; accel_model.matrix[4] = 0.99; accel_model.matrix[8] = 1.0;
+    accel_model.offset.z = 0.1;
+    CHECK_STATUS(orient_filter_sensor_model(f, ORIENT_SENSOR_GYRO, &got), ORIENT_STATUS_NO_DATA);
+    CHECK_STATUS(orient_filter_set_sensor_model(f, ORIENT_SENSOR_GYRO, &gm), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_sensor_model(f, ORIENT_SENSOR_ACCEL, &accel_model), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_sensor_model(f, 7, &gm), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_filter_sensor_model(f, ORIENT_SENSOR_ACCEL, &got), ORIENT_STATUS_OK);
+    CHECK(memcmp(&got, &accel_model, sizeof got) == 0);
+    got.matrix[4] = 0.0;
+    got.matrix[3] = 0.0;
+    got.matrix[5] = 0.0;
+    CHECK_STATUS(orient_filter_set_sensor_model(f, ORIENT_SENSOR_MAG, &got), ORIENT_STATUS_ZERO_VECTOR);
+    for (i = 0; i < 100; i++) {
+        s.dt = 0.01;
+        s.gyro.x = 0.2 + 0.01; s.gyro.y = -0.1 - 0.02; s.gyro.z = 0.05 + 0.03;
+        s.accel.x = 0.3; s.accel.y = 0.2; s.accel.z = 9.7;
+        s.mag.x = 20.0; s.mag.y = 5.0; s.mag.z = -40.0;
+        s.flags = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL;
+        s.reserved = 0;
+        pre = s;
+        pre.gyro.x = s.gyro.x - gm.offset.x;
+        pre.gyro.y = s.gyro.y - gm.offset.y;
+        pre.gyro.z = s.gyro.z - gm.offset.z;
+        pre.accel.x = 1.01 * s.accel.x + 0.02 * s.accel.y;
+        pre.accel.y = 0.99 * s.accel.y;
+        pre.accel.z = s.accel.z - 0.1;
+        CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_update(g, &pre), ORIENT_STATUS_OK);
+    }
+    CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(g, &b), ORIENT_STATUS_OK);
+    CHECK(bits(a.w) == bits(b.w) && bits(a.x) == bits(b.x) && bits(a.y) == bits(b.y) && bits(a.z) == bits(b.z));
+    CHECK_STATUS(orient_filter_set_sensor_model(f, ORIENT_SENSOR_GYRO, NULL), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_sensor_model(f, ORIENT_SENSOR_GYRO, &got), ORIENT_STATUS_NO_DATA);
+
+    /* The calibrator: a field of 50 over a sphere of directions, scaled per axis and offset. */
+    CHECK_STATUS(orient_mag_calibrator_init(&cal), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_mag_calibrator_solve(&cal, &fit), ORIENT_STATUS_NO_DATA);
+    /* In a scrambled order, as a tumbling sensor gives them. */
+    for (i = 0; i < 288; i++) {
+        {
+            int idx = (i * 97) % 288;
+            double th = 3.14159265 * (idx / 24 + 0.5) / 12.0, ph = 6.2831853 * (idx % 24) / 24.0;
+            OrientVec3 m;
+            m.x = 1.2 * 50.0 * sin(th) * cos(ph) + 10.0;
+            m.y = 0.9 * 50.0 * sin(th) * sin(ph) - 20.0;
+            m.z = 1.0 * 50.0 * cos(th) + 5.0;
+            CHECK_STATUS(orient_mag_calibrator_add(&cal, &m), ORIENT_STATUS_OK);
+        }
+    }
+    CHECK_STATUS(orient_mag_calibrator_add(&cal, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_mag_calibrator_solve(&cal, &fit), ORIENT_STATUS_OK);
+    CHECK(fabs(fit.model.offset.x - 10.0) < 1e-6 && fabs(fit.model.offset.y + 20.0) < 1e-6 &&
+          fabs(fit.model.offset.z - 5.0) < 1e-6);
+    CHECK(fit.samples == 288 && fit.trustworthy == 1 && fit.residual < 1e-6 && fit.coverage > 0.9);
+    /* The calibrated field's norm: the semi-axes' geometric mean. */
+    CHECK(fabs(fit.field - 50.0 * cbrt(1.2 * 0.9)) < 1e-6);
+    mag_model = fit.model;
+    CHECK_STATUS(orient_filter_set_sensor_model(f, ORIENT_SENSOR_MAG, &mag_model), ORIENT_STATUS_OK);
+    cal.scale = -1.0;
+    CHECK_STATUS(orient_mag_calibrator_solve(&cal, &fit), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_free(g), ORIENT_STATUS_OK);
+}
