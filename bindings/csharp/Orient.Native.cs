@@ -83,6 +83,9 @@ namespace Orient.Native
         public const uint ParamGyroRange = 1; // ORIENT_PARAM_GYRO_RANGE
         public const uint ParamAccelRange = 2; // ORIENT_PARAM_ACCEL_RANGE
         public const uint ParamGapDt = 3; // ORIENT_PARAM_GAP_DT
+        public const uint SensorGyro = 0; // ORIENT_SENSOR_GYRO (issue 20)
+        public const uint SensorAccel = 1; // ORIENT_SENSOR_ACCEL
+        public const uint SensorMag = 2; // ORIENT_SENSOR_MAG
         public const uint ParamMadgwickBetaImu = 8; // ORIENT_PARAM_MADGWICK_BETA_IMU
         public const uint ParamMadgwickBetaMarg = 9; // ORIENT_PARAM_MADGWICK_BETA_MARG
         public const uint ParamMadgwickRestBiasTau = 10; // ORIENT_PARAM_MADGWICK_REST_BIAS_TAU
@@ -184,6 +187,38 @@ namespace Orient.Native
         public int Init;
         public Quaternion Initial;
         public fixed double Params[128];
+    }
+
+    /// <summary>OrientSensorModel: calibrated = Matrix (raw - Offset), Matrix row-major.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct SensorModel
+    {
+        public fixed double Matrix[9];
+        public Vec3 Offset;
+    }
+
+    /// <summary>OrientMagCalibrator: a magnetometer calibrator's sums, owned by the host.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct MagCalibrator
+    {
+        public fixed double Sums[55];
+        public double Scale;
+        public Vec3 Mean;
+        public ulong Count;
+        public ulong Bins;
+    }
+
+    /// <summary>OrientMagFit: what orient_mag_calibrator_solve found.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct MagFit
+    {
+        public SensorModel Model;
+        public double Field;
+        public double Residual;
+        public double Coverage;
+        public ulong Samples;
+        public int Trustworthy;
+        public int Reserved;
     }
 
     /// <summary>OrientParamInfo; the strings are static UTF-8 owned by the library.</summary>
@@ -366,6 +401,27 @@ namespace Orient.Native
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern unsafe Status orient_rig_align_heading(
             IntPtr* filters, Quaternion* references, UIntPtr n);
+
+        // ---- sensor calibration (issue 20) ----
+
+        /// <summary>model null clears the sensor's model.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern unsafe Status orient_filter_set_sensor_model(IntPtr filter, uint sensor, SensorModel* model);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_filter_sensor_model(IntPtr filter, uint sensor, out SensorModel model);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_mag_calibrator_init(out MagCalibrator calibrator);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_mag_calibrator_add(ref MagCalibrator calibrator, ref Vec3 mag);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern Status orient_mag_calibrator_solve(ref MagCalibrator calibrator, out MagFit fit);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern unsafe Status orient_gyro_offset(Vec3* readings, UIntPtr n, out SensorModel model, double* spread);
 
         /// <summary>Batch update from arrays: gyro, accel and mag hold 3n doubles each
         /// (accel and mag may be null), dt holds dtCount (1 or n) doubles.</summary>

@@ -321,6 +321,37 @@ namespace Orient
             }
         }
 
+        // ---- sensor calibration (issue 20) ----
+
+        /// <summary>Sets the model applied to one sensor's readings (Consts.SensorGyro,
+        /// SensorAccel, SensorMag) before every update; null clears it.</summary>
+        public unsafe void SetSensorModel(uint sensor, SensorModel? model)
+        {
+            Status s;
+            if (model.HasValue)
+            {
+                SensorModel m = model.Value;
+                s = NativeMethods.orient_filter_set_sensor_model(H, sensor, &m);
+            }
+            else
+            {
+                s = NativeMethods.orient_filter_set_sensor_model(H, sensor, null);
+            }
+            GC.KeepAlive(this);
+            OrientException.Check(s);
+        }
+
+        /// <summary>The model set for the sensor, or null when none is set.</summary>
+        public SensorModel? GetSensorModel(uint sensor)
+        {
+            SensorModel m;
+            Status s = NativeMethods.orient_filter_sensor_model(H, sensor, out m);
+            GC.KeepAlive(this);
+            if (s == Status.NoData) return null;
+            OrientException.Check(s);
+            return m;
+        }
+
         // ---- mounting and heading (issue 20) ----
 
         /// <summary>Sensor-to-segment rotation (v_segment = m v_sensor): Quaternion, Euler
@@ -638,6 +669,52 @@ namespace Orient
                 a.W * b.X + a.X * b.W + a.Y * b.Z - a.Z * b.Y,
                 a.W * b.Y - a.X * b.Z + a.Y * b.W + a.Z * b.X,
                 a.W * b.Z + a.X * b.Y - a.Y * b.X + a.Z * b.W);
+        }
+    }
+
+    /// <summary>
+    /// A magnetometer calibrator (ellipsoid fit): Add readings while rotating the sensor
+    /// over the sphere (no allocation per reading), then Solve; use the model when the
+    /// fit is Trustworthy.
+    /// </summary>
+    public sealed class MagCalibration
+    {
+        private Native.MagCalibrator state;
+
+        public MagCalibration()
+        {
+            OrientException.Check(NativeMethods.orient_mag_calibrator_init(out state));
+        }
+
+        public void Add(Vec3 mag)
+        {
+            OrientException.Check(NativeMethods.orient_mag_calibrator_add(ref state, ref mag));
+        }
+
+        /// <summary>The fit, or null while the readings do not determine an ellipsoid.</summary>
+        public MagFit? Solve()
+        {
+            MagFit fit;
+            Status s = NativeMethods.orient_mag_calibrator_solve(ref state, out fit);
+            if (s == Status.NoData) return null;
+            OrientException.Check(s);
+            return fit;
+        }
+
+        /// <summary>The gyroscope offset model from readings taken while still, and their spread (rad/s).</summary>
+        public static unsafe SensorModel GyroOffset(Vec3[] still, out double spread)
+        {
+            if (still == null) throw new ArgumentNullException("still");
+            SensorModel m;
+            double sp = 0;
+            Status s;
+            fixed (Vec3* p = still)
+            {
+                s = NativeMethods.orient_gyro_offset(p, (UIntPtr)still.Length, out m, &sp);
+            }
+            OrientException.Check(s);
+            spread = sp;
+            return m;
         }
     }
 

@@ -351,6 +351,43 @@ public static class OrientTests
         foreach (var g in fs) g.Dispose();
     }
 
+    /// Issue 20: sensor models and the magnetometer calibrator.
+    static unsafe void Calibration()
+    {
+        var still = new[] { new Vec3(0.011, -0.02, 0.03), new Vec3(0.009, -0.02, 0.03) };
+        double spread;
+        SensorModel gm = MagCalibration.GyroOffset(still, out spread);
+        Check(Math.Abs(gm.Offset.X - 0.01) < 1e-12 && gm.Matrix[0] == 1.0 && spread > 0, "GyroOffset");
+        using (var f = new OrientFilter(Kind.Madgwick))
+        using (var g = new OrientFilter(Kind.Madgwick))
+        {
+            Check(f.GetSensorModel(Consts.SensorGyro) == null, "no model set");
+            f.SetSensorModel(Consts.SensorGyro, gm);
+            Check(f.GetSensorModel(Consts.SensorGyro).Value.Offset.X == gm.Offset.X, "model read back");
+            for (int i = 0; i < 50; i++)
+            {
+                f.Update(OrientFilter.Imu(0.01, new Vec3(0.21, -0.02, 0.03), new Vec3(0.3, 0.2, 9.7)));
+                g.Update(OrientFilter.Imu(0.01, new Vec3(0.21 - gm.Offset.X, -0.02 - gm.Offset.Y, 0.03 - gm.Offset.Z),
+                    new Vec3(0.3, 0.2, 9.7)));
+            }
+            Check(Same(f.Quaternion, g.Quaternion), "a model gives the calibrated readings' bits");
+            f.SetSensorModel(Consts.SensorGyro, null);
+            Check(f.GetSensorModel(Consts.SensorGyro) == null, "model cleared");
+        }
+        var cal = new MagCalibration();
+        Check(cal.Solve() == null, "no fit without readings");
+        for (int k = 0; k < 288; k++)
+        {
+            int idx = (k * 97) % 288;
+            double th = Math.PI * (idx / 24 + 0.5) / 12, ph = 2 * Math.PI * (idx % 24) / 24;
+            cal.Add(new Vec3(60 * Math.Sin(th) * Math.Cos(ph) + 10, 45 * Math.Sin(th) * Math.Sin(ph) - 20,
+                50 * Math.Cos(th) + 5));
+        }
+        MagFit fit = cal.Solve().Value;
+        Check(Math.Abs(fit.Model.Offset.X - 10) < 1e-6 && Math.Abs(fit.Model.Offset.Y + 20) < 1e-6, "hard iron");
+        Check(fit.Trustworthy == 1 && fit.Samples == 288, "trustworthy fit");
+    }
+
     public static int Main(string[] args)
     {
         if (args.Length != 1)
@@ -362,6 +399,7 @@ public static class OrientTests
         StatusPaths();
         Conversions();
         MountingAndHeading();
+        Calibration();
         Golden(args[0]);
         Console.WriteLine(passed + " passed, " + failed + " failed");
         return failed == 0 ? 0 : 1;
