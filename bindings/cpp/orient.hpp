@@ -268,6 +268,22 @@ public:
     OrientStatus load(const uint8_t* buffer, std::size_t size) noexcept { return orient_filter_load(h_, buffer, size); }
     OrientStatus set_quaternion(const OrientQuaternion& q) noexcept { return orient_filter_set_quaternion(h_, &q); }
 
+    // Sensor calibration (issue 20): models applied to the readings before every update.
+    /// ORIENT_SENSOR_GYRO / _ACCEL / _MAG; calibrated = matrix (raw - offset).
+    OrientStatus set_sensor_model(uint32_t sensor, const OrientSensorModel& m) noexcept {
+        return orient_filter_set_sensor_model(h_, sensor, &m);
+    }
+    /// Clears the sensor's model: its readings are used as they come.
+    OrientStatus clear_sensor_model(uint32_t sensor) noexcept {
+        return orient_filter_set_sensor_model(h_, sensor, nullptr);
+    }
+    /// The sensor's model; std::nullopt when none is set (or the call fails).
+    std::optional<OrientSensorModel> sensor_model(uint32_t sensor) const noexcept {
+        OrientSensorModel m{};
+        if (orient_filter_sensor_model(h_, sensor, &m) != ORIENT_STATUS_OK) return std::nullopt;
+        return m;
+    }
+
     // Mounting and heading (issue 20): outputs are the segment's orientation.
     /// Sensor-to-segment rotation (v_segment = m v_sensor); kept by reset(), saved in snapshots.
     OrientStatus set_mounting(const OrientQuaternion& m) noexcept { return orient_filter_set_mounting(h_, &m); }
@@ -318,6 +334,29 @@ private:
 inline OrientStatus update_rig(OrientFilter* const* handles, const OrientSample* samples, std::size_t n,
                                OrientQuaternion* out = nullptr, std::size_t* processed = nullptr) noexcept {
     return orient_filters_update(handles, samples, n, out, processed);
+}
+
+/// A magnetometer calibrator (ellipsoid fit over the readings; no allocation per reading).
+class MagCalibrator {
+public:
+    MagCalibrator() noexcept { orient_mag_calibrator_init(&state_); }
+    OrientStatus add(const OrientVec3& mag) noexcept { return orient_mag_calibrator_add(&state_, &mag); }
+    /// The fit; std::nullopt while the readings do not determine an ellipsoid.
+    std::optional<OrientMagFit> solve() const noexcept {
+        OrientMagFit fit{};
+        if (orient_mag_calibrator_solve(&state_, &fit) != ORIENT_STATUS_OK) return std::nullopt;
+        return fit;
+    }
+
+private:
+    OrientMagCalibrator state_{};
+};
+
+/// The gyroscope offset model from readings taken while still (any contiguous container
+/// of OrientVec3); `spread` (when given) receives their RMS deviation (rad/s).
+template <class Readings>
+OrientStatus gyro_offset(const Readings& still, OrientSensorModel& model, double* spread = nullptr) noexcept {
+    return orient_gyro_offset(std::data(still), std::size(still), &model, spread);
 }
 
 /// Rig calibration from a reference posture (orient_rig_calibrate): `handles[i]` (from

@@ -283,6 +283,37 @@ static void mounting_and_heading() {
     CHECK(orient::align_rig_heading(handles, short_refs) == ORIENT_STATUS_INVALID_ARGUMENT);
 }
 
+static void calibration() {
+    std::array<OrientVec3, 2> still{{{0.011, -0.02, 0.03}, {0.009, -0.02, 0.03}}};
+    OrientSensorModel gm{};
+    double spread = 0.0;
+    CHECK(orient::gyro_offset(still, gm, &spread) == ORIENT_STATUS_OK);
+    CHECK(std::fabs(gm.offset.x - 0.01) < 1e-12 && gm.matrix[0] == 1.0 && spread > 0.0);
+    orient::Filter f = orient::Filter::create(orient::Config::defaults(orient::Kind::Mahony).value()).value();
+    orient::Filter g = orient::Filter::create(orient::Config::defaults(orient::Kind::Mahony).value()).value();
+    CHECK(!f.sensor_model(ORIENT_SENSOR_GYRO));
+    CHECK(f.set_sensor_model(ORIENT_SENSOR_GYRO, gm) == ORIENT_STATUS_OK);
+    CHECK(f.sensor_model(ORIENT_SENSOR_GYRO).has_value());
+    for (int i = 0; i < 50; i++) {
+        CHECK(f.update(orient::sample(0.01, orient::vec3(0.21, -0.02, 0.03), orient::vec3(0.3, 0.2, 9.7))) ==
+              ORIENT_STATUS_OK);
+        CHECK(g.update(orient::sample(0.01, orient::vec3(0.21 - gm.offset.x, -0.02 - gm.offset.y, 0.03 - gm.offset.z),
+                                      orient::vec3(0.3, 0.2, 9.7))) == ORIENT_STATUS_OK);
+    }
+    CHECK(same(f.quaternion(), g.quaternion()));
+    CHECK(f.clear_sensor_model(ORIENT_SENSOR_GYRO) == ORIENT_STATUS_OK && !f.sensor_model(ORIENT_SENSOR_GYRO));
+    orient::MagCalibrator cal;
+    CHECK(!cal.solve());
+    for (int k = 0; k < 288; k++) {
+        int idx = (k * 97) % 288;
+        double th = 3.141592653589793 * (idx / 24 + 0.5) / 12, ph = 6.283185307179586 * (idx % 24) / 24;
+        CHECK(cal.add(orient::vec3(60 * std::sin(th) * std::cos(ph) + 10, 45 * std::sin(th) * std::sin(ph) - 20,
+                                   50 * std::cos(th) + 5)) == ORIENT_STATUS_OK);
+    }
+    auto fit = cal.solve();
+    CHECK(fit && std::fabs(fit->model.offset.x - 10) < 1e-6 && fit->trustworthy == 1);
+}
+
 int main(int argc, char** argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: %s GOLDEN_FILE\n", argv[0]);
@@ -291,6 +322,7 @@ int main(int argc, char** argv) {
     wrapper();
     rig();
     mounting_and_heading();
+    calibration();
 #if ORIENT_HPP_EXCEPTIONS
     exceptions();
 #endif
