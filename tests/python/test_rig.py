@@ -58,3 +58,30 @@ def test_rig_calibration():
     with pytest.raises(OrientError) as e:
         orient.calibrate_rig([fs[0], orient.Ekf()], refs[:2])
     assert e.value.status == Status.NOT_INITIALIZED
+
+
+def test_sensor_models_and_calibrators():
+    offset, spread = orient.gyro_offset([[0.011, -0.02, 0.03], [0.009, -0.02, 0.03]])
+    assert np.allclose(offset, [0.01, -0.02, 0.03]) and spread > 0
+    f, g = orient.Mahony(), orient.Mahony()
+    assert f.sensor_model("gyro") is None
+    f.set_sensor_model("gyro", np.eye(3), offset)
+    m, o = f.sensor_model("gyro")
+    assert np.array_equal(m, np.eye(3)) and np.array_equal(o, offset)
+    for _ in range(50):
+        f.update([0.21, -0.02, 0.03], [0.3, 0.2, 9.7], dt=0.01)
+        g.update(np.array([0.21, -0.02, 0.03]) - offset, [0.3, 0.2, 9.7], dt=0.01)
+    assert np.array_equal(f.quaternion, g.quaternion)
+    f.set_sensor_model("gyro", None)
+    assert f.sensor_model("gyro") is None
+    with pytest.raises(OrientError) as e:
+        f.set_sensor_model("mag", np.zeros((3, 3)))
+    assert e.value.status == Status.ZERO_VECTOR
+    cal = orient.MagCalibrator()
+    assert cal.solve() is None
+    idx = (np.arange(288) * 97) % 288
+    th, ph = np.pi * (idx // 24 + 0.5) / 12, 2 * np.pi * (idx % 24) / 24
+    cal.add(np.c_[60 * np.sin(th) * np.cos(ph) + 10, 45 * np.sin(th) * np.sin(ph) - 20, 50 * np.cos(th) + 5])
+    fit = cal.solve()
+    assert np.allclose(fit.hard_iron, [10, -20, 5], atol=1e-6)
+    assert fit.trustworthy and fit.samples == 288

@@ -11,7 +11,7 @@ import ctypes
 import enum
 import os
 import sys
-from ctypes import POINTER, Structure, c_char_p, c_double, c_int32, c_size_t, c_uint8, c_uint32, c_void_p
+from ctypes import POINTER, Structure, c_char_p, c_double, c_int32, c_size_t, c_uint8, c_uint32, c_uint64, c_void_p
 from pathlib import Path
 
 import numpy as np
@@ -101,6 +101,35 @@ class OrientQuaternion(Structure):
 
 class OrientVec3(Structure):
     _fields_ = [("x", c_double), ("y", c_double), ("z", c_double)]
+
+
+class OrientSensorModel(Structure):
+    _fields_ = [("matrix", c_double * 9), ("offset", OrientVec3)]
+
+
+class OrientMagCalibrator(Structure):
+    _fields_ = [
+        ("sums", c_double * 55),
+        ("scale", c_double),
+        ("mean", OrientVec3),
+        ("count", c_uint64),
+        ("bins", c_uint64),
+    ]
+
+
+class OrientMagFit(Structure):
+    _fields_ = [
+        ("model", OrientSensorModel),
+        ("field", c_double),
+        ("residual", c_double),
+        ("coverage", c_double),
+        ("samples", c_uint64),
+        ("trustworthy", c_int32),
+        ("reserved", c_int32),
+    ]
+
+
+SENSOR_GYRO, SENSOR_ACCEL, SENSOR_MAG = 0, 1, 2
 
 
 class OrientConfig(Structure):
@@ -233,6 +262,12 @@ PROTOTYPES = {
     "orient_filter_declination": (c_int32, [c_void_p, _P(c_double)]),
     "orient_rig_calibrate": (c_int32, [_P(c_void_p), _P(OrientQuaternion), c_size_t, c_double]),
     "orient_rig_align_heading": (c_int32, [_P(c_void_p), _P(OrientQuaternion), c_size_t]),
+    "orient_filter_set_sensor_model": (c_int32, [c_void_p, c_uint32, _P(OrientSensorModel)]),
+    "orient_filter_sensor_model": (c_int32, [c_void_p, c_uint32, _P(OrientSensorModel)]),
+    "orient_mag_calibrator_init": (c_int32, [_P(OrientMagCalibrator)]),
+    "orient_mag_calibrator_add": (c_int32, [_P(OrientMagCalibrator), _P(OrientVec3)]),
+    "orient_mag_calibrator_solve": (c_int32, [_P(OrientMagCalibrator), _P(OrientMagFit)]),
+    "orient_gyro_offset": (c_int32, [_P(OrientVec3), c_size_t, _P(OrientSensorModel), _P(c_double)]),
 }
 
 
