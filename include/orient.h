@@ -135,6 +135,15 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_FLAG_REACQUIRE_PENDING 32
 
 /**
+ * `orient_filter_flags`: the last update had a reading at or beyond its configured range
+ * and used it clipped (ORIENT_PARAM_SATURATION_RECOVERY = 1): a gyroscope reading
+ * clipped just under the range, an accelerometer reading left out. After gyroscope
+ * saturation ORIENT_FLAG_REACQUIRE_PENDING is set too: the next unsaturated sample with
+ * an accelerometer reading re-acquires the orientation (ORIENT_FLAG_REACQUIRED).
+ */
+#define ORIENT_FLAG_SATURATED 64
+
+/**
  * `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
  * smallest value that has it on.
  */
@@ -148,13 +157,15 @@ typedef struct OrientFilter OrientFilter;
 
 /**
  * Parameter slot (every kind): gyroscope full scale, rad/s; a sample with any axis at or
- * beyond it is rejected with ORIENT_STATUS_SATURATED. Default 0 = no check.
+ * beyond it is rejected with ORIENT_STATUS_SATURATED (or clipped: see
+ * ORIENT_PARAM_SATURATION_RECOVERY). Default 0 = no check.
  */
 #define ORIENT_PARAM_GYRO_RANGE 1
 
 /**
  * Parameter slot (every kind): accelerometer full scale, m/s^2; a sample with any axis
- * at or beyond it is rejected with ORIENT_STATUS_SATURATED. Default 0 = no check.
+ * at or beyond it is rejected with ORIENT_STATUS_SATURATED (or left out: see
+ * ORIENT_PARAM_SATURATION_RECOVERY). Default 0 = no check.
  */
 #define ORIENT_PARAM_ACCEL_RANGE 2
 
@@ -165,6 +176,13 @@ typedef struct OrientFilter OrientFilter;
  * (every accepted dt is integrated as given).
  */
 #define ORIENT_PARAM_GAP_DT 3
+
+/**
+ * Parameter slot (every kind): 0 (default) rejects a sample with a reading at or beyond
+ * ORIENT_PARAM_GYRO_RANGE / ORIENT_PARAM_ACCEL_RANGE (ORIENT_STATUS_SATURATED); 1 uses it
+ * clipped and recovers (see ORIENT_FLAG_SATURATED). The physical bounds stay errors.
+ */
+#define ORIENT_PARAM_SATURATION_RECOVERY 4
 
 /**
  * Parameter slot (Madgwick): beta for steps without magnetometer, rad/s, default 0.041

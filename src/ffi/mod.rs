@@ -848,6 +848,8 @@ mod tests {
         assert_eq!(ORIENT_FLAG_REACQUIRED, flags::REACQUIRED);
         assert_eq!(ORIENT_FLAG_REACQUIRE_PENDING, flags::REACQUIRE_PENDING);
         assert_eq!(ORIENT_PARAM_GAP_DT, params::id::GAP_DT);
+        assert_eq!(ORIENT_PARAM_SATURATION_RECOVERY, params::id::SATURATION_RECOVERY);
+        assert_eq!(ORIENT_FLAG_SATURATED, flags::SATURATED);
         assert_eq!(core::mem::size_of::<OrientSample>(), 88);
         assert_eq!(core::mem::size_of::<OrientConfig>(), 1072);
         use crate::filters::diag;
@@ -911,10 +913,10 @@ mod tests {
             assert_eq!(c, r);
         }
         // Every parameter of every kind has its ORIENT_PARAM_* constant above (the
-        // common four and Madgwick's two are checked first).
+        // common five and Madgwick's two are checked first).
         let all: std::collections::BTreeSet<u32> =
             Kind::ALL.iter().flat_map(|k| k.params().map(|p| p.id)).collect();
-        assert_eq!(all.len(), slots.len() + 6);
+        assert_eq!(all.len(), slots.len() + 7);
     }
 
     #[test]
@@ -1140,7 +1142,7 @@ mod tests {
             let k = OrientKind::Madgwick as i32;
             let mut n = 0;
             assert_eq!(orient_param_count(k, &mut n), OrientStatus::Ok);
-            assert_eq!(n, 7);
+            assert_eq!(n, 8);
             let mut info = core::mem::MaybeUninit::<OrientParamInfo>::uninit();
             for i in 0..n {
                 assert_eq!(orient_param_info(k, i, info.as_mut_ptr()), OrientStatus::Ok);

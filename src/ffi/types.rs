@@ -41,6 +41,12 @@ pub const ORIENT_FLAG_REACQUIRED: u32 = 16;
 /// orientation is held, then integrated from the gyroscope, until the next sample with an
 /// accelerometer reading, which re-acquires it (ORIENT_FLAG_REACQUIRED).
 pub const ORIENT_FLAG_REACQUIRE_PENDING: u32 = 32;
+/// `orient_filter_flags`: the last update had a reading at or beyond its configured range
+/// and used it clipped (ORIENT_PARAM_SATURATION_RECOVERY = 1): a gyroscope reading
+/// clipped just under the range, an accelerometer reading left out. After gyroscope
+/// saturation ORIENT_FLAG_REACQUIRE_PENDING is set too: the next unsaturated sample with
+/// an accelerometer reading re-acquires the orientation (ORIENT_FLAG_REACQUIRED).
+pub const ORIENT_FLAG_SATURATED: u32 = 64;
 
 /// `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
 /// smallest value that has it on.
@@ -50,16 +56,22 @@ pub const ORIENT_PARAM_FLAG_ZERO_OFF: u32 = 1;
 /// acceleration outputs, m/s^2, default 9.80665.
 pub const ORIENT_PARAM_GRAVITY: u32 = 0;
 /// Parameter slot (every kind): gyroscope full scale, rad/s; a sample with any axis at or
-/// beyond it is rejected with ORIENT_STATUS_SATURATED. Default 0 = no check.
+/// beyond it is rejected with ORIENT_STATUS_SATURATED (or clipped: see
+/// ORIENT_PARAM_SATURATION_RECOVERY). Default 0 = no check.
 pub const ORIENT_PARAM_GYRO_RANGE: u32 = 1;
 /// Parameter slot (every kind): accelerometer full scale, m/s^2; a sample with any axis
-/// at or beyond it is rejected with ORIENT_STATUS_SATURATED. Default 0 = no check.
+/// at or beyond it is rejected with ORIENT_STATUS_SATURATED (or left out: see
+/// ORIENT_PARAM_SATURATION_RECOVERY). Default 0 = no check.
 pub const ORIENT_PARAM_ACCEL_RANGE: u32 = 2;
 /// Parameter slot (every kind): the longest dt (s) taken as it is; a larger dt is a gap in
 /// the data: the update re-acquires the orientation from the sensors and sets
 /// ORIENT_FLAG_GAP (see ORIENT_FLAG_REACQUIRED). Default 0.25; 0 turns the policy off
 /// (every accepted dt is integrated as given).
 pub const ORIENT_PARAM_GAP_DT: u32 = 3;
+/// Parameter slot (every kind): 0 (default) rejects a sample with a reading at or beyond
+/// ORIENT_PARAM_GYRO_RANGE / ORIENT_PARAM_ACCEL_RANGE (ORIENT_STATUS_SATURATED); 1 uses it
+/// clipped and recovers (see ORIENT_FLAG_SATURATED). The physical bounds stay errors.
+pub const ORIENT_PARAM_SATURATION_RECOVERY: u32 = 4;
 /// Parameter slot (Madgwick): beta for steps without magnetometer, rad/s, default 0.041
 /// (Madgwick 2010, section V). beta = sqrt(3/4) * max gyro error, eq. (33):
 /// see orient_madgwick_beta().

@@ -12,6 +12,7 @@ pub mod mahony;
 pub mod params;
 mod rest;
 pub mod robust;
+mod saturation; // issue 20: clip-and-recover policy
 mod startup;
 pub mod state;
 
@@ -366,8 +367,15 @@ pub mod flags {
     /// (then integrated from the gyroscope) until the next sample that has one, which
     /// re-acquires it.
     pub const REACQUIRE_PENDING: u32 = 32;
+    /// The last accepted update had a reading at or beyond its configured range, used
+    /// clipped (`saturation_recovery` = 1): a gyroscope reading clipped just under the
+    /// range, an accelerometer reading left out. After gyroscope saturation
+    /// [`REACQUIRE_PENDING`] is set: the next unsaturated sample with an accelerometer
+    /// reading re-acquires the orientation.
+    pub const SATURATED: u32 = 64;
     /// Every bit above.
-    pub const ALL: u32 = INITIALIZED | ACCEL_USED | MAG_USED | GAP | REACQUIRED | REACQUIRE_PENDING;
+    pub const ALL: u32 =
+        INITIALIZED | ACCEL_USED | MAG_USED | GAP | REACQUIRED | REACQUIRE_PENDING | SATURATED;
 }
 
 /// What a core needs to re-acquire its orientation after a gap (native frame).
@@ -760,6 +768,8 @@ struct Limits {
     accel: f64,
     /// dt above which a step counts as a gap and integrates over this instead (s).
     gap: f64,
+    /// issue 20: readings beyond the ranges are clipped and recovered from.
+    recover: bool,
 }
 
 impl Limits {
@@ -776,6 +786,7 @@ impl Limits {
             gyro: limit(id::GYRO_RANGE, MAX_GYRO),
             accel: limit(id::ACCEL_RANGE, MAX_ACCEL),
             gap: limit(id::GAP_DT, f64::INFINITY),
+            recover: config.slot(id::SATURATION_RECOVERY) != 0.0,
         }
     }
 }
@@ -966,6 +977,9 @@ impl Filter {
     /// on store-to-load forwarding).
     #[inline(always)]
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        if self.limits.recover && self.saturated(s) {
+            return self.update_saturated(s); // issue 20: clipped, then recovered from
+        }
         if self.models.any() {
             return self.update_calibrated(s); // issue 20: sensor models first
         }

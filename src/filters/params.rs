@@ -19,6 +19,9 @@ pub mod id {
     pub const ACCEL_RANGE: u32 = 2;
     /// The longest dt taken as given; a larger one is a gap, re-acquired (see `GAP` flag).
     pub const GAP_DT: u32 = 3;
+    /// Saturation policy (issue 20): 0 rejects a saturated sample, 1 uses it clipped and
+    /// recovers.
+    pub const SATURATION_RECOVERY: u32 = 4;
 
     /// Madgwick β for steps without a magnetometer.
     pub const MADGWICK_BETA_IMU: u32 = 8;
@@ -120,7 +123,7 @@ impl ParamSpec {
 }
 
 /// The settings every kind has.
-pub const COMMON: [ParamSpec; 4] = [
+pub const COMMON: [ParamSpec; 5] = [
     ParamSpec {
         id: id::GRAVITY,
         name: "gravity",
@@ -166,6 +169,21 @@ pub const COMMON: [ParamSpec; 4] = [
         default: 0.25,
         min: 1e-3,
         max: 1e6,
+        zero_off: true,
+    },
+    ParamSpec {
+        id: id::SATURATION_RECOVERY,
+        name: "saturation_recovery",
+        unit: "1",
+        doc: "What a reading at or beyond gyro_range or accel_range does: 0 (default) rejects the \
+              sample as saturated; 1 uses it clipped (a gyroscope reading clipped just under \
+              the range, a saturated accelerometer reading left out), sets the SATURATED flag, \
+              and after gyroscope saturation re-acquires the orientation from the next \
+              unsaturated sample with an accelerometer reading (x-io Fusion's angular-rate \
+              recovery). The physical bounds stay errors.",
+        default: 0.0,
+        min: 1.0,
+        max: 1.0,
         zero_off: true,
     },
 ];

@@ -231,6 +231,24 @@ static void calibration_calls(void) {
     CHECK_STATUS(orient_filter_set_sensor_model(f, ORIENT_SENSOR_MAG, &mag_model), ORIENT_STATUS_OK);
     cal.scale = -1.0;
     CHECK_STATUS(orient_mag_calibrator_solve(&cal, &fit), ORIENT_STATUS_INVALID_ARGUMENT);
+    /* Saturation: rejected by default, clipped and flagged with the recovery policy. */
+    {
+        uint32_t fl = 0;
+        s.dt = 0.01;
+        s.gyro.x = 6.0; s.gyro.y = 0.0; s.gyro.z = 0.0;
+        s.accel.x = 0.0; s.accel.y = 0.0; s.accel.z = 9.8;
+        s.flags = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL;
+        CHECK_STATUS(orient_filter_set_param(g, ORIENT_PARAM_GYRO_RANGE, 5.0), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_update(g, &s), ORIENT_STATUS_SATURATED);
+        CHECK_STATUS(orient_filter_set_param(g, ORIENT_PARAM_SATURATION_RECOVERY, 1.0), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_update(g, &s), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_flags(g, &fl), ORIENT_STATUS_OK);
+        CHECK((fl & ORIENT_FLAG_SATURATED) != 0 && (fl & ORIENT_FLAG_REACQUIRE_PENDING) != 0);
+        s.gyro.x = 0.1;
+        CHECK_STATUS(orient_filter_update(g, &s), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_flags(g, &fl), ORIENT_STATUS_OK);
+        CHECK((fl & ORIENT_FLAG_REACQUIRED) != 0 && (fl & ORIENT_FLAG_SATURATED) == 0);
+    }
     CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_filter_free(g), ORIENT_STATUS_OK);
 }

@@ -1,0 +1,62 @@
+//! The clip-and-recover saturation policy (issue 20, parameter `saturation_recovery`):
+//! a reading at or beyond its configured range is used clipped and flagged, and after
+//! gyroscope saturation the orientation is re-acquired from the accelerometer (and
+//! magnetometer) through the gap path's re-acquisition, as x-io Fusion's angular-rate
+//! recovery re-initialises. Readings at or beyond the physical bounds stay errors.
+
+use super::{flags, Error, Filter, Sample, SampleView, MAX_ACCEL, MAX_GYRO};
+use crate::math::Vec3;
+
+/// The largest value under `range` (> 0).
+fn under(range: f64) -> f64 {
+    f64::from_bits(range.to_bits() - 1)
+}
+
+fn clip(v: Vec3, range: f64) -> Vec3 {
+    let c = |x: f64| x.clamp(-under(range), under(range));
+    Vec3::new(c(v.x), c(v.y), c(v.z))
+}
+
+/// A finite reading at or beyond `range` and under the physical `bound`.
+fn beyond(v: Option<Vec3>, range: f64, bound: f64) -> bool {
+    v.is_some_and(|v| v.is_finite() && range < bound && v.max_abs() >= range && v.max_abs() < bound)
+}
+
+impl Filter {
+    /// True when the sample has a reading this policy clips.
+    #[inline]
+    pub(crate) fn saturated<S: SampleView>(&self, s: &S) -> bool {
+        beyond(s.gyro(), self.limits.gyro, MAX_GYRO) || beyond(s.accel(), self.limits.accel, MAX_ACCEL)
+    }
+
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn update_saturated<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        let gyro_saturated = beyond(s.gyro(), self.limits.gyro, MAX_GYRO);
+        let accel_saturated = beyond(s.accel(), self.limits.accel, MAX_ACCEL);
+        let clipped = Sample {
+            dt: s.dt(),
+            gyro: s.gyro().map(|g| if gyro_saturated { clip(g, self.limits.gyro) } else { g }),
+            // A clipped accelerometer reading points the wrong way: left out.
+            accel: if accel_saturated { None } else { s.accel() },
+            mag: s.mag(),
+        };
+        // No re-acquisition while saturated: the pending one waits for a clean sample.
+        let before = self.flags;
+        let pending = self.flags & flags::REACQUIRE_PENDING;
+        self.flags &= !flags::REACQUIRE_PENDING;
+        match self.update_inline(&clipped) {
+            Ok(()) => {
+                let recover = if gyro_saturated { flags::REACQUIRE_PENDING } else { pending };
+                if self.flags & flags::INITIALIZED != 0 {
+                    self.flags |= flags::SATURATED | recover;
+                }
+                Ok(())
+            }
+            Err(e) => {
+                self.flags = before;
+                Err(e)
+            }
+        }
+    }
+}
