@@ -119,7 +119,9 @@ fn footprint_of_one_filter_per_kind() {
     // Printed for the notes; bounded so that a state that grows by accident is seen.
     let inline = std::mem::size_of::<Filter>();
     println!("Filter (any kind, inline): {inline} bytes");
-    assert!(inline <= 2304, "{inline}");
+    // 2528 since issue 20: the host frames (mounting, heading, declination) and the
+    // three sensor models (224 bytes) sit inline, so that updates never follow a pointer.
+    assert!(inline <= 2560, "{inline}");
     for kind in Kind::ALL {
         let config = Config::new(kind).unwrap();
         let (filter, _, heap) = allocations_in(|| Filter::new(&config).unwrap());
