@@ -144,6 +144,13 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_FLAG_SATURATED 64
 
 /**
+ * `orient_filter_flags`: the last sample had dt = 0 and was taken as the same instant as
+ * the next sample with dt > 0 (ORIENT_PARAM_SAME_INSTANT = 1): nothing was integrated;
+ * its gyroscope reading is averaged into that sample's step.
+ */
+#define ORIENT_FLAG_SAME_INSTANT 128
+
+/**
  * `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
  * smallest value that has it on.
  */
@@ -183,6 +190,15 @@ typedef struct OrientFilter OrientFilter;
  * clipped and recovers (see ORIENT_FLAG_SATURATED). The physical bounds stay errors.
  */
 #define ORIENT_PARAM_SATURATION_RECOVERY 4
+
+/**
+ * Parameter slot (every kind): 0 (default) refuses dt = 0 (ORIENT_STATUS_INVALID_DT); 1
+ * takes a dt = 0 sample (a burst of packets with one timestamp) as the same instant as
+ * the next sample with dt > 0, whose step integrates the average of their gyroscope
+ * readings over its dt, so no rotation is lost (see ORIENT_FLAG_SAME_INSTANT). The
+ * dt = 0 sample's accelerometer and magnetometer readings are not used.
+ */
+#define ORIENT_PARAM_SAME_INSTANT 5
 
 /**
  * Parameter slot (Madgwick): beta for steps without magnetometer, rad/s, default 0.041

@@ -79,12 +79,14 @@ namespace Orient.Native
         public const uint FlagReacquired = 16; // ORIENT_FLAG_REACQUIRED
         public const uint FlagReacquirePending = 32; // ORIENT_FLAG_REACQUIRE_PENDING
         public const uint FlagSaturated = 64; // ORIENT_FLAG_SATURATED (issue 20)
+        public const uint FlagSameInstant = 128; // ORIENT_FLAG_SAME_INSTANT (issue 20)
         public const uint ParamFlagZeroOff = 1; // ORIENT_PARAM_FLAG_ZERO_OFF
         public const uint ParamGravity = 0; // ORIENT_PARAM_GRAVITY
         public const uint ParamGyroRange = 1; // ORIENT_PARAM_GYRO_RANGE
         public const uint ParamAccelRange = 2; // ORIENT_PARAM_ACCEL_RANGE
         public const uint ParamGapDt = 3; // ORIENT_PARAM_GAP_DT
         public const uint ParamSaturationRecovery = 4; // ORIENT_PARAM_SATURATION_RECOVERY (issue 20)
+        public const uint ParamSameInstant = 5; // ORIENT_PARAM_SAME_INSTANT (issue 20)
         public const uint SensorGyro = 0; // ORIENT_SENSOR_GYRO (issue 20)
         public const uint SensorAccel = 1; // ORIENT_SENSOR_ACCEL
         public const uint SensorMag = 2; // ORIENT_SENSOR_MAG

@@ -850,6 +850,8 @@ mod tests {
         assert_eq!(ORIENT_PARAM_GAP_DT, params::id::GAP_DT);
         assert_eq!(ORIENT_PARAM_SATURATION_RECOVERY, params::id::SATURATION_RECOVERY);
         assert_eq!(ORIENT_FLAG_SATURATED, flags::SATURATED);
+        assert_eq!(ORIENT_FLAG_SAME_INSTANT, flags::SAME_INSTANT);
+        assert_eq!(ORIENT_PARAM_SAME_INSTANT, params::id::SAME_INSTANT);
         assert_eq!(core::mem::size_of::<OrientSample>(), 88);
         assert_eq!(core::mem::size_of::<OrientConfig>(), 1072);
         use crate::filters::diag;
@@ -913,10 +915,10 @@ mod tests {
             assert_eq!(c, r);
         }
         // Every parameter of every kind has its ORIENT_PARAM_* constant above (the
-        // common five and Madgwick's two are checked first).
+        // common six and Madgwick's two are checked first).
         let all: std::collections::BTreeSet<u32> =
             Kind::ALL.iter().flat_map(|k| k.params().map(|p| p.id)).collect();
-        assert_eq!(all.len(), slots.len() + 7);
+        assert_eq!(all.len(), slots.len() + 8);
     }
 
     #[test]
@@ -1142,7 +1144,7 @@ mod tests {
             let k = OrientKind::Madgwick as i32;
             let mut n = 0;
             assert_eq!(orient_param_count(k, &mut n), OrientStatus::Ok);
-            assert_eq!(n, 8);
+            assert_eq!(n, 9);
             let mut info = core::mem::MaybeUninit::<OrientParamInfo>::uninit();
             for i in 0..n {
                 assert_eq!(orient_param_info(k, i, info.as_mut_ptr()), OrientStatus::Ok);

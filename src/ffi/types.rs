@@ -47,6 +47,10 @@ pub const ORIENT_FLAG_REACQUIRE_PENDING: u32 = 32;
 /// saturation ORIENT_FLAG_REACQUIRE_PENDING is set too: the next unsaturated sample with
 /// an accelerometer reading re-acquires the orientation (ORIENT_FLAG_REACQUIRED).
 pub const ORIENT_FLAG_SATURATED: u32 = 64;
+/// `orient_filter_flags`: the last sample had dt = 0 and was taken as the same instant as
+/// the next sample with dt > 0 (ORIENT_PARAM_SAME_INSTANT = 1): nothing was integrated;
+/// its gyroscope reading is averaged into that sample's step.
+pub const ORIENT_FLAG_SAME_INSTANT: u32 = 128;
 
 /// `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
 /// smallest value that has it on.
@@ -72,6 +76,12 @@ pub const ORIENT_PARAM_GAP_DT: u32 = 3;
 /// ORIENT_PARAM_GYRO_RANGE / ORIENT_PARAM_ACCEL_RANGE (ORIENT_STATUS_SATURATED); 1 uses it
 /// clipped and recovers (see ORIENT_FLAG_SATURATED). The physical bounds stay errors.
 pub const ORIENT_PARAM_SATURATION_RECOVERY: u32 = 4;
+/// Parameter slot (every kind): 0 (default) refuses dt = 0 (ORIENT_STATUS_INVALID_DT); 1
+/// takes a dt = 0 sample (a burst of packets with one timestamp) as the same instant as
+/// the next sample with dt > 0, whose step integrates the average of their gyroscope
+/// readings over its dt, so no rotation is lost (see ORIENT_FLAG_SAME_INSTANT). The
+/// dt = 0 sample's accelerometer and magnetometer readings are not used.
+pub const ORIENT_PARAM_SAME_INSTANT: u32 = 5;
 /// Parameter slot (Madgwick): beta for steps without magnetometer, rad/s, default 0.041
 /// (Madgwick 2010, section V). beta = sqrt(3/4) * max gyro error, eq. (33):
 /// see orient_madgwick_beta().

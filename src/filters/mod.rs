@@ -12,7 +12,7 @@ pub mod mahony;
 pub mod params;
 mod rest;
 pub mod robust;
-mod saturation; // issue 20: clip-and-recover policy
+mod saturation; // issue 20: clip-and-recover policy and the dt = 0 policy
 mod startup;
 pub mod state;
 
@@ -373,9 +373,13 @@ pub mod flags {
     /// [`REACQUIRE_PENDING`] is set: the next unsaturated sample with an accelerometer
     /// reading re-acquires the orientation.
     pub const SATURATED: u32 = 64;
+    /// The last accepted sample had dt = 0 and was taken as the same instant as the next
+    /// sample with dt > 0 (`same_instant` = 1): nothing was integrated, its gyroscope
+    /// reading waits to be averaged into that sample's step.
+    pub const SAME_INSTANT: u32 = 128;
     /// Every bit above.
     pub const ALL: u32 =
-        INITIALIZED | ACCEL_USED | MAG_USED | GAP | REACQUIRED | REACQUIRE_PENDING | SATURATED;
+        INITIALIZED | ACCEL_USED | MAG_USED | GAP | REACQUIRED | REACQUIRE_PENDING | SATURATED | SAME_INSTANT;
 }
 
 /// What a core needs to re-acquire its orientation after a gap (native frame).
@@ -756,6 +760,9 @@ pub struct Filter {
     host: host::Host,
     /// issue 20: sensor models applied before the update (calibration.rs).
     models: calibration::Models,
+    /// issue 20: the gyroscope readings of dt = 0 samples waiting for the next step
+    /// (sum, count; saturation.rs).
+    burst: (Vec3, u32),
 }
 
 /// The thresholds the per-sample checks compare with, from the configuration's slots:
@@ -770,6 +777,8 @@ struct Limits {
     gap: f64,
     /// issue 20: readings beyond the ranges are clipped and recovered from.
     recover: bool,
+    /// issue 20: dt = 0 is the same instant as the next step.
+    same_instant: bool,
 }
 
 impl Limits {
@@ -787,6 +796,7 @@ impl Limits {
             accel: limit(id::ACCEL_RANGE, MAX_ACCEL),
             gap: limit(id::GAP_DT, f64::INFINITY),
             recover: config.slot(id::SATURATION_RECOVERY) != 0.0,
+            same_instant: config.slot(id::SAME_INSTANT) != 0.0,
         }
     }
 }
@@ -809,6 +819,7 @@ impl Filter {
             limits,
             host: host::Host::default(),
             models: Default::default(),
+            burst: (Vec3::ZERO, 0),
         };
         filter.to_frame = filter.frame_rotation();
         filter.reset();
@@ -977,6 +988,9 @@ impl Filter {
     /// on store-to-load forwarding).
     #[inline(always)]
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        if self.limits.same_instant && (s.dt() == 0.0 || self.burst.1 != 0) {
+            return self.update_same_instant(s); // issue 20: bursts
+        }
         if self.limits.recover && self.saturated(s) {
             return self.update_saturated(s); // issue 20: clipped, then recovered from
         }
@@ -1186,6 +1200,10 @@ impl Filter {
         c.f64(&mut self.host.heading);
         c.f64(&mut self.host.declination);
         calibration::codec(&mut self.models, c);
+        c.vec3(&mut self.burst.0);
+        let mut n = self.burst.1 as u64;
+        c.u64(&mut n);
+        self.burst.1 = n as u32;
         self.core.codec(c);
     }
 
@@ -1227,6 +1245,12 @@ impl Filter {
         r.f64(&mut fresh.host.heading);
         r.f64(&mut fresh.host.declination);
         calibration::codec(&mut fresh.models, &mut r);
+        r.vec3(&mut fresh.burst.0);
+        let mut n = 0u64;
+        r.u64(&mut n);
+        let burst_ok =
+            n <= u32::MAX as u64 && fresh.burst.0.is_finite() && (n > 0 || fresh.burst.0 == Vec3::ZERO);
+        fresh.burst.1 = n as u32;
         fresh.host.refresh(fresh.config.frame.up().z);
         fresh.core.codec(&mut r);
         // Slots this kind does not use are zero in every snapshot it writes: a blob of
@@ -1242,6 +1266,7 @@ impl Filter {
             || !accel_ok
             || !fresh.host.valid()
             || !fresh.models.valid()
+            || !burst_ok
             || !fresh.core.valid()
         {
             return Err(StateError::Corrupt);

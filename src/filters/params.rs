@@ -22,6 +22,8 @@ pub mod id {
     /// Saturation policy (issue 20): 0 rejects a saturated sample, 1 uses it clipped and
     /// recovers.
     pub const SATURATION_RECOVERY: u32 = 4;
+    /// Burst policy for dt = 0 (issue 20): 0 rejects it, 1 takes it as the same instant.
+    pub const SAME_INSTANT: u32 = 5;
 
     /// Madgwick β for steps without a magnetometer.
     pub const MADGWICK_BETA_IMU: u32 = 8;
@@ -123,7 +125,7 @@ impl ParamSpec {
 }
 
 /// The settings every kind has.
-pub const COMMON: [ParamSpec; 5] = [
+pub const COMMON: [ParamSpec; 6] = [
     ParamSpec {
         id: id::GRAVITY,
         name: "gravity",
@@ -181,6 +183,21 @@ pub const COMMON: [ParamSpec; 5] = [
               and after gyroscope saturation re-acquires the orientation from the next \
               unsaturated sample with an accelerometer reading (x-io Fusion's angular-rate \
               recovery). The physical bounds stay errors.",
+        default: 0.0,
+        min: 1.0,
+        max: 1.0,
+        zero_off: true,
+    },
+    ParamSpec {
+        id: id::SAME_INSTANT,
+        name: "same_instant",
+        unit: "1",
+        doc: "What a sample with dt = 0 does (bursts of packets with one timestamp): 0 \
+              (default) rejects it as an invalid dt; 1 takes it as the same instant as the \
+              next sample with dt > 0: nothing is integrated then, its gyroscope reading is \
+              averaged with the following ones up to and including that sample, which \
+              integrates the average over its dt, so no rotation is lost (the SAME_INSTANT \
+              flag is set). Its accelerometer and magnetometer readings are not used.",
         default: 0.0,
         min: 1.0,
         max: 1.0,

@@ -23,6 +23,38 @@ fn beyond(v: Option<Vec3>, range: f64, bound: f64) -> bool {
 }
 
 impl Filter {
+    /// The `same_instant` policy: a dt = 0 sample is checked (as if its dt were valid)
+    /// and its gyroscope reading kept; the next sample with dt > 0 integrates the
+    /// average of the kept readings and its own over its dt. Nothing changes on error.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn update_same_instant<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        let (sum, n) = self.burst;
+        if s.dt() == 0.0 {
+            let probe = Sample { dt: 1.0, ..s.to_sample() };
+            if !(self.limits.recover && self.saturated(&probe)) {
+                self.check(&probe)?;
+            }
+            if !self.is_initialized() {
+                return Err(Error::NotInitialized);
+            }
+            let g = s.gyro().unwrap_or_default();
+            let g = if beyond(Some(g), self.limits.gyro, MAX_GYRO) { clip(g, self.limits.gyro) } else { g };
+            self.burst = (sum + g, n.saturating_add(1));
+            self.flags = (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING)) | flags::SAME_INSTANT;
+            return Ok(());
+        }
+        let own = s.gyro().unwrap_or_default();
+        let mean = (sum + own) * (1.0 / (n as f64 + 1.0));
+        let folded = Sample { gyro: s.gyro().map(|_| mean), ..s.to_sample() };
+        self.burst = (Vec3::ZERO, 0);
+        let result = self.update_inline(&folded);
+        if result.is_err() {
+            self.burst = (sum, n);
+        }
+        result
+    }
+
     /// True when the sample has a reading this policy clips.
     #[inline]
     pub(crate) fn saturated<S: SampleView>(&self, s: &S) -> bool {

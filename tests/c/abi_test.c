@@ -288,7 +288,7 @@ static void config_paths(void) {
 
     /* Parameters: discoverable by index and by name, range-checked. */
     CHECK_STATUS(orient_param_count(ORIENT_KIND_MADGWICK, &count), ORIENT_STATUS_OK);
-    CHECK(count == 8);
+    CHECK(count == 9);
     for (i = 0; i < count; i++) {
         CHECK_STATUS(orient_param_info(ORIENT_KIND_MADGWICK, i, &info), ORIENT_STATUS_OK);
         CHECK(info.name && info.unit && info.description && strlen(info.description) > 10);

@@ -248,6 +248,17 @@ static void calibration_calls(void) {
         CHECK_STATUS(orient_filter_update(g, &s), ORIENT_STATUS_OK);
         CHECK_STATUS(orient_filter_flags(g, &fl), ORIENT_STATUS_OK);
         CHECK((fl & ORIENT_FLAG_REACQUIRED) != 0 && (fl & ORIENT_FLAG_SATURATED) == 0);
+        /* Bursts: dt = 0 refused by default, the same instant with the policy. */
+        s.dt = 0.0;
+        CHECK_STATUS(orient_filter_update(g, &s), ORIENT_STATUS_INVALID_DT);
+        CHECK_STATUS(orient_filter_set_param(g, ORIENT_PARAM_SAME_INSTANT, 1.0), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_update(g, &s), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_flags(g, &fl), ORIENT_STATUS_OK);
+        CHECK((fl & ORIENT_FLAG_SAME_INSTANT) != 0);
+        s.dt = 0.01;
+        CHECK_STATUS(orient_filter_update(g, &s), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_flags(g, &fl), ORIENT_STATUS_OK);
+        CHECK((fl & ORIENT_FLAG_SAME_INSTANT) == 0);
     }
     CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_filter_free(g), ORIENT_STATUS_OK);

@@ -143,7 +143,7 @@ public static class OrientTests
         Throws(Status.UnknownParam, () => settings[99u] = 1.0, "unknown slot");
         settings["beta_marg"] = 0.05;
         Check(settings[Consts.ParamMadgwickBetaMarg] == 0.05, "set by name, read by id");
-        Check(settings.Parameters.Count == 8, "parameter list");
+        Check(settings.Parameters.Count == 9, "parameter list");
         Check(settings.Gravity == 9.80665, "gravity default");
 
         foreach (Kind kind in new[] { Kind.Madgwick, Kind.Mahony, Kind.Complementary, Kind.Ekf, Kind.Gmvdk })
