@@ -375,7 +375,7 @@ impl MagCalibrator {
         }
         let shape = q / k; // (p - c)ᵀ shape (p - c) = 1
         let eig = shape.symmetric_eigen();
-        if eig.eigenvalues.iter().any(|l| !(*l > 0.0)) {
+        if eig.eigenvalues.iter().any(|l| l.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater)) {
             return None;
         }
         // Semi-axes 1/√λ (scaled units); the field is their geometric mean.
