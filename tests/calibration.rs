@@ -132,3 +132,48 @@ fn a_gyro_offset_from_a_still_period_removes_the_bias() {
     println!("yaw drift after 30 s: {without:.3} deg without the offset, {with:.3} deg with it");
     assert!(without > 10.0 && with < 0.1, "{without} {with}");
 }
+
+#[test]
+fn models_and_host_frames_survive_reset_and_snapshots() {
+    use orient::filters::calibration::Model;
+    let mut c = Config::new(Kind::Robust).unwrap();
+    c.init = orient::Init::Identity;
+    let mut f = Filter::new(&c).unwrap();
+    let gyro = Model { offset: Vec3::new(0.01, 0.0, -0.02), ..Model::IDENTITY };
+    let mag = Model {
+        matrix: [[1.1, 0.0, 0.0], [0.0, 0.9, 0.0], [0.0, 0.0, 1.0]],
+        offset: Vec3::new(3.0, -2.0, 1.0),
+    };
+    f.set_sensor_model(Sensor::Gyro, Some(gyro)).unwrap();
+    f.set_sensor_model(Sensor::Mag, Some(mag)).unwrap();
+    f.set_mounting(Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), 0.4)).unwrap();
+    f.set_declination(0.1).unwrap();
+    f.reset();
+    assert_eq!(f.sensor_model(Sensor::Gyro), Some(gyro));
+    assert_eq!(f.sensor_model(Sensor::Mag), Some(mag));
+    assert_eq!(f.sensor_model(Sensor::Accel), None);
+    assert_eq!(f.declination(), 0.1);
+    let s = Sample {
+        dt: 0.01,
+        gyro: Some(Vec3::new(0.1, 0.2, 0.3)),
+        accel: Some(Vec3::new(0.0, 0.5, 9.8)),
+        mag: Some(Vec3::new(20.0, 10.0, -40.0)),
+    };
+    f.update(&s).unwrap();
+    let mut blob = vec![0u8; f.state_size()];
+    f.save(&mut blob).unwrap();
+    let mut g = Filter::new(&Config::new(Kind::Robust).unwrap()).unwrap();
+    g.load(&blob).unwrap();
+    assert_eq!(g.sensor_model(Sensor::Mag), Some(mag));
+    assert_eq!(g.mounting(), f.mounting());
+    f.update(&s).unwrap();
+    g.update(&s).unwrap();
+    assert_eq!(f.quaternion(), g.quaternion());
+    // A singular matrix is refused and changes nothing.
+    let singular = Model { matrix: [[0.0; 3]; 3], offset: Vec3::ZERO };
+    assert_eq!(
+        f.set_sensor_model(Sensor::Accel, Some(singular)),
+        Err(orient::Error::ZeroVector(orient::Field::Accel))
+    );
+    assert_eq!(f.sensor_model(Sensor::Accel), None);
+}
