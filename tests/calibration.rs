@@ -177,3 +177,20 @@ fn models_and_host_frames_survive_reset_and_snapshots() {
     );
     assert_eq!(f.sensor_model(Sensor::Accel), None);
 }
+
+/// A blob of format version 2 (before issue 20's fields) is refused as another version.
+#[test]
+fn a_version_2_snapshot_is_refused_as_another_version() {
+    use orient::filters::state::{checksum, StateError, VERSION};
+    assert_eq!(VERSION, 3);
+    let mut f = Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap();
+    let before = f.clone();
+    let mut blob = vec![0u8; f.state_size()];
+    f.save(&mut blob).unwrap();
+    blob[4..6].copy_from_slice(&2u16.to_le_bytes());
+    let end = blob.len() - 8;
+    let sum = checksum(&blob[..end]);
+    blob[end..].copy_from_slice(&sum.to_le_bytes());
+    assert_eq!(f.load(&blob), Err(StateError::Version(2)));
+    assert_eq!(f, before);
+}
