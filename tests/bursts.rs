@@ -82,3 +82,32 @@ fn dt_zero_is_refused_by_default_and_a_burst_survives_a_snapshot() {
     g.update(&s).unwrap();
     assert_eq!(f.quaternion(), g.quaternion());
 }
+
+/// Four Madgwick filters updated as a group (the lane path) give what single updates
+/// give, also with dt = 0 and clipped samples under the issue-20 policies.
+#[test]
+fn group_updates_follow_the_policies_like_single_updates() {
+    let mut c = Config::new(Kind::Madgwick).unwrap();
+    c.set_param(id::SAME_INSTANT, 1.0).unwrap();
+    c.set_param(id::SATURATION_RECOVERY, 1.0).unwrap();
+    c.set_param(id::GYRO_RANGE, 1.0).unwrap();
+    let mut group: Vec<Filter> = (0..4).map(|_| Filter::new(&c).unwrap()).collect();
+    let mut single = group.clone();
+    for i in 0..40 {
+        let s = Sample {
+            dt: if i % 3 == 2 { 0.0 } else { 0.01 },
+            gyro: Some(Vec3::new(0.1 * i as f64, 0.2, -0.1)),
+            accel: Some(Vec3::new(0.3, 0.1, 9.7)),
+            mag: None,
+        };
+        let [a, b, c2, d] = &mut group[..] else { unreachable!() };
+        Filter::update_group(&mut [a, b, c2, d], [&s, &s, &s, &s]).unwrap();
+        for f in single.iter_mut() {
+            f.update(&s).unwrap();
+        }
+    }
+    for (g, s) in group.iter().zip(&single) {
+        assert_eq!(g.quaternion(), s.quaternion());
+        assert_eq!(g.flags(), s.flags());
+    }
+}

@@ -1135,7 +1135,10 @@ impl Filter {
         let with_mag = samples[0].mag.is_some();
         for (f, s) in filters.iter().zip(samples) {
             let eligible = matches!(f.core, Core::Madgwick(_))
-                && !f.models.any() // issue 20
+                // issue 20: models, clipping and bursts take the single path.
+                && !f.models.any()
+                && !f.limits.recover
+                && !f.limits.same_instant
                 && f.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED
                 && s.dt <= f.limits.gap
                 && s.accel.is_some()
