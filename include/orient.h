@@ -51,6 +51,21 @@
 typedef struct OrientFilter OrientFilter;
 
 /**
+ * orient_filter_set_sensor_model's `sensor`: the gyroscope.
+ */
+#define ORIENT_SENSOR_GYRO 0
+
+/**
+ * The accelerometer.
+ */
+#define ORIENT_SENSOR_ACCEL 1
+
+/**
+ * The magnetometer.
+ */
+#define ORIENT_SENSOR_MAG 2
+
+/**
  * Parameter slot (every kind): Gravity magnitude for the gravity and linear-acceleration
  * outputs; default: standard gravity 9.80665 (CGPM 1901).
  *
@@ -86,6 +101,30 @@ typedef struct OrientFilter OrientFilter;
  * Unit s; range 0 (off) or 0.001 to 1000000; default 0.25.
  */
 #define ORIENT_PARAM_GAP_DT 3
+
+/**
+ * Parameter slot (every kind): What a reading at or beyond gyro_range or accel_range
+ * does: 0 (default) rejects the sample as saturated; 1 uses it clipped (a gyroscope
+ * reading clipped just under the range, a saturated accelerometer reading left out),
+ * sets the SATURATED flag, and after gyroscope saturation re-acquires the orientation
+ * from the next unsaturated sample with an accelerometer reading (x-io Fusion's
+ * angular-rate recovery). The physical bounds stay errors.
+ *
+ * Unit 1; range 0 (off) or 1 to 1; default 0.
+ */
+#define ORIENT_PARAM_SATURATION_RECOVERY 4
+
+/**
+ * Parameter slot (every kind): What a sample with dt = 0 does (bursts of packets with
+ * one timestamp): 0 (default) rejects it as an invalid dt; 1 takes it as the same
+ * instant as the next sample with dt > 0: nothing is integrated then, its gyroscope
+ * reading is averaged with the following ones up to and including that sample, which
+ * integrates the average over its dt, so no rotation is lost (the SAME_INSTANT flag is
+ * set). Its accelerometer and magnetometer readings are not used.
+ *
+ * Unit 1; range 0 (off) or 1 to 1; default 0.
+ */
+#define ORIENT_PARAM_SAME_INSTANT 5
 
 /**
  * Parameter slot (madgwick): Gradient step beta for steps without magnetometer, eq.
@@ -593,6 +632,22 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_FLAG_REST 512
 
 /**
+ * `orient_filter_flags`: the last update had a reading at or beyond its configured range
+ * and used it clipped (ORIENT_PARAM_SATURATION_RECOVERY = 1): a gyroscope reading
+ * clipped just under the range, an accelerometer reading left out. After gyroscope
+ * saturation ORIENT_FLAG_REACQUIRE_PENDING is set too: the next unsaturated sample with
+ * an accelerometer reading re-acquires the orientation (ORIENT_FLAG_REACQUIRED).
+ */
+#define ORIENT_FLAG_SATURATED 1024
+
+/**
+ * `orient_filter_flags`: the last sample had dt = 0 and was taken as the same instant as
+ * the next sample with dt > 0 (ORIENT_PARAM_SAME_INSTANT = 1): nothing was integrated;
+ * its gyroscope reading is averaged into that sample's step.
+ */
+#define ORIENT_FLAG_SAME_INSTANT 2048
+
+/**
  * `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
  * smallest value that has it on.
  */
@@ -925,6 +980,61 @@ typedef struct OrientDiagnostics {
 } OrientDiagnostics;
 
 /**
+ * A sensor model: calibrated = matrix (raw - offset), `matrix` row-major. For the
+ * gyroscope and accelerometer the matrix is the misalignment times the sensitivity;
+ * for the magnetometer it is the soft-iron matrix and `offset` the hard-iron offset.
+ */
+typedef struct OrientSensorModel {
+  double matrix[9];
+  struct OrientVec3 offset;
+} OrientSensorModel;
+
+/**
+ * A magnetometer calibrator's state, owned by the host (on its stack or in its own
+ * struct): initialise it with orient_mag_calibrator_init, feed it readings with
+ * orient_mag_calibrator_add (no allocation, no samples kept), solve it with
+ * orient_mag_calibrator_solve. Its fields are the fit's sums; do not write them.
+ */
+typedef struct OrientMagCalibrator {
+  double sums[55];
+  double scale;
+  struct OrientVec3 mean;
+  uint64_t count;
+  uint64_t bins;
+} OrientMagCalibrator;
+
+/**
+ * What orient_mag_calibrator_solve found.
+ */
+typedef struct OrientMagFit {
+  /**
+   * calibrated = soft_iron (raw - hard_iron): pass to orient_filter_set_sensor_model
+   * with ORIENT_SENSOR_MAG.
+   */
+  struct OrientSensorModel model;
+  /**
+   * The field's magnitude after calibration (the readings' unit).
+   */
+  double field;
+  /**
+   * RMS of |calibrated| / field - 1 over the readings: 0.01 is 1 %.
+   */
+  double residual;
+  /**
+   * Fraction of 54 direction bins on the sphere that readings fell in (1: all), the
+   * directions taken from the readings' running mean: a sensor that sweeps the sphere
+   * in order (one latitude after another) gets less than it covered.
+   */
+  double coverage;
+  uint64_t samples;
+  /**
+   * 1 when coverage >= 0.5 and residual < 0.02 (the fit can be trusted), else 0.
+   */
+  int32_t trustworthy;
+  int32_t reserved;
+} OrientMagFit;
+
+/**
  * A filter configuration (1072 bytes). Fill it with orient_config_default(), then
  * change fields or parameters.
  *
@@ -1078,6 +1188,61 @@ OrientStatus orient_filter_update_arrays(OrientFilter *filter,
                                          uint32_t *flags,
                                          struct OrientDiagnostics *diagnostics,
                                          size_t *processed);
+
+/**
+ * Sets the model applied to one sensor's readings (ORIENT_SENSOR_*) before every
+ * update, in every kind; NULL clears it (the readings are used as they come). The raw
+ * reading is checked first (finite, within its range and physical bound), then the
+ * calibrated one. Kept by orient_filter_reset and saved in snapshots.
+ * INVALID_ARGUMENT for an unknown sensor, NON_FINITE for a NaN or infinite entry,
+ * ZERO_VECTOR for a singular matrix; nothing changes then.
+ */
+OrientStatus orient_filter_set_sensor_model(OrientFilter *filter,
+                                            uint32_t sensor,
+                                            const struct OrientSensorModel *model);
+
+/**
+ * The model set for `sensor`; NO_DATA when none is set.
+ */
+OrientStatus orient_filter_sensor_model(const OrientFilter *filter,
+                                        uint32_t sensor,
+                                        struct OrientSensorModel *model);
+
+/**
+ * Initialises a magnetometer calibrator: no readings yet.
+ */
+OrientStatus orient_mag_calibrator_init(struct OrientMagCalibrator *calibrator);
+
+/**
+ * Adds one magnetometer reading (any unit; raw, before any model). Rotate the sensor
+ * over as many directions as possible. NON_FINITE for a NaN or infinite reading,
+ * ZERO_VECTOR for a first reading of zero, INVALID_ARGUMENT for a struct that is not a
+ * calibrator's state; nothing changes then.
+ */
+OrientStatus orient_mag_calibrator_add(struct OrientMagCalibrator *calibrator,
+                                       const struct OrientVec3 *mag);
+
+/**
+ * Solves the ellipsoid fit of the readings so far (the calibrator is not changed, so
+ * it can be solved again after more readings). NO_DATA with fewer than 10 readings or
+ * when they do not determine an ellipsoid (all on a plane, say); check `trustworthy`
+ * (or coverage and residual) before using the model.
+ */
+OrientStatus orient_mag_calibrator_solve(const struct OrientMagCalibrator *calibrator,
+                                         struct OrientMagFit *fit);
+
+/**
+ * The gyroscope offset from `n` readings (rad/s) taken while the sensor was still: the
+ * model that removes their mean (identity matrix, offset = mean), for
+ * orient_filter_set_sensor_model with ORIENT_SENSOR_GYRO. `*spread` (when not NULL)
+ * receives the readings' RMS deviation from the mean (rad/s): the still period's
+ * noise; a much larger value says the sensor moved. INVALID_ARGUMENT for n = 0,
+ * NON_FINITE for a NaN or infinite reading.
+ */
+OrientStatus orient_gyro_offset(const struct OrientVec3 *readings,
+                                size_t n,
+                                struct OrientSensorModel *model,
+                                double *spread);
 
 /**
  * Fills `config` with the defaults of `kind` (one of ORIENT_KIND_*): ENU, initial
@@ -1251,6 +1416,98 @@ OrientStatus orient_filter_diagnostics(const OrientFilter *filter,
  * ORIENT_FLAG_* bits of the filter's state.
  */
 OrientStatus orient_filter_flags(const OrientFilter *filter, uint32_t *flags);
+
+/**
+ * Sets the mounting: the rotation from the sensor's frame to its body segment's
+ * (v_segment = m v_sensor; normalised). From then on orient_filter_quaternion,
+ * orient_filter_euler, orient_filter_rotation_matrix and
+ * orient_filter_linear_accel_earth give the segment's orientation (sensor orientation
+ * times the mounting's inverse); orient_filter_gravity and orient_filter_linear_accel
+ * stay in the sensor's frame. Kept by orient_filter_reset and saved in snapshots.
+ * NON_FINITE, ZERO_VECTOR or TOO_LARGE for an unusable quaternion.
+ */
+OrientStatus orient_filter_set_mounting(OrientFilter *filter,
+                                        const struct OrientQuaternion *mounting);
+
+/**
+ * The mounting (sensor to segment): the identity unless set. Its inverse (w, -x, -y,
+ * -z) takes the segment's frame to the sensor's.
+ */
+OrientStatus orient_filter_mounting(const OrientFilter *filter, struct OrientQuaternion *mounting);
+
+/**
+ * The sensor's own orientation (sensor to earth), with the heading offset and the
+ * declination applied but not the mounting; with the identity mounting it equals
+ * orient_filter_quaternion. Identity before initialisation.
+ */
+OrientStatus orient_filter_sensor_quaternion(const OrientFilter *filter,
+                                             struct OrientQuaternion *q);
+
+/**
+ * Turns the outputs about the vertical so that the yaw of orient_filter_euler becomes
+ * `yaw` (radians, wrapped to (-pi, pi]); inclination and mounting are kept and the
+ * filter's own estimate is untouched, so a magnetometer does not undo it. The offset
+ * is kept by orient_filter_reset and saved in snapshots. NOT_INITIALIZED before the
+ * filter has an orientation, NON_FINITE for a NaN or infinite `yaw`.
+ */
+OrientStatus orient_filter_set_heading(OrientFilter *filter, double yaw);
+
+/**
+ * orient_filter_set_heading(filter, 0): the yaw becomes 0, the inclination is kept.
+ */
+OrientStatus orient_filter_reset_heading(OrientFilter *filter);
+
+/**
+ * The heading offset (radians, in (-pi, pi]) set by orient_filter_set_heading and the
+ * rig calls; 0 unless set.
+ */
+OrientStatus orient_filter_heading_offset(const OrientFilter *filter, double *offset);
+
+/**
+ * Sets the magnetic declination (radians, east positive, within [-pi, pi]), the angle
+ * from true north to magnetic north: the outputs' heading is turned by it, so that a
+ * heading from the magnetometer reads against true north (the NED yaw grows by it, the
+ * ENU and NWU yaws shrink by it). Kept by orient_filter_reset and saved in snapshots.
+ * NON_FINITE for NaN or infinity, TOO_LARGE beyond pi.
+ */
+OrientStatus orient_filter_set_declination(OrientFilter *filter, double declination);
+
+/**
+ * The magnetic declination (radians); 0 unless set.
+ */
+OrientStatus orient_filter_declination(const OrientFilter *filter, double *declination);
+
+/**
+ * Rig calibration from a reference posture. While the rig's segments hold known
+ * orientations (an N-pose, a T-pose, a hand flat on a table), `references[i]` is the
+ * orientation of `filters[i]`'s segment (segment to the posture's frame). The call
+ * sets every filter's heading offset to one common value and its mounting so that
+ * each filter reads its reference exactly, and its segment's orientation afterwards.
+ * `heading` is the yaw (radians, about the frame's z axis) of the posture's frame in
+ * the filters' earth frame (the way the subject faces); the outputs are then in the
+ * posture's frame. A NaN `heading` estimates it: the yaw that brings the sensors'
+ * headings nearest their segments' on average, exact when the mountings have no
+ * heading part on average. The filters must share one earth frame (a magnetometer,
+ * or headings aligned before); declinations are kept. Every handle and reference is
+ * checked before anything changes: INVALID_ARGUMENT for n = 0 or a handle listed
+ * twice, NOT_INITIALIZED, NON_FINITE or ZERO_VECTOR (the detail names the index), and
+ * NON_FINITE for an infinite `heading`.
+ */
+OrientStatus orient_rig_calibrate(OrientFilter *const *filters,
+                                  const struct OrientQuaternion *references,
+                                  size_t n,
+                                  double heading);
+
+/**
+ * Rig heading alignment: while the segments hold `references[i]` (as for
+ * orient_rig_calibrate), turns each filter's heading offset so that its segment's
+ * heading is its reference's; mountings and inclinations are kept. For rigs whose
+ * mountings are known or were calibrated before, and whose headings drifted apart
+ * (IMU-only filters, a restart). Errors and checks as orient_rig_calibrate.
+ */
+OrientStatus orient_rig_align_heading(OrientFilter *const *filters,
+                                      const struct OrientQuaternion *references,
+                                      size_t n);
 
 /**
  * Size in bytes of this filter's state blob (orient_filter_save); constant per kind.

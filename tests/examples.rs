@@ -52,6 +52,40 @@ fn cpp_example_runs_every_filter_side_by_side() {
     }
 }
 
+/// Issue 20: four sensors at different mountings on one segment, calibrated from a
+/// posture, agree on the segment afterwards.
+#[test]
+fn cpp_rig_calibration_example_finds_the_mountings() {
+    let dir = out_dir("example_cpp_rig");
+    let exe = dir.join("rig_calibration");
+    let mut cmd = compiler(true);
+    cmd.args(["-std=c++17", "-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .arg("-I")
+        .arg(root().join("bindings/cpp"))
+        .arg(root().join("examples/cpp/rig_calibration.cpp"))
+        .arg("-o")
+        .arg(&exe);
+    link_shared(&mut cmd, &dir);
+    check(cmd, "compiling rig_calibration.cpp");
+    let out = stdout_of(run(&exe, &[EXCERPT]), "rig_calibration");
+    println!("{out}");
+    assert!(out.contains("calibrated at t = 2.0"), "{out}");
+    let worst: f64 = out
+        .lines()
+        .find_map(|l| {
+            l.strip_prefix("13500 samples; after calibration the sensors disagree on the segment by at most ")
+        })
+        .and_then(|l| l.trim_end_matches(" deg").parse().ok())
+        .unwrap_or_else(|| panic!("{out}"));
+    assert!(worst < 1.0, "{out}");
+    for k in 0..4 {
+        let line =
+            out.lines().find(|l| l.starts_with(&format!("sensor {k}: "))).unwrap_or_else(|| panic!("{out}"));
+        let err: f64 = line.rsplit("error ").next().unwrap().trim_end_matches(" deg").parse().unwrap();
+        assert!(err < 0.5, "{line}");
+    }
+}
+
 #[test]
 fn csharp_console_example_runs_under_mono() {
     if cross() {

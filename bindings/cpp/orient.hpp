@@ -22,6 +22,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -275,6 +276,56 @@ public:
     OrientStatus load(const uint8_t* buffer, std::size_t size) noexcept { return orient_filter_load(h_, buffer, size); }
     OrientStatus set_quaternion(const OrientQuaternion& q) noexcept { return orient_filter_set_quaternion(h_, &q); }
 
+    // Sensor calibration (issue 20): models applied to the readings before every update.
+    /// ORIENT_SENSOR_GYRO / _ACCEL / _MAG; calibrated = matrix (raw - offset).
+    OrientStatus set_sensor_model(uint32_t sensor, const OrientSensorModel& m) noexcept {
+        return orient_filter_set_sensor_model(h_, sensor, &m);
+    }
+    /// Clears the sensor's model: its readings are used as they come.
+    OrientStatus clear_sensor_model(uint32_t sensor) noexcept {
+        return orient_filter_set_sensor_model(h_, sensor, nullptr);
+    }
+    /// The sensor's model; std::nullopt when none is set (or the call fails).
+    std::optional<OrientSensorModel> sensor_model(uint32_t sensor) const noexcept {
+        OrientSensorModel m{};
+        if (orient_filter_sensor_model(h_, sensor, &m) != ORIENT_STATUS_OK) return std::nullopt;
+        return m;
+    }
+
+    // Mounting and heading (issue 20): outputs are the segment's orientation.
+    /// Sensor-to-segment rotation (v_segment = m v_sensor); kept by reset(), saved in snapshots.
+    OrientStatus set_mounting(const OrientQuaternion& m) noexcept { return orient_filter_set_mounting(h_, &m); }
+    /// The mounting; identity unless set (or when the call fails). Its conjugate maps segment to sensor.
+    OrientQuaternion mounting() const noexcept {
+        OrientQuaternion m{1.0, 0.0, 0.0, 0.0};
+        orient_filter_mounting(h_, &m);
+        return m;
+    }
+    /// The sensor's own orientation: heading offset and declination applied, mounting not.
+    OrientQuaternion sensor_quaternion() const noexcept {
+        OrientQuaternion q{1.0, 0.0, 0.0, 0.0};
+        orient_filter_sensor_quaternion(h_, &q);
+        return q;
+    }
+    /// Turns the outputs about the vertical so that the Euler yaw becomes `yaw` (rad).
+    OrientStatus set_heading(double yaw) noexcept { return orient_filter_set_heading(h_, yaw); }
+    /// set_heading(0): yaw 0, inclination kept.
+    OrientStatus reset_heading() noexcept { return orient_filter_reset_heading(h_); }
+    /// The heading offset (rad) set by set_heading() and the rig calls; 0 when the call fails.
+    double heading_offset() const noexcept {
+        double v = 0.0;
+        orient_filter_heading_offset(h_, &v);
+        return v;
+    }
+    /// Magnetic declination (rad, east positive, within [-pi, pi]).
+    OrientStatus set_declination(double declination) noexcept { return orient_filter_set_declination(h_, declination); }
+    /// The declination (rad); 0 when the call fails.
+    double declination() const noexcept {
+        double v = 0.0;
+        orient_filter_declination(h_, &v);
+        return v;
+    }
+
 private:
     void reset_handle() noexcept {
         if (h_) orient_filter_free(h_);
@@ -301,6 +352,54 @@ inline OrientStatus smooth(const Config& config, std::size_t n, const double* dt
                            const double* gyro, const double* accel, const double* mag, OrientQuaternion* out,
                            std::size_t* processed = nullptr) noexcept {
     return orient_smooth_arrays(&config.raw(), n, dt, dt_count, gyro, accel, mag, out, processed);
+}
+
+/// A magnetometer calibrator (ellipsoid fit over the readings; no allocation per reading).
+class MagCalibrator {
+public:
+    MagCalibrator() noexcept { orient_mag_calibrator_init(&state_); }
+    OrientStatus add(const OrientVec3& mag) noexcept { return orient_mag_calibrator_add(&state_, &mag); }
+    /// The fit; std::nullopt while the readings do not determine an ellipsoid.
+    std::optional<OrientMagFit> solve() const noexcept {
+        OrientMagFit fit{};
+        if (orient_mag_calibrator_solve(&state_, &fit) != ORIENT_STATUS_OK) return std::nullopt;
+        return fit;
+    }
+
+private:
+    OrientMagCalibrator state_{};
+};
+
+/// The gyroscope offset model from readings taken while still (any contiguous container
+/// of OrientVec3); `spread` (when given) receives their RMS deviation (rad/s).
+template <class Readings>
+OrientStatus gyro_offset(const Readings& still, OrientSensorModel& model, double* spread = nullptr) noexcept {
+    return orient_gyro_offset(std::data(still), std::size(still), &model, spread);
+}
+
+/// Rig calibration from a reference posture (orient_rig_calibrate): `handles[i]` (from
+/// Filter::native()) reads `references[i]` afterwards and its segment's orientation from
+/// then on. `heading` is the posture frame's yaw in the filters' earth frame (rad); leave
+/// it out (NaN) to estimate it from the rig.
+inline OrientStatus calibrate_rig(OrientFilter* const* handles, const OrientQuaternion* references, std::size_t n,
+                                  double heading = std::numeric_limits<double>::quiet_NaN()) noexcept {
+    return orient_rig_calibrate(handles, references, n, heading);
+}
+
+/// Containers of handles and of references (std::array, std::vector, C arrays); INVALID_ARGUMENT
+/// when their sizes differ.
+template <class Handles, class References>
+OrientStatus calibrate_rig(const Handles& handles, const References& references,
+                           double heading = std::numeric_limits<double>::quiet_NaN()) noexcept {
+    if (std::size(handles) != std::size(references)) return ORIENT_STATUS_INVALID_ARGUMENT;
+    return orient_rig_calibrate(std::data(handles), std::data(references), std::size(handles), heading);
+}
+
+/// Heading-only rig alignment (orient_rig_align_heading): mountings kept.
+template <class Handles, class References>
+OrientStatus align_rig_heading(const Handles& handles, const References& references) noexcept {
+    if (std::size(handles) != std::size(references)) return ORIENT_STATUS_INVALID_ARGUMENT;
+    return orient_rig_align_heading(std::data(handles), std::data(references), std::size(handles));
 }
 
 }  // namespace orient

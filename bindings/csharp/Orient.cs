@@ -402,6 +402,115 @@ namespace Orient
             }
         }
 
+        // ---- sensor calibration (issue 20) ----
+
+        /// <summary>Sets the model applied to one sensor's readings (Consts.SensorGyro,
+        /// SensorAccel, SensorMag) before every update; null clears it.</summary>
+        public unsafe void SetSensorModel(uint sensor, SensorModel? model)
+        {
+            Status s;
+            if (model.HasValue)
+            {
+                SensorModel m = model.Value;
+                s = NativeMethods.orient_filter_set_sensor_model(H, sensor, &m);
+            }
+            else
+            {
+                s = NativeMethods.orient_filter_set_sensor_model(H, sensor, null);
+            }
+            GC.KeepAlive(this);
+            OrientException.Check(s);
+        }
+
+        /// <summary>The model set for the sensor, or null when none is set.</summary>
+        public SensorModel? GetSensorModel(uint sensor)
+        {
+            SensorModel m;
+            Status s = NativeMethods.orient_filter_sensor_model(H, sensor, &m);
+            GC.KeepAlive(this);
+            if (s == Status.NoData) return null;
+            OrientException.Check(s);
+            return m;
+        }
+
+        // ---- mounting and heading (issue 20) ----
+
+        /// <summary>Sensor-to-segment rotation (v_segment = m v_sensor): Quaternion, Euler
+        /// and the rotation matrix become the segment's. Identity unless set; kept by Reset
+        /// and saved in snapshots. Its conjugate maps the segment's frame to the sensor's.</summary>
+        public Native.Quaternion Mounting
+        {
+            get
+            {
+                Native.Quaternion q;
+                OrientException.Check(NativeMethods.orient_filter_mounting(H, &q));
+                GC.KeepAlive(this);
+                return q;
+            }
+            set
+            {
+                OrientException.Check(NativeMethods.orient_filter_set_mounting(H, &value));
+                GC.KeepAlive(this);
+            }
+        }
+
+        /// <summary>The sensor's own orientation: heading offset and declination applied,
+        /// the mounting not.</summary>
+        public Native.Quaternion SensorQuaternion
+        {
+            get
+            {
+                Native.Quaternion q;
+                OrientException.Check(NativeMethods.orient_filter_sensor_quaternion(H, &q));
+                GC.KeepAlive(this);
+                return q;
+            }
+        }
+
+        /// <summary>Turns the outputs about the vertical so that Euler.Yaw becomes yaw
+        /// (radians); inclination and mounting kept. Throws before initialisation.</summary>
+        public void SetHeading(double yaw)
+        {
+            OrientException.Check(NativeMethods.orient_filter_set_heading(H, yaw));
+            GC.KeepAlive(this);
+        }
+
+        /// <summary>SetHeading(0): yaw 0, inclination kept.</summary>
+        public void ResetHeading()
+        {
+            OrientException.Check(NativeMethods.orient_filter_reset_heading(H));
+            GC.KeepAlive(this);
+        }
+
+        /// <summary>The heading offset (radians) kept by SetHeading and the rig calls.</summary>
+        public double HeadingOffset
+        {
+            get
+            {
+                double v;
+                OrientException.Check(NativeMethods.orient_filter_heading_offset(H, &v));
+                GC.KeepAlive(this);
+                return v;
+            }
+        }
+
+        /// <summary>Magnetic declination (radians, east positive, within [-pi, pi]).</summary>
+        public double Declination
+        {
+            get
+            {
+                double v;
+                OrientException.Check(NativeMethods.orient_filter_declination(H, &v));
+                GC.KeepAlive(this);
+                return v;
+            }
+            set
+            {
+                OrientException.Check(NativeMethods.orient_filter_set_declination(H, value));
+                GC.KeepAlive(this);
+            }
+        }
+
         public Euler Euler
         {
             get
@@ -657,6 +766,62 @@ namespace Orient
     }
 
     /// <summary>
+    /// A magnetometer calibrator (ellipsoid fit): Add readings while rotating the sensor
+    /// over the sphere (no allocation per reading), then Solve; use the model when the
+    /// fit is Trustworthy.
+    /// </summary>
+    public sealed class MagCalibration
+    {
+        private Native.MagCalibrator state;
+
+        public unsafe MagCalibration()
+        {
+            fixed (Native.MagCalibrator* p = &state)
+            {
+                OrientException.Check(NativeMethods.orient_mag_calibrator_init(p));
+            }
+        }
+
+        public unsafe void Add(Vec3 mag)
+        {
+            fixed (Native.MagCalibrator* p = &state)
+            {
+                OrientException.Check(NativeMethods.orient_mag_calibrator_add(p, &mag));
+            }
+        }
+
+        /// <summary>The fit, or null while the readings do not determine an ellipsoid.</summary>
+        public unsafe MagFit? Solve()
+        {
+            MagFit fit;
+            Status s;
+            fixed (Native.MagCalibrator* p = &state)
+            {
+                s = NativeMethods.orient_mag_calibrator_solve(p, &fit);
+            }
+            if (s == Status.NoData) return null;
+            OrientException.Check(s);
+            return fit;
+        }
+
+        /// <summary>The gyroscope offset model from readings taken while still, and their spread (rad/s).</summary>
+        public static unsafe SensorModel GyroOffset(Vec3[] still, out double spread)
+        {
+            if (still == null) throw new ArgumentNullException("still");
+            SensorModel m;
+            double sp = 0;
+            Status s;
+            fixed (Vec3* p = still)
+            {
+                s = NativeMethods.orient_gyro_offset(p, (UIntPtr)still.Length, &m, &sp);
+            }
+            OrientException.Check(s);
+            spread = sp;
+            return m;
+        }
+    }
+
+    /// <summary>
     /// Filters updated together, one sample each, in one native call per frame: the bones
     /// of a hand, the segments of a body. The filters may be of any kinds; the rig does not
     /// own them (dispose them yourself). Update allocates nothing.
@@ -715,6 +880,45 @@ namespace Orient
                 {
                     s = NativeMethods.orient_filters_update(ph, ps, (UIntPtr)filters.Length, null, null);
                 }
+            }
+            GC.KeepAlive(filters);
+            OrientException.Check(s);
+        }
+
+        /// <summary>
+        /// Rig calibration while the segments hold a reference posture (N-pose, T-pose, a
+        /// hand flat on a table): references[i] is filter i's segment orientation. Sets a
+        /// common heading offset and every mounting so that each filter reads its
+        /// reference now and its segment afterwards. heading is the posture frame's yaw in
+        /// the filters' earth frame (radians); NaN (the default) estimates it.
+        /// </summary>
+        public void Calibrate(Native.Quaternion[] references, double heading = double.NaN)
+        {
+            RigCall(references, heading, false);
+        }
+
+        /// <summary>Heading-only alignment to the reference posture: mountings kept.</summary>
+        public void AlignHeading(Native.Quaternion[] references)
+        {
+            RigCall(references, double.NaN, true);
+        }
+
+        private unsafe void RigCall(Native.Quaternion[] references, double heading, bool headingOnly)
+        {
+            if (references == null) throw new ArgumentNullException("references");
+            if (references.Length != filters.Length)
+                throw new ArgumentException("one reference per filter", "references");
+            for (int i = 0; i < filters.Length; i++)
+            {
+                handles[i] = filters[i].NativeHandle;
+            }
+            Status s;
+            fixed (IntPtr* ph = handles)
+            fixed (Native.Quaternion* pr = references)
+            {
+                s = headingOnly
+                    ? NativeMethods.orient_rig_align_heading(ph, pr, (UIntPtr)filters.Length)
+                    : NativeMethods.orient_rig_calibrate(ph, pr, (UIntPtr)filters.Length, heading);
             }
             GC.KeepAlive(filters);
             OrientException.Check(s);

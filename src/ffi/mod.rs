@@ -15,6 +15,7 @@
 #![allow(clippy::missing_safety_doc)]
 
 mod arrays;
+mod calib; // issue 20
 mod config;
 mod convert;
 mod error;
@@ -24,12 +25,14 @@ mod offline;
 mod outputs;
 mod param_ids;
 mod registry;
+mod rig; // issue 20
 mod snapshot;
 mod strings;
 mod types;
 mod update;
 
 pub use arrays::*;
+pub use calib::*; // issue 20
 pub use config::*;
 pub(crate) use convert::*;
 pub use handles::*;
@@ -37,6 +40,7 @@ pub use info::*;
 pub use offline::*;
 pub use outputs::*;
 pub use param_ids::*;
+pub use rig::*; // issue 20
 pub use snapshot::*;
 pub use types::*;
 pub use update::*;
@@ -145,6 +149,10 @@ mod tests {
         assert_eq!(ORIENT_FLAG_REACQUIRED, flags::REACQUIRED);
         assert_eq!(ORIENT_FLAG_REACQUIRE_PENDING, flags::REACQUIRE_PENDING);
         assert_eq!(ORIENT_PARAM_GAP_DT, params::id::GAP_DT);
+        assert_eq!(ORIENT_PARAM_SATURATION_RECOVERY, params::id::SATURATION_RECOVERY);
+        assert_eq!(ORIENT_FLAG_SATURATED, flags::SATURATED);
+        assert_eq!(ORIENT_FLAG_SAME_INSTANT, flags::SAME_INSTANT);
+        assert_eq!(ORIENT_PARAM_SAME_INSTANT, params::id::SAME_INSTANT);
         assert_eq!(core::mem::size_of::<OrientSample>(), 88);
         assert_eq!(core::mem::size_of::<OrientConfig>(), 1072);
         use crate::filters::diag;
@@ -212,10 +220,10 @@ mod tests {
             assert_eq!(c, r);
         }
         // Every parameter of every kind has its ORIENT_PARAM_* constant above (the
-        // common four and Madgwick's two are checked first).
+        // common six and Madgwick's two are checked first).
         let all: std::collections::BTreeSet<u32> =
             Kind::ALL.iter().flat_map(|k| k.params().map(|p| p.id)).collect();
-        assert_eq!(all.len(), slots.len() + 6);
+        assert_eq!(all.len(), slots.len() + 8);
     }
 
     #[test]
@@ -441,7 +449,7 @@ mod tests {
             let k = OrientKind::Madgwick as i32;
             let mut n = 0;
             assert_eq!(orient_param_count(k, &mut n), OrientStatus::Ok);
-            assert_eq!(n, 7);
+            assert_eq!(n, 9);
             let mut info = core::mem::MaybeUninit::<OrientParamInfo>::uninit();
             for i in 0..n {
                 assert_eq!(orient_param_info(k, i, info.as_mut_ptr()), OrientStatus::Ok);

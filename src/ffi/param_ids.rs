@@ -31,6 +31,26 @@ pub const ORIENT_PARAM_ACCEL_RANGE: u32 = 2;
 /// Unit s; range 0 (off) or 0.001 to 1000000; default 0.25.
 pub const ORIENT_PARAM_GAP_DT: u32 = 3;
 
+/// Parameter slot (every kind): What a reading at or beyond gyro_range or accel_range
+/// does: 0 (default) rejects the sample as saturated; 1 uses it clipped (a gyroscope
+/// reading clipped just under the range, a saturated accelerometer reading left out),
+/// sets the SATURATED flag, and after gyroscope saturation re-acquires the orientation
+/// from the next unsaturated sample with an accelerometer reading (x-io Fusion's
+/// angular-rate recovery). The physical bounds stay errors.
+///
+/// Unit 1; range 0 (off) or 1 to 1; default 0.
+pub const ORIENT_PARAM_SATURATION_RECOVERY: u32 = 4;
+
+/// Parameter slot (every kind): What a sample with dt = 0 does (bursts of packets with
+/// one timestamp): 0 (default) rejects it as an invalid dt; 1 takes it as the same
+/// instant as the next sample with dt > 0: nothing is integrated then, its gyroscope
+/// reading is averaged with the following ones up to and including that sample, which
+/// integrates the average over its dt, so no rotation is lost (the SAME_INSTANT flag is
+/// set). Its accelerometer and magnetometer readings are not used.
+///
+/// Unit 1; range 0 (off) or 1 to 1; default 0.
+pub const ORIENT_PARAM_SAME_INSTANT: u32 = 5;
+
 /// Parameter slot (madgwick): Gradient step beta for steps without magnetometer, eq.
 /// (30); default 0.041 (Madgwick 2010, section V, optimum of the IMU implementation).
 /// beta = sqrt(3/4) * max gyro error, eq. (33).

@@ -56,6 +56,16 @@ pub const ORIENT_FLAG_MAG_DISTURBED: u32 = 256;
 /// robust kind's rest detection; the EKF, Madgwick and Mahony with their rest options on,
 /// rest_rate_std and rest_bias_tau; GMVDK never sets it).
 pub const ORIENT_FLAG_REST: u32 = 512;
+/// `orient_filter_flags`: the last update had a reading at or beyond its configured range
+/// and used it clipped (ORIENT_PARAM_SATURATION_RECOVERY = 1): a gyroscope reading
+/// clipped just under the range, an accelerometer reading left out. After gyroscope
+/// saturation ORIENT_FLAG_REACQUIRE_PENDING is set too: the next unsaturated sample with
+/// an accelerometer reading re-acquires the orientation (ORIENT_FLAG_REACQUIRED).
+pub const ORIENT_FLAG_SATURATED: u32 = 1024;
+/// `orient_filter_flags`: the last sample had dt = 0 and was taken as the same instant as
+/// the next sample with dt > 0 (ORIENT_PARAM_SAME_INSTANT = 1): nothing was integrated;
+/// its gyroscope reading is averaged into that sample's step.
+pub const ORIENT_FLAG_SAME_INSTANT: u32 = 2048;
 
 /// `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
 /// smallest value that has it on.

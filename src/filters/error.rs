@@ -10,6 +10,8 @@ pub enum Field {
     Accel,
     Mag,
     Quaternion,
+    /// An angle argument (heading, declination).
+    Angle,
 }
 
 impl Field {
@@ -20,6 +22,7 @@ impl Field {
             Field::Accel => "accelerometer",
             Field::Mag => "magnetometer",
             Field::Quaternion => "quaternion",
+            Field::Angle => "angle",
         }
     }
 }

@@ -295,10 +295,40 @@ impl Filter {
         each!(&self.0, r => r.flags())
     }
 
-    /// The orientation in the configured frame (identity before initialisation).
+    /// The orientation in the configured frame (identity before initialisation): the
+    /// segment's when a mounting is set, with the heading offset and declination applied
+    /// (see [`Filter::set_mounting`], [`Filter::set_heading`], [`Filter::set_declination`]).
     #[inline]
     pub fn quaternion(&self) -> Quat {
+        each!(&self.0, r => r.output())
+    }
+
+    /// The sensor's orientation as the kind estimates it, in the configured frame (no
+    /// mounting, heading offset or declination).
+    pub(crate) fn frame_quaternion(&self) -> Quat {
         each!(&self.0, r => r.quaternion())
+    }
+
+    /// The configured earth frame.
+    pub fn frame(&self) -> crate::math::Frame {
+        each!(&self.0, r => r.frame())
+    }
+
+    pub(crate) fn host(&self) -> super::host::Host {
+        each!(&self.0, r => r.host())
+    }
+
+    /// The host's frames, made when first set (not in an update).
+    pub(crate) fn host_mut(&mut self) -> &mut super::host::Host {
+        each!(&mut self.0, r => &mut r.extras_mut().host)
+    }
+
+    pub(crate) fn models(&self) -> super::calibration::Models {
+        each!(&self.0, r => r.models())
+    }
+
+    pub(crate) fn models_mut(&mut self) -> &mut super::calibration::Models {
+        each!(&mut self.0, r => &mut r.extras_mut().models)
     }
 
     /// Euler angles (Z-Y'-X'': yaw, pitch, roll) of [`Filter::quaternion`], radians.
@@ -315,7 +345,7 @@ impl Filter {
     /// reaction (pointing up) in the sensor frame, m/s², magnitude `gravity`.
     pub fn gravity(&self) -> Vec3 {
         let (frame, g) = each!(&self.0, r => (r.frame(), r.gravity_magnitude()));
-        let up = self.quaternion().rotate_inverse(frame.up());
+        let up = self.frame_quaternion().rotate_inverse(frame.up());
         up * g
     }
 
@@ -327,6 +357,6 @@ impl Filter {
 
     /// [`Filter::linear_accel`] rotated into the earth frame.
     pub fn linear_accel_earth(&self) -> Option<Vec3> {
-        self.linear_accel().map(|a| self.quaternion().rotate(a))
+        self.linear_accel().map(|a| self.host().earth(self.frame_quaternion().rotate(a)))
     }
 }

@@ -34,6 +34,16 @@ pub const MAG_DISTURBED: u32 = 256;
 /// detection; the EKF, Madgwick and Mahony with their rest options on). Read from the
 /// state, not stored.
 pub const REST: u32 = 512;
+/// The last accepted update had a reading at or beyond its configured range, used
+/// clipped (`saturation_recovery` = 1): a gyroscope reading clipped just under the
+/// range, an accelerometer reading left out. After gyroscope saturation
+/// [`REACQUIRE_PENDING`] is set: the next unsaturated sample with an accelerometer
+/// reading re-acquires the orientation.
+pub const SATURATED: u32 = 1024;
+/// The last accepted sample had dt = 0 and was taken as the same instant as the next
+/// sample with dt > 0 (`same_instant` = 1): nothing was integrated, its gyroscope
+/// reading waits to be averaged into that sample's step.
+pub const SAME_INSTANT: u32 = 2048;
 /// The bits an update stores (the others are read from the state).
 pub(crate) const STORED: u32 = INITIALIZED
     | ACCEL_USED
@@ -42,6 +52,8 @@ pub(crate) const STORED: u32 = INITIALIZED
     | REACQUIRED
     | REACQUIRE_PENDING
     | ACCEL_REJECTED
-    | MAG_REJECTED;
+    | MAG_REJECTED
+    | SATURATED
+    | SAME_INSTANT;
 /// Every bit above.
 pub const ALL: u32 = STORED | MAG_DISTURBED | REST;

@@ -10,6 +10,7 @@
 
 #![forbid(unsafe_code)]
 
+pub mod calibration;
 pub mod complementary;
 pub mod ekf;
 pub mod gmvdk;
@@ -28,18 +29,22 @@ pub(crate) mod estimator;
 mod filter;
 pub mod flags;
 pub(crate) mod holds;
+mod host;
 mod kind;
 pub(crate) mod runner;
 mod sample;
+mod saturation;
 
 pub use config::{Config, Init};
 pub use diagnostics::{diag, Diagnostics};
 pub use error::{Error, Field};
+pub(crate) use estimator::twist_about;
 pub(crate) use estimator::Reacquisition;
 pub use estimator::Step;
 pub use filter::Filter;
+pub use host::RigHeading;
 pub use kind::Kind;
-pub(crate) use sample::SampleView;
+pub(crate) use sample::{check_quaternion, SampleView};
 pub use sample::{Sample, MAX_ACCEL, MAX_DT, MAX_GYRO, MAX_MAG, MIN_DT};
 
 #[cfg(test)]

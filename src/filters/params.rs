@@ -19,6 +19,11 @@ pub mod id {
     pub const ACCEL_RANGE: u32 = 2;
     /// The longest dt taken as given; a larger one is a gap, re-acquired (see `GAP` flag).
     pub const GAP_DT: u32 = 3;
+    /// Saturation policy (issue 20): 0 rejects a saturated sample, 1 uses it clipped and
+    /// recovers.
+    pub const SATURATION_RECOVERY: u32 = 4;
+    /// Burst policy for dt = 0 (issue 20): 0 rejects it, 1 takes it as the same instant.
+    pub const SAME_INSTANT: u32 = 5;
 
     // Each kind's slots, defined beside its settings (the `settings!` tables).
     pub use crate::filters::complementary::id::*;
@@ -71,7 +76,7 @@ impl ParamSpec {
 }
 
 /// The settings every kind has.
-pub const COMMON: [ParamSpec; 4] = [
+pub const COMMON: [ParamSpec; 6] = [
     ParamSpec {
         id: id::GRAVITY,
         name: "gravity",
@@ -117,6 +122,36 @@ pub const COMMON: [ParamSpec; 4] = [
         default: 0.25,
         min: 1e-3,
         max: 1e6,
+        zero_off: true,
+    },
+    ParamSpec {
+        id: id::SATURATION_RECOVERY,
+        name: "saturation_recovery",
+        unit: "1",
+        doc: "What a reading at or beyond gyro_range or accel_range does: 0 (default) rejects the \
+              sample as saturated; 1 uses it clipped (a gyroscope reading clipped just under \
+              the range, a saturated accelerometer reading left out), sets the SATURATED flag, \
+              and after gyroscope saturation re-acquires the orientation from the next \
+              unsaturated sample with an accelerometer reading (x-io Fusion's angular-rate \
+              recovery). The physical bounds stay errors.",
+        default: 0.0,
+        min: 1.0,
+        max: 1.0,
+        zero_off: true,
+    },
+    ParamSpec {
+        id: id::SAME_INSTANT,
+        name: "same_instant",
+        unit: "1",
+        doc: "What a sample with dt = 0 does (bursts of packets with one timestamp): 0 \
+              (default) rejects it as an invalid dt; 1 takes it as the same instant as the \
+              next sample with dt > 0: nothing is integrated then, its gyroscope reading is \
+              averaged with the following ones up to and including that sample, which \
+              integrates the average over its dt, so no rotation is lost (the SAME_INSTANT \
+              flag is set). Its accelerometer and magnetometer readings are not used.",
+        default: 0.0,
+        min: 1.0,
+        max: 1.0,
         zero_off: true,
     },
 ];

@@ -4,7 +4,9 @@
 //! paper: the checks, the start from the first sample, gaps, frames, flags, snapshots and
 //! the outputs. [`super::Filter`] holds one `Runner` of its kind.
 
+use super::calibration::{self, Models};
 use super::estimator::{twist_about, Estimator, Reacquisition, Step};
+use super::host::Host;
 use super::params::{id, Settings, MAX_PARAMS};
 use super::sample::{check_quaternion, check_vector, SampleView};
 use super::state::{self, Codec, Reader, StateError, Writer};
@@ -71,7 +73,7 @@ pub(crate) struct Runner<E: Estimator> {
     frame: Frame,
     /// `last_accel` holds a reading.
     has_accel: bool,
-    common: Common,
+    pub(crate) common: Common,
     /// Which sensor ranges are set (see [`Common::from_slots`]).
     ranges_set: u8,
     /// GMVDK's relative output is on: no frame rotation applies.
@@ -81,6 +83,38 @@ pub(crate) struct Runner<E: Estimator> {
     /// boxed, since few filters have one.
     given: Option<Box<Quat>>,
     identity_init: bool,
+    /// `saturation_recovery`: readings beyond the ranges are clipped and recovered from.
+    pub(crate) recover: bool,
+    /// `same_instant`: dt = 0 is the same instant as the next step.
+    pub(crate) same_instant: bool,
+    /// The host's frames, sensor models and burst readings (issue 20), boxed and made
+    /// when first set (or when `same_instant` is switched on), never in an update: a
+    /// filter without them carries 8 bytes here.
+    pub(crate) extras: ExtrasBox,
+}
+
+/// The extras' box; equal when what they hold is, with no box equal to a plain one.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ExtrasBox(pub Option<Box<Extras>>);
+
+impl PartialEq for ExtrasBox {
+    fn eq(&self, other: &ExtrasBox) -> bool {
+        let plain = Extras::default();
+        let a = self.0.as_deref().unwrap_or(&plain);
+        let b = other.0.as_deref().unwrap_or(&plain);
+        (a.is_plain() && b.is_plain()) || a == b
+    }
+}
+
+/// What a filter has around its kind when a host sets it: mounting, heading offset and
+/// declination ([`super::host`]), sensor models ([`super::calibration`]), and the
+/// gyroscope readings of dt = 0 samples waiting for the next step (sum, count;
+/// [`super::saturation`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Extras {
+    pub host: Host,
+    pub models: Models,
+    pub burst: (Vec3, u32),
 }
 
 impl<E: Estimator> Runner<E> {
@@ -107,10 +141,50 @@ impl<E: Estimator> Runner<E> {
                 _ => None,
             },
             identity_init: config.init == Init::Identity,
+            recover: false,
+            same_instant: false,
+            extras: ExtrasBox(None),
         };
+        r.set_policies(config.slots());
         r.set_frame_rotation();
         r.reset();
         Ok(r)
+    }
+
+    /// The saturation and same-instant policies from the slots; the extras' box is made
+    /// here for the burst readings, so that no update allocates.
+    fn set_policies(&mut self, slots: &[f64; MAX_PARAMS]) {
+        self.recover = slots[id::SATURATION_RECOVERY as usize] != 0.0;
+        self.same_instant = slots[id::SAME_INSTANT as usize] != 0.0;
+        if self.same_instant {
+            self.extras_mut();
+        }
+    }
+
+    /// The extras, made (with the frame's up direction) when first needed.
+    pub(crate) fn extras_mut(&mut self) -> &mut Extras {
+        let up_z = self.frame.up().z;
+        self.extras.0.get_or_insert_with(|| {
+            let mut x = Box::<Extras>::default();
+            x.host.refresh(up_z);
+            x
+        })
+    }
+
+    /// The host's frames (the identity ones when none are set).
+    pub(crate) fn host(&self) -> Host {
+        match &self.extras.0 {
+            Some(x) => x.host,
+            None => {
+                let mut h = Host::default();
+                h.refresh(self.frame.up().z);
+                h
+            }
+        }
+    }
+
+    pub(crate) fn models(&self) -> Models {
+        self.extras.0.as_ref().map_or_else(Models::default, |x| x.models)
     }
 
     fn init(&self) -> Init {
@@ -139,6 +213,8 @@ impl<E: Estimator> Runner<E> {
     pub(crate) fn config(&self) -> Config {
         let mut slots = [0.0; MAX_PARAMS];
         self.common.write_slots(self.ranges_set, &mut slots);
+        slots[id::SATURATION_RECOVERY as usize] = if self.recover { 1.0 } else { 0.0 };
+        slots[id::SAME_INSTANT as usize] = if self.same_instant { 1.0 } else { 0.0 };
         self.core.settings().write_slots(&mut slots);
         Config::from_parts(E::KIND, self.frame, self.init(), slots)
     }
@@ -161,6 +237,7 @@ impl<E: Estimator> Runner<E> {
         config.set_param(pid, value)?;
         self.core.configure(E::Settings::from_slots(config.slots()));
         (self.common, self.ranges_set) = Common::from_slots(config.slots());
+        self.set_policies(config.slots());
         self.set_frame_rotation();
         Ok(())
     }
@@ -171,7 +248,12 @@ impl<E: Estimator> Runner<E> {
 
     pub(crate) fn set_quaternion(&mut self, q: Quat) -> Result<(), Error> {
         check_quaternion(q)?;
-        self.set_frame_quaternion(q.normalized());
+        // `q` is the output's (segment's) orientation.
+        let q = match &self.extras.0 {
+            Some(x) => x.host.sensor_for(q.normalized()),
+            None => q.normalized(),
+        };
+        self.set_frame_quaternion(q);
         Ok(())
     }
 
@@ -265,6 +347,16 @@ impl<E: Estimator> Runner<E> {
     /// One step. On error nothing changes: the state is bit-identical to before.
     #[inline(always)]
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        // Issue 20's policies, each out of line: bursts, clipping, sensor models.
+        if self.same_instant && (s.dt() == 0.0 || self.burst().1 != 0) {
+            return self.update_same_instant(s);
+        }
+        if self.recover && self.saturated(s) {
+            return self.update_saturated(s);
+        }
+        if self.extras.0.as_ref().is_some_and(|x| x.models.any()) {
+            return self.update_calibrated(s);
+        }
         self.check_view(s)?;
         // check() guarantees a gyro reading.
         let gyro = s.gyro().unwrap_or_default();
@@ -399,6 +491,10 @@ impl<E: Estimator> Runner<E> {
     /// with this sample: past initialisation, nothing pending, no gap, an accelerometer.
     pub(crate) fn lane_ready(&self, s: &Sample) -> bool {
         self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED
+            // Models, clipping and bursts take the single path.
+            && !self.extras.0.as_ref().is_some_and(|x| x.models.any())
+            && !self.recover
+            && !self.same_instant
             && s.dt <= self.common.gap_limit
             && s.accel.is_some()
     }
@@ -430,6 +526,12 @@ impl<E: Estimator> Runner<E> {
         c.opt_vec3(&mut last);
         self.has_accel = last.is_some();
         self.last_accel = last.unwrap_or(Vec3::ZERO);
+        // Format version 3: the host's frames, the sensor models, the burst readings.
+        let mut x = self.extras.0.as_deref().copied().unwrap_or_default();
+        extras_codec(&mut x, c);
+        if self.extras.0.is_some() || !x.is_plain() {
+            **self.extras.0.get_or_insert_with(Box::default) = x;
+        }
         self.core.codec(c);
     }
 
@@ -465,6 +567,15 @@ impl<E: Estimator> Runner<E> {
         r.opt_vec3(&mut last);
         fresh.has_accel = last.is_some();
         fresh.last_accel = last.unwrap_or(Vec3::ZERO);
+        let mut x = Extras::default();
+        extras_codec(&mut x, &mut r);
+        let (sum, n) = x.burst;
+        let burst_ok = sum.is_finite() && (n > 0 || sum == Vec3::ZERO);
+        x.host.refresh(fresh.frame.up().z);
+        let extras_ok = x.host.valid() && x.models.valid() && burst_ok;
+        if fresh.extras.0.is_some() || !x.is_plain() {
+            **fresh.extras.0.get_or_insert_with(Box::default) = x;
+        }
         fresh.core.codec(&mut r);
         // Slots this kind does not use are zero in every snapshot it writes: a blob of
         // another kind relabelled (with a fresh checksum) has its own kind's slots set.
@@ -476,6 +587,7 @@ impl<E: Estimator> Runner<E> {
             || foreign
             || fresh.flags & !flags::STORED != 0
             || !accel_ok
+            || !extras_ok
             || !fresh.core.valid()
         {
             return Err(StateError::Corrupt);
@@ -496,7 +608,18 @@ impl<E: Estimator> Runner<E> {
         self.frame
     }
 
-    /// The orientation in the configured frame (identity before initialisation).
+    /// The output orientation: the segment's when a mounting is set, with the heading
+    /// offset and declination applied (see `host.rs`).
+    #[inline(always)]
+    pub(crate) fn output(&self) -> Quat {
+        let q = self.quaternion();
+        match &self.extras.0 {
+            Some(x) => x.host.output(q),
+            None => q,
+        }
+    }
+
+    /// The sensor's orientation in the configured frame (identity before initialisation).
     #[inline(always)]
     pub(crate) fn quaternion(&self) -> Quat {
         if self.flags & flags::INITIALIZED == 0 {
@@ -516,6 +639,29 @@ impl<E: Estimator> Runner<E> {
     pub(crate) fn last_accel(&self) -> Option<Vec3> {
         self.has_accel.then_some(self.last_accel)
     }
+}
+
+impl Extras {
+    /// Nothing set: what a filter without extras behaves as.
+    fn is_plain(&self) -> bool {
+        self.host.mounting == Quat::IDENTITY
+            && self.host.heading == 0.0
+            && self.host.declination == 0.0
+            && self.models == Models::default()
+            && self.burst == (Vec3::ZERO, 0)
+    }
+}
+
+/// The extras' snapshot fields, in order (format version 3).
+fn extras_codec(x: &mut Extras, c: &mut dyn Codec) {
+    c.quat(&mut x.host.mounting);
+    c.f64(&mut x.host.heading);
+    c.f64(&mut x.host.declination);
+    calibration::codec(&mut x.models, c);
+    c.vec3(&mut x.burst.0);
+    let mut n = x.burst.1 as u64;
+    c.u64(&mut n);
+    x.burst.1 = n.min(u32::MAX as u64) as u32;
 }
 
 /// The used and rejected bits of one update.

@@ -5,12 +5,13 @@
 //! ```text
 //! offset  size  field
 //! 0       4     magic "ORST"
-//! 4       2     format version (1)
+//! 4       2     format version (3)
 //! 6       1     kind (1 Madgwick .. 5 GMVDK)
 //! 7       1     reserved, 0
 //! 8       4     payload length P
 //! 12      P     payload: configuration (frame, init, initial quaternion, every
-//!               parameter slot), filter flags, last accelerometer reading, then the
+//!               parameter slot), filter flags, last accelerometer reading, mounting, heading offset,
+//!               declination, then the
 //!               kind's state, each value as its exact bit pattern
 //! 12+P    8     FNV-1a 64 of bytes 0 .. 12+P
 //! ```
@@ -21,7 +22,7 @@
 use crate::math::{Quat, Vec3};
 
 pub const MAGIC: [u8; 4] = *b"ORST";
-pub const VERSION: u16 = 2;
+pub const VERSION: u16 = 3;
 pub const HEADER: usize = 12;
 pub const TRAILER: usize = 8;
 

@@ -36,6 +36,8 @@ static uint64_t bits(double v) {
     return u;
 }
 
+#include "rig_test.h" /* issue 20 */
+
 static double unhex(const char *s) {
     uint64_t u = (uint64_t)strtoull(s, NULL, 16);
     double v;
@@ -286,7 +288,7 @@ static void config_paths(void) {
 
     /* Parameters: discoverable by index and by name, range-checked. */
     CHECK_STATUS(orient_param_count(ORIENT_KIND_MADGWICK, &count), ORIENT_STATUS_OK);
-    CHECK(count == 7);
+    CHECK(count == 9);
     for (i = 0; i < count; i++) {
         CHECK_STATUS(orient_param_info(ORIENT_KIND_MADGWICK, i, &info), ORIENT_STATUS_OK);
         CHECK(info.name && info.unit && info.description && strlen(info.description) > 10);
@@ -1080,6 +1082,8 @@ int main(int argc, char **argv) {
     }
     multi_sensor();
     offline_smoothing();
+    rig_calls(); /* issue 20 */
+    calibration_calls();
     golden(argv[1]);
     printf("%d passed, %d failed\n", passed, failed);
     return failed == 0 ? 0 : 1;

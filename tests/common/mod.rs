@@ -1,4 +1,5 @@
 pub mod golden;
 pub mod magnetic;
 pub mod native;
+pub mod rig_sim;
 pub mod sim;

@@ -264,6 +264,87 @@ static void offline() {
     CHECK(processed == 5);
 }
 
+/* Issue 20: mounting, heading, declination and rig calibration through the wrapper. */
+static double angle(const OrientQuaternion& a, const OrientQuaternion& b) {
+    double w = a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
+    double x = a.w * b.x - a.x * b.w - a.y * b.z + a.z * b.y;
+    double y = a.w * b.y + a.x * b.z - a.y * b.w - a.z * b.x;
+    double z = a.w * b.z - a.x * b.y + a.y * b.x - a.z * b.w;
+    return 2.0 * std::atan2(std::sqrt(x * x + y * y + z * z), std::fabs(w));
+}
+
+static void mounting_and_heading() {
+    auto config = orient::Config::defaults(orient::Kind::Mahony).value();
+    std::vector<orient::Filter> fs;
+    for (int k = 0; k < 3; k++) {
+        fs.push_back(orient::Filter::create(config).value());
+        for (int i = 0; i < 50; i++) {
+            CHECK(fs[k].update(orient::sample(0.01, orient::vec3(0.1 * k, 0.2, 0.0), orient::vec3(0.3 * k, 0.5, 9.7),
+                                              orient::vec3(20.0, 3.0 * k, -40.0))) == ORIENT_STATUS_OK);
+        }
+    }
+    orient::Filter& f = fs[0];
+    OrientQuaternion sensor = f.sensor_quaternion();
+    CHECK(same(sensor, f.quaternion()));
+    OrientQuaternion m{0.8, 0.2, 0.5, -0.1};
+    CHECK(f.set_mounting(m) == ORIENT_STATUS_OK);
+    CHECK(angle(f.sensor_quaternion(), sensor) < 1e-9);
+    CHECK(!same(f.quaternion(), sensor));
+    CHECK(f.mounting().w != 1.0);
+    OrientEuler e{};
+    CHECK(f.set_heading(1.25) == ORIENT_STATUS_OK);
+    CHECK(f.euler(e) == ORIENT_STATUS_OK && std::fabs(e.yaw - 1.25) < 1e-12);
+    CHECK(f.heading_offset() != 0.0);
+    CHECK(f.reset_heading() == ORIENT_STATUS_OK);
+    CHECK(f.euler(e) == ORIENT_STATUS_OK && std::fabs(e.yaw) < 1e-12);
+    CHECK(f.set_declination(0.1) == ORIENT_STATUS_OK && f.declination() == 0.1);
+    CHECK(f.set_declination(std::nan("")) == ORIENT_STATUS_NON_FINITE);
+
+    std::array<OrientFilter*, 3> handles{fs[0].native(), fs[1].native(), fs[2].native()};
+    std::array<OrientQuaternion, 3> refs{{{1, 0, 0, 0}, {std::cos(0.3), 0, std::sin(0.3), 0}, {0, 0, 0, 1}}};
+    CHECK(orient::calibrate_rig(handles, refs, 0.4) == ORIENT_STATUS_OK);
+    for (int k = 0; k < 3; k++) CHECK(angle(fs[k].quaternion(), refs[k]) < 1e-9);
+    CHECK(orient::calibrate_rig(handles, refs) == ORIENT_STATUS_OK);
+    for (int k = 0; k < 3; k++) CHECK(angle(fs[k].quaternion(), refs[k]) < 1e-9);
+    CHECK(fs[1].set_heading(-2.0) == ORIENT_STATUS_OK);
+    CHECK(angle(fs[1].quaternion(), refs[1]) > 0.1);
+    CHECK(orient::align_rig_heading(handles, refs) == ORIENT_STATUS_OK);
+    CHECK(angle(fs[1].quaternion(), refs[1]) < 1e-9);
+    std::array<OrientQuaternion, 2> short_refs{};
+    CHECK(orient::align_rig_heading(handles, short_refs) == ORIENT_STATUS_INVALID_ARGUMENT);
+}
+
+static void calibration() {
+    std::array<OrientVec3, 2> still{{{0.011, -0.02, 0.03}, {0.009, -0.02, 0.03}}};
+    OrientSensorModel gm{};
+    double spread = 0.0;
+    CHECK(orient::gyro_offset(still, gm, &spread) == ORIENT_STATUS_OK);
+    CHECK(std::fabs(gm.offset.x - 0.01) < 1e-12 && gm.matrix[0] == 1.0 && spread > 0.0);
+    orient::Filter f = orient::Filter::create(orient::Config::defaults(orient::Kind::Mahony).value()).value();
+    orient::Filter g = orient::Filter::create(orient::Config::defaults(orient::Kind::Mahony).value()).value();
+    CHECK(!f.sensor_model(ORIENT_SENSOR_GYRO));
+    CHECK(f.set_sensor_model(ORIENT_SENSOR_GYRO, gm) == ORIENT_STATUS_OK);
+    CHECK(f.sensor_model(ORIENT_SENSOR_GYRO).has_value());
+    for (int i = 0; i < 50; i++) {
+        CHECK(f.update(orient::sample(0.01, orient::vec3(0.21, -0.02, 0.03), orient::vec3(0.3, 0.2, 9.7))) ==
+              ORIENT_STATUS_OK);
+        CHECK(g.update(orient::sample(0.01, orient::vec3(0.21 - gm.offset.x, -0.02 - gm.offset.y, 0.03 - gm.offset.z),
+                                      orient::vec3(0.3, 0.2, 9.7))) == ORIENT_STATUS_OK);
+    }
+    CHECK(same(f.quaternion(), g.quaternion()));
+    CHECK(f.clear_sensor_model(ORIENT_SENSOR_GYRO) == ORIENT_STATUS_OK && !f.sensor_model(ORIENT_SENSOR_GYRO));
+    orient::MagCalibrator cal;
+    CHECK(!cal.solve());
+    for (int k = 0; k < 288; k++) {
+        int idx = (k * 97) % 288;
+        double th = 3.141592653589793 * (idx / 24 + 0.5) / 12, ph = 6.283185307179586 * (idx % 24) / 24;
+        CHECK(cal.add(orient::vec3(60 * std::sin(th) * std::cos(ph) + 10, 45 * std::sin(th) * std::sin(ph) - 20,
+                                   50 * std::cos(th) + 5)) == ORIENT_STATUS_OK);
+    }
+    auto fit = cal.solve();
+    CHECK(fit && std::fabs(fit->model.offset.x - 10) < 1e-6 && fit->trustworthy == 1);
+}
+
 int main(int argc, char** argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: %s GOLDEN_FILE\n", argv[0]);
@@ -272,6 +353,8 @@ int main(int argc, char** argv) {
     wrapper();
     rig();
     offline();
+    mounting_and_heading();
+    calibration();
 #if ORIENT_HPP_EXCEPTIONS
     exceptions();
 #endif

@@ -143,7 +143,7 @@ public static class OrientTests
         Throws(Status.UnknownParam, () => settings[99u] = 1.0, "unknown slot");
         settings["beta_marg"] = 0.05;
         Check(settings[Consts.ParamMadgwickBetaMarg] == 0.05, "set by name, read by id");
-        Check(settings.Parameters.Count == 7, "parameter list");
+        Check(settings.Parameters.Count == 9, "parameter list");
         Check(settings.Gravity == 9.80665, "gravity default");
 
         foreach (Kind kind in new[] { Kind.Madgwick, Kind.Mahony, Kind.Complementary, Kind.Ekf, Kind.Gmvdk })
@@ -316,6 +316,106 @@ public static class OrientTests
         Throws(Status.NonFinite, () => OrientFilter.Smooth(settings, new[] { 0.01 }, gyro, accel, mag), "Smooth bad sample", "sample 5");
     }
 
+    /// The rotation angle from a to b (radians), well conditioned near 0.
+    static double Angle(Orient.Native.Quaternion a, Orient.Native.Quaternion b)
+    {
+        double w = a.W * b.W + a.X * b.X + a.Y * b.Y + a.Z * b.Z;
+        double x = a.W * b.X - a.X * b.W - a.Y * b.Z + a.Z * b.Y;
+        double y = a.W * b.Y + a.X * b.Z - a.Y * b.W - a.Z * b.X;
+        double z = a.W * b.Z - a.X * b.Y + a.Y * b.X - a.Z * b.W;
+        return 2 * Math.Atan2(Math.Sqrt(x * x + y * y + z * z), Math.Abs(w));
+    }
+
+    /// Issue 20: mounting, heading, declination and rig calibration.
+    static void MountingAndHeading()
+    {
+        var fs = new OrientFilter[3];
+        for (int k = 0; k < 3; k++)
+        {
+            fs[k] = new OrientFilter(Kind.Mahony);
+            for (int i = 0; i < 50; i++)
+            {
+                fs[k].Update(OrientFilter.Marg(0.01, new Vec3(0.1 * k, 0.2, 0), new Vec3(0.3 * k, 0.5, 9.7),
+                    new Vec3(20, 3 * k, -40)));
+            }
+        }
+        var f = fs[0];
+        var sensor = f.SensorQuaternion;
+        Check(Same(sensor, f.Quaternion), "sensor = output without mounting");
+        f.Mounting = new Orient.Native.Quaternion(0.8, 0.2, 0.5, -0.1);
+        Check(Angle(f.SensorQuaternion, sensor) < 1e-9, "mounting leaves the sensor's orientation");
+        Check(Angle(f.Quaternion, sensor) > 0.1, "mounting changes the output");
+        Check(f.Mounting.W != 1.0, "mounting read back");
+        Throws(Status.NonFinite, () => { f.Mounting = new Orient.Native.Quaternion(double.NaN, 0, 0, 0); }, "NaN mounting");
+        f.SetHeading(1.25);
+        Check(Math.Abs(f.Euler.Yaw - 1.25) < 1e-12, "SetHeading");
+        Check(f.HeadingOffset != 0, "HeadingOffset");
+        f.ResetHeading();
+        Check(Math.Abs(f.Euler.Yaw) < 1e-12, "ResetHeading");
+        f.Declination = 0.1;
+        Check(f.Declination == 0.1, "Declination");
+        Throws(Status.TooLarge, () => { f.Declination = 4; }, "declination beyond pi");
+        using (var fresh = new OrientFilter(Kind.Ekf))
+        {
+            Throws(Status.NotInitialized, () => fresh.SetHeading(1), "SetHeading before init");
+        }
+
+        var rig = new OrientRig(fs);
+        var refs = new[]
+        {
+            new Orient.Native.Quaternion(1, 0, 0, 0),
+            new Orient.Native.Quaternion(Math.Cos(0.3), 0, Math.Sin(0.3), 0),
+            new Orient.Native.Quaternion(0, 0, 0, 1),
+        };
+        rig.Calibrate(refs, 0.4);
+        for (int k = 0; k < 3; k++) Check(Angle(fs[k].Quaternion, refs[k]) < 1e-9, "calibrated filter " + k);
+        rig.Calibrate(refs);
+        for (int k = 0; k < 3; k++) Check(Angle(fs[k].Quaternion, refs[k]) < 1e-9, "estimated heading " + k);
+        fs[1].SetHeading(-2);
+        rig.AlignHeading(refs);
+        Check(Angle(fs[1].Quaternion, refs[1]) < 1e-9, "AlignHeading");
+        Throws(Status.NotInitialized, () => new OrientRig(fs[0], new OrientFilter(Kind.Ekf)).Calibrate(
+            new[] { refs[0], refs[1] }), "rig with an uninitialised filter", "filter 1");
+        foreach (var g in fs) g.Dispose();
+    }
+
+    /// Issue 20: sensor models and the magnetometer calibrator.
+    static unsafe void Calibration()
+    {
+        var still = new[] { new Vec3(0.011, -0.02, 0.03), new Vec3(0.009, -0.02, 0.03) };
+        double spread;
+        SensorModel gm = MagCalibration.GyroOffset(still, out spread);
+        Check(Math.Abs(gm.Offset.X - 0.01) < 1e-12 && gm.Matrix[0] == 1.0 && spread > 0, "GyroOffset");
+        using (var f = new OrientFilter(Kind.Madgwick))
+        using (var g = new OrientFilter(Kind.Madgwick))
+        {
+            Check(f.GetSensorModel(Consts.SensorGyro) == null, "no model set");
+            f.SetSensorModel(Consts.SensorGyro, gm);
+            Check(f.GetSensorModel(Consts.SensorGyro).Value.Offset.X == gm.Offset.X, "model read back");
+            for (int i = 0; i < 50; i++)
+            {
+                f.Update(OrientFilter.Imu(0.01, new Vec3(0.21, -0.02, 0.03), new Vec3(0.3, 0.2, 9.7)));
+                g.Update(OrientFilter.Imu(0.01, new Vec3(0.21 - gm.Offset.X, -0.02 - gm.Offset.Y, 0.03 - gm.Offset.Z),
+                    new Vec3(0.3, 0.2, 9.7)));
+            }
+            Check(Same(f.Quaternion, g.Quaternion), "a model gives the calibrated readings' bits");
+            f.SetSensorModel(Consts.SensorGyro, null);
+            Check(f.GetSensorModel(Consts.SensorGyro) == null, "model cleared");
+        }
+        var cal = new MagCalibration();
+        Check(cal.Solve() == null, "no fit without readings");
+        for (int k = 0; k < 288; k++)
+        {
+            int idx = (k * 97) % 288;
+            double th = Math.PI * (idx / 24 + 0.5) / 12, ph = 2 * Math.PI * (idx % 24) / 24;
+            cal.Add(new Vec3(60 * Math.Sin(th) * Math.Cos(ph) + 10, 45 * Math.Sin(th) * Math.Sin(ph) - 20,
+                50 * Math.Cos(th) + 5));
+        }
+        MagFit fit = cal.Solve().Value;
+        Check(Math.Abs(fit.Model.Offset.X - 10) < 1e-6 && Math.Abs(fit.Model.Offset.Y + 20) < 1e-6, "hard iron");
+        Check(fit.Trustworthy == 1 && fit.Samples == 288, "trustworthy fit");
+    }
+
     public static int Main(string[] args)
     {
         if (args.Length != 1)
@@ -327,6 +427,8 @@ public static class OrientTests
         StatusPaths();
         Conversions();
         Offline();
+        MountingAndHeading();
+        Calibration();
         Golden(args[0]);
         Console.WriteLine(passed + " passed, " + failed + " failed");
         return failed == 0 ? 0 : 1;

@@ -564,6 +564,167 @@ class Filter:
             raise ValueError(f"a quaternion has 4 values, got shape {a.shape}")
         _check(lib.orient_filter_set_quaternion(self._h, byref(n.OrientQuaternion(*map(float, a)))))
 
+    # -- mounting and heading (issue 20) -------------------------------------------------
+
+    @property
+    def mounting(self) -> np.ndarray:
+        """(4,) w, x, y, z: sensor to segment (v_segment = m v_sensor); identity unless
+        set. Setting it makes quaternion, euler and rotation_matrix the segment's; it is
+        kept by reset() and saved by save()."""
+        q = n.OrientQuaternion()
+        _check(lib.orient_filter_mounting(self._h, byref(q)))
+        return np.array([q.w, q.x, q.y, q.z])
+
+    @mounting.setter
+    def mounting(self, m: ArrayLike) -> None:
+        _check(lib.orient_filter_set_mounting(self._h, byref(_quat(m))))
+
+    @property
+    def sensor_quaternion(self) -> np.ndarray:
+        """(4,) the sensor's own orientation: heading offset and declination applied,
+        the mounting not."""
+        q = n.OrientQuaternion()
+        _check(lib.orient_filter_sensor_quaternion(self._h, byref(q)))
+        return np.array([q.w, q.x, q.y, q.z])
+
+    def set_heading(self, yaw: float) -> None:
+        """Turns the outputs about the vertical so that euler's yaw becomes `yaw` (rad);
+        the inclination is kept. OrientError NOT_INITIALIZED before initialisation."""
+        _check(lib.orient_filter_set_heading(self._h, float(yaw)))
+
+    def reset_heading(self) -> None:
+        """set_heading(0)."""
+        _check(lib.orient_filter_reset_heading(self._h))
+
+    @property
+    def heading_offset(self) -> float:
+        """The heading offset (rad) kept by set_heading() and the rig calls."""
+        v = c_double()
+        _check(lib.orient_filter_heading_offset(self._h, byref(v)))
+        return v.value
+
+    @property
+    def declination(self) -> float:
+        """Magnetic declination (rad, east positive, within [-pi, pi]); 0 unless set."""
+        v = c_double()
+        _check(lib.orient_filter_declination(self._h, byref(v)))
+        return v.value
+
+    @declination.setter
+    def declination(self, value: float) -> None:
+        _check(lib.orient_filter_set_declination(self._h, float(value)))
+
+    # -- sensor calibration (issue 20) ---------------------------------------------------
+
+    def set_sensor_model(self, sensor: str, matrix: Optional[ArrayLike] = None, offset: ArrayLike = (0.0, 0.0, 0.0)) -> None:
+        """Sets the model applied to one sensor's readings ("gyro", "accel", "mag") before
+        every update: calibrated = matrix @ (raw - offset). matrix None clears it."""
+        sid = _SENSORS[sensor]
+        if matrix is None:
+            _check(lib.orient_filter_set_sensor_model(self._h, sid, None))
+            return
+        _check(lib.orient_filter_set_sensor_model(self._h, sid, byref(_model(matrix, offset))))
+
+    def sensor_model(self, sensor: str) -> Optional[Tuple[np.ndarray, np.ndarray]]:
+        """(matrix (3, 3), offset (3,)) of the sensor's model, or None when none is set."""
+        m = n.OrientSensorModel()
+        status = lib.orient_filter_sensor_model(self._h, _SENSORS[sensor], byref(m))
+        if status == Status.NO_DATA:
+            return None
+        _check(status)
+        return np.array(m.matrix[:]).reshape(3, 3), np.array([m.offset.x, m.offset.y, m.offset.z])
+
+
+_SENSORS = {"gyro": n.SENSOR_GYRO, "accel": n.SENSOR_ACCEL, "mag": n.SENSOR_MAG}
+
+
+def _model(matrix: ArrayLike, offset: ArrayLike) -> n.OrientSensorModel:
+    m = np.asarray(matrix, dtype=np.float64)
+    o = np.asarray(offset, dtype=np.float64)
+    if m.shape != (3, 3) or o.shape != (3,):
+        raise ValueError("a sensor model is a (3, 3) matrix and a (3,) offset")
+    return n.OrientSensorModel((c_double * 9)(*m.ravel().tolist()), n.OrientVec3(*o.tolist()))
+
+
+@dataclass
+class MagFit:
+    """What MagCalibrator.solve() found: calibrated = soft_iron @ (raw - hard_iron)."""
+
+    soft_iron: np.ndarray
+    hard_iron: np.ndarray
+    field: float
+    residual: float
+    coverage: float
+    samples: int
+    trustworthy: bool
+
+
+class MagCalibrator:
+    """Magnetometer calibration (ellipsoid fit): add() readings while rotating the sensor
+    over the sphere (no allocation per reading in the library), then solve()."""
+
+    def __init__(self) -> None:
+        self._state = n.OrientMagCalibrator()
+        _check(lib.orient_mag_calibrator_init(byref(self._state)))
+
+    def add(self, mag: ArrayLike) -> None:
+        for row in np.atleast_2d(np.asarray(mag, dtype=np.float64)):
+            _check(lib.orient_mag_calibrator_add(byref(self._state), byref(n.OrientVec3(*row.tolist()))))
+
+    def solve(self) -> Optional[MagFit]:
+        """The fit, or None while the readings do not determine an ellipsoid."""
+        f = n.OrientMagFit()
+        status = lib.orient_mag_calibrator_solve(byref(self._state), byref(f))
+        if status == Status.NO_DATA:
+            return None
+        _check(status)
+        o = f.model.offset
+        return MagFit(np.array(f.model.matrix[:]).reshape(3, 3), np.array([o.x, o.y, o.z]), f.field, f.residual,
+                      f.coverage, f.samples, bool(f.trustworthy))
+
+
+def gyro_offset(still: ArrayLike) -> Tuple[np.ndarray, float]:
+    """The gyroscope offset (mean, rad/s) of readings (n, 3) taken while still, and their
+    RMS spread; pass the offset to set_sensor_model("gyro", np.eye(3), offset)."""
+    a = np.ascontiguousarray(np.atleast_2d(np.asarray(still, dtype=np.float64)))
+    rows = (n.OrientVec3 * len(a))(*[n.OrientVec3(*r.tolist()) for r in a])
+    m = n.OrientSensorModel()
+    spread = c_double()
+    _check(lib.orient_gyro_offset(rows, len(a), byref(m), byref(spread)))
+    return np.array([m.offset.x, m.offset.y, m.offset.z]), spread.value
+
+
+def _quat(q: ArrayLike) -> n.OrientQuaternion:
+    a = np.asarray(q, dtype=np.float64)
+    if a.shape != (4,):
+        raise ValueError(f"a quaternion has 4 values, got shape {a.shape}")
+    return n.OrientQuaternion(*map(float, a))
+
+
+def _rig_args(filters: Sequence[Filter], references: ArrayLike) -> Tuple[Any, Any, int]:
+    refs = np.asarray(references, dtype=np.float64)
+    if refs.shape != (len(filters), 4):
+        raise ValueError(f"references must have shape ({len(filters)}, 4), got {refs.shape}")
+    handles = (c_void_p * len(filters))(*[f._h for f in filters])
+    quats = (n.OrientQuaternion * len(filters))(*[n.OrientQuaternion(*map(float, r)) for r in refs])
+    return handles, quats, len(filters)
+
+
+def calibrate_rig(filters: Sequence[Filter], references: ArrayLike, heading: Optional[float] = None) -> None:
+    """Rig calibration from a reference posture: while the segments hold `references`
+    ((n, 4) w, x, y, z, segment to posture frame), sets a common heading offset and every
+    mounting so that filters[i] reads references[i] now and its segment afterwards.
+    `heading` is the posture frame's yaw in the filters' earth frame (rad); None
+    estimates it from the rig."""
+    h, q, count = _rig_args(filters, references)
+    _check(lib.orient_rig_calibrate(h, q, count, float("nan") if heading is None else float(heading)))
+
+
+def align_rig_heading(filters: Sequence[Filter], references: ArrayLike) -> None:
+    """Heading-only alignment to the reference posture; mountings are kept."""
+    h, q, count = _rig_args(filters, references)
+    _check(lib.orient_rig_align_heading(h, q, count))
+
 
 class Madgwick(Filter):
     """Madgwick 2010 gradient descent, IMU and MARG."""

@@ -11,7 +11,7 @@ import ctypes
 import enum
 import os
 import sys
-from ctypes import POINTER, Structure, c_char_p, c_double, c_int32, c_size_t, c_uint8, c_uint32, c_void_p
+from ctypes import POINTER, Structure, c_char_p, c_double, c_int32, c_size_t, c_uint8, c_uint32, c_uint64, c_void_p
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +33,8 @@ FLAG_ACCEL_REJECTED = 64
 FLAG_MAG_REJECTED = 128
 FLAG_MAG_DISTURBED = 256
 FLAG_REST = 512
+FLAG_SATURATED = 1024
+FLAG_SAME_INSTANT = 2048
 
 PARAM_FLAG_ZERO_OFF = 1
 
@@ -105,6 +107,35 @@ class OrientQuaternion(Structure):
 
 class OrientVec3(Structure):
     _fields_ = [("x", c_double), ("y", c_double), ("z", c_double)]
+
+
+class OrientSensorModel(Structure):
+    _fields_ = [("matrix", c_double * 9), ("offset", OrientVec3)]
+
+
+class OrientMagCalibrator(Structure):
+    _fields_ = [
+        ("sums", c_double * 55),
+        ("scale", c_double),
+        ("mean", OrientVec3),
+        ("count", c_uint64),
+        ("bins", c_uint64),
+    ]
+
+
+class OrientMagFit(Structure):
+    _fields_ = [
+        ("model", OrientSensorModel),
+        ("field", c_double),
+        ("residual", c_double),
+        ("coverage", c_double),
+        ("samples", c_uint64),
+        ("trustworthy", c_int32),
+        ("reserved", c_int32),
+    ]
+
+
+SENSOR_GYRO, SENSOR_ACCEL, SENSOR_MAG = 0, 1, 2
 
 
 class OrientConfig(Structure):
@@ -241,6 +272,23 @@ PROTOTYPES = {
     "orient_filter_flags": (c_int32, [c_void_p, _P(c_uint32)]),
     "orient_filter_reset": (c_int32, [c_void_p]),
     "orient_filter_set_quaternion": (c_int32, [c_void_p, _P(OrientQuaternion)]),
+    # issue 20: mounting, heading, declination, rig calibration
+    "orient_filter_set_mounting": (c_int32, [c_void_p, _P(OrientQuaternion)]),
+    "orient_filter_mounting": (c_int32, [c_void_p, _P(OrientQuaternion)]),
+    "orient_filter_sensor_quaternion": (c_int32, [c_void_p, _P(OrientQuaternion)]),
+    "orient_filter_set_heading": (c_int32, [c_void_p, c_double]),
+    "orient_filter_reset_heading": (c_int32, [c_void_p]),
+    "orient_filter_heading_offset": (c_int32, [c_void_p, _P(c_double)]),
+    "orient_filter_set_declination": (c_int32, [c_void_p, c_double]),
+    "orient_filter_declination": (c_int32, [c_void_p, _P(c_double)]),
+    "orient_rig_calibrate": (c_int32, [_P(c_void_p), _P(OrientQuaternion), c_size_t, c_double]),
+    "orient_rig_align_heading": (c_int32, [_P(c_void_p), _P(OrientQuaternion), c_size_t]),
+    "orient_filter_set_sensor_model": (c_int32, [c_void_p, c_uint32, _P(OrientSensorModel)]),
+    "orient_filter_sensor_model": (c_int32, [c_void_p, c_uint32, _P(OrientSensorModel)]),
+    "orient_mag_calibrator_init": (c_int32, [_P(OrientMagCalibrator)]),
+    "orient_mag_calibrator_add": (c_int32, [_P(OrientMagCalibrator), _P(OrientVec3)]),
+    "orient_mag_calibrator_solve": (c_int32, [_P(OrientMagCalibrator), _P(OrientMagFit)]),
+    "orient_gyro_offset": (c_int32, [_P(OrientVec3), c_size_t, _P(OrientSensorModel), _P(c_double)]),
 }
 
 

@@ -4,6 +4,14 @@
 // together through OrientRig (one native call per sample step), and each bone's world
 // rotation is set from its sensor's orientation.
 //
+// Flat-hand calibration (rig calibration, orient_rig_calibrate): the avatar's hand as it
+// stands in the scene at Start is the reference posture (model it lying flat, palm
+// down). At Calibrate At seconds into the recording, while the real hand lies flat on a
+// table, every bone's mounting and a common heading are computed natively, so that each
+// bone reads its rest rotation then and follows its segment afterwards; the per-bone
+// Mounting fields below are then no longer needed. Call CalibrateFlatHand() from a key
+// or a button to calibrate again (e.g. after a sensor slipped).
+//
 // Setup: put this on any GameObject. Either assign a Humanoid Animator (the wrist and the
 // three joints of each finger, 16 bones, are filled in) or fill Bones by hand. Give each
 // bone a TextAsset recording in orient's CSV layout (header with t, gyr_x..z, acc_x..z
@@ -52,7 +60,14 @@ public class OrientHandRig : MonoBehaviour
     [Tooltip("Rotation applied in front of every bone: aligns the recording's north with the scene")]
     public UnityEngine.Quaternion worldAlignment = UnityEngine.Quaternion.identity;
 
+    [Tooltip("Seconds into the recording at which the hand lies flat in the avatar's rest pose; negative: never")]
+    public float calibrateAt = 0.5f;
+
     public OrientRigBone[] bones = new OrientRigBone[0];
+
+    // Each bone's rotation at Start, as an ENU orientation: the flat-hand reference posture.
+    private Orient.Native.Quaternion[] flatPose = new Orient.Native.Quaternion[0];
+    private bool calibrated;
 
     private OrientFilter[] filters = new OrientFilter[0];
     private OrientRigBone[] driven = new OrientRigBone[0];
@@ -108,7 +123,29 @@ public class OrientHandRig : MonoBehaviour
         rig = new OrientRig(filters);
         step = new Sample[driven.Length];
         orientations = new Orient.Native.Quaternion[driven.Length];
+        flatPose = new Orient.Native.Quaternion[driven.Length];
+        for (int i = 0; i < driven.Length; i++)
+        {
+            // The filters work in ENU (their default frame), as ToOrient gives it.
+            flatPose[i] = (UnityEngine.Quaternion.Inverse(worldAlignment) * driven[i].bone.rotation).ToOrient();
+        }
         if (driven.Length == 0) Debug.LogWarning("orient: no bone has a Transform and a recording");
+    }
+
+    /// <summary>Rig calibration from the flat-hand pose: call while the hand lies flat as
+    /// the avatar's hand did at Start. The heading the hand faces is estimated from the
+    /// rig (sensors strapped along their bones, tilted as they may be).</summary>
+    public void CalibrateFlatHand()
+    {
+        try
+        {
+            rig.Calibrate(flatPose);
+            calibrated = true;
+        }
+        catch (OrientException e)
+        {
+            Debug.LogWarning("orient: flat-hand calibration: " + e.Message);
+        }
     }
 
     /// <summary>The wrist and finger joints of a Humanoid avatar that the avatar maps.</summary>
@@ -182,11 +219,14 @@ public class OrientHandRig : MonoBehaviour
             }
             next++;
             moved = true;
+            if (!calibrated && calibrateAt >= 0 && times[next - 1] - times[0] >= calibrateAt) CalibrateFlatHand();
         }
         if (!moved) return;
         for (int i = 0; i < driven.Length; i++)
         {
-            driven[i].bone.rotation = worldAlignment * orientations[i].ToUnity(filters[i].Frame) * driven[i].mounting;
+            // After calibration the mounting is inside the filter; before, the manual one.
+            UnityEngine.Quaternion q = worldAlignment * orientations[i].ToUnity(filters[i].Frame);
+            driven[i].bone.rotation = calibrated ? q : q * driven[i].mounting;
         }
     }
 

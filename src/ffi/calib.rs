@@ -1,0 +1,236 @@
+//! The C calls for sensor calibration (issue 20): the models applied before every
+//! update, the magnetometer calibrator (a host-owned struct: no handle, no
+//! allocation) and the gyroscope offset from a still period. See
+//! `filters/calibration.rs`.
+
+use super::{
+    fail, from_core, guard, handle, handle_mut, items, need, put, OrientFilter, OrientStatus, OrientVec3,
+};
+use crate::filters::calibration::{GyroOffset, MagCalibrator, MagCalibratorParts, Model, Sensor};
+use crate::math::Vec3;
+
+/// orient_filter_set_sensor_model's `sensor`: the gyroscope.
+pub const ORIENT_SENSOR_GYRO: u32 = 0;
+/// The accelerometer.
+pub const ORIENT_SENSOR_ACCEL: u32 = 1;
+/// The magnetometer.
+pub const ORIENT_SENSOR_MAG: u32 = 2;
+
+/// A sensor model: calibrated = matrix (raw - offset), `matrix` row-major. For the
+/// gyroscope and accelerometer the matrix is the misalignment times the sensitivity;
+/// for the magnetometer it is the soft-iron matrix and `offset` the hard-iron offset.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OrientSensorModel {
+    pub matrix: [f64; 9],
+    pub offset: OrientVec3,
+}
+
+/// A magnetometer calibrator's state, owned by the host (on its stack or in its own
+/// struct): initialise it with orient_mag_calibrator_init, feed it readings with
+/// orient_mag_calibrator_add (no allocation, no samples kept), solve it with
+/// orient_mag_calibrator_solve. Its fields are the fit's sums; do not write them.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OrientMagCalibrator {
+    pub sums: [f64; 55],
+    pub scale: f64,
+    pub mean: OrientVec3,
+    pub count: u64,
+    pub bins: u64,
+}
+
+/// What orient_mag_calibrator_solve found.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OrientMagFit {
+    /// calibrated = soft_iron (raw - hard_iron): pass to orient_filter_set_sensor_model
+    /// with ORIENT_SENSOR_MAG.
+    pub model: OrientSensorModel,
+    /// The field's magnitude after calibration (the readings' unit).
+    pub field: f64,
+    /// RMS of |calibrated| / field - 1 over the readings: 0.01 is 1 %.
+    pub residual: f64,
+    /// Fraction of 54 direction bins on the sphere that readings fell in (1: all), the
+    /// directions taken from the readings' running mean: a sensor that sweeps the sphere
+    /// in order (one latitude after another) gets less than it covered.
+    pub coverage: f64,
+    pub samples: u64,
+    /// 1 when coverage >= 0.5 and residual < 0.02 (the fit can be trusted), else 0.
+    pub trustworthy: i32,
+    pub reserved: i32,
+}
+
+fn model_from(m: &OrientSensorModel) -> Model {
+    let a = m.matrix;
+    Model {
+        matrix: [[a[0], a[1], a[2]], [a[3], a[4], a[5]], [a[6], a[7], a[8]]],
+        offset: Vec3::new(m.offset.x, m.offset.y, m.offset.z),
+    }
+}
+
+fn model_to(m: &Model) -> OrientSensorModel {
+    let r = m.matrix;
+    OrientSensorModel {
+        matrix: [r[0][0], r[0][1], r[0][2], r[1][0], r[1][1], r[1][2], r[2][0], r[2][1], r[2][2]],
+        offset: OrientVec3 { x: m.offset.x, y: m.offset.y, z: m.offset.z },
+    }
+}
+
+fn sensor_from(sensor: u32) -> Result<Sensor, OrientStatus> {
+    match sensor {
+        ORIENT_SENSOR_GYRO => Ok(Sensor::Gyro),
+        ORIENT_SENSOR_ACCEL => Ok(Sensor::Accel),
+        ORIENT_SENSOR_MAG => Ok(Sensor::Mag),
+        _ => Err(fail(OrientStatus::InvalidArgument, format_args!("unknown sensor {sensor}"))),
+    }
+}
+
+/// Sets the model applied to one sensor's readings (ORIENT_SENSOR_*) before every
+/// update, in every kind; NULL clears it (the readings are used as they come). The raw
+/// reading is checked first (finite, within its range and physical bound), then the
+/// calibrated one. Kept by orient_filter_reset and saved in snapshots.
+/// INVALID_ARGUMENT for an unknown sensor, NON_FINITE for a NaN or infinite entry,
+/// ZERO_VECTOR for a singular matrix; nothing changes then.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_set_sensor_model(
+    filter: *mut OrientFilter,
+    sensor: u32,
+    model: *const OrientSensorModel,
+) -> OrientStatus {
+    guard(|| {
+        let h = handle_mut(filter)?;
+        let s = sensor_from(sensor)?;
+        let m = if model.is_null() { None } else { Some(model_from(&*model)) };
+        h.filter.set_sensor_model(s, m).map_err(from_core)
+    })
+}
+
+/// The model set for `sensor`; NO_DATA when none is set.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_sensor_model(
+    filter: *const OrientFilter,
+    sensor: u32,
+    model: *mut OrientSensorModel,
+) -> OrientStatus {
+    guard(|| {
+        put(model, || {
+            let h = handle(filter)?;
+            let m = h.filter.sensor_model(sensor_from(sensor)?);
+            m.map(|m| model_to(&m)).ok_or_else(|| {
+                fail(OrientStatus::NoData, format_args!("no model is set for sensor {sensor}"))
+            })
+        })
+    })
+}
+
+fn calibrator_from(c: &OrientMagCalibrator) -> Result<MagCalibrator, OrientStatus> {
+    let parts = MagCalibratorParts {
+        sums: c.sums,
+        scale: c.scale,
+        mean: Vec3::new(c.mean.x, c.mean.y, c.mean.z),
+        count: c.count,
+        bins: c.bins,
+    };
+    MagCalibrator::from_parts(&parts).ok_or_else(|| {
+        fail(
+            OrientStatus::InvalidArgument,
+            format_args!("not a calibrator's state (initialise it with orient_mag_calibrator_init)"),
+        )
+    })
+}
+
+fn calibrator_to(c: &MagCalibrator) -> OrientMagCalibrator {
+    let p = c.to_parts();
+    OrientMagCalibrator {
+        sums: p.sums,
+        scale: p.scale,
+        mean: OrientVec3 { x: p.mean.x, y: p.mean.y, z: p.mean.z },
+        count: p.count,
+        bins: p.bins,
+    }
+}
+
+/// Initialises a magnetometer calibrator: no readings yet.
+#[no_mangle]
+pub unsafe extern "C" fn orient_mag_calibrator_init(calibrator: *mut OrientMagCalibrator) -> OrientStatus {
+    guard(|| put(calibrator, || Ok(calibrator_to(&MagCalibrator::new()))))
+}
+
+/// Adds one magnetometer reading (any unit; raw, before any model). Rotate the sensor
+/// over as many directions as possible. NON_FINITE for a NaN or infinite reading,
+/// ZERO_VECTOR for a first reading of zero, INVALID_ARGUMENT for a struct that is not a
+/// calibrator's state; nothing changes then.
+#[no_mangle]
+pub unsafe extern "C" fn orient_mag_calibrator_add(
+    calibrator: *mut OrientMagCalibrator,
+    mag: *const OrientVec3,
+) -> OrientStatus {
+    guard(|| {
+        need(calibrator.is_null() || mag.is_null())?;
+        let mut c = calibrator_from(&*calibrator)?;
+        c.add(Vec3::new((*mag).x, (*mag).y, (*mag).z)).map_err(from_core)?;
+        calibrator.write(calibrator_to(&c));
+        Ok(())
+    })
+}
+
+/// Solves the ellipsoid fit of the readings so far (the calibrator is not changed, so
+/// it can be solved again after more readings). NO_DATA with fewer than 10 readings or
+/// when they do not determine an ellipsoid (all on a plane, say); check `trustworthy`
+/// (or coverage and residual) before using the model.
+#[no_mangle]
+pub unsafe extern "C" fn orient_mag_calibrator_solve(
+    calibrator: *const OrientMagCalibrator,
+    fit: *mut OrientMagFit,
+) -> OrientStatus {
+    guard(|| {
+        need(calibrator.is_null())?;
+        put(fit, || {
+            let c = calibrator_from(&*calibrator)?;
+            let f = c.solve().ok_or_else(|| {
+                fail(OrientStatus::NoData, format_args!("the readings do not determine an ellipsoid yet"))
+            })?;
+            Ok(OrientMagFit {
+                model: model_to(&f.model),
+                field: f.field,
+                residual: f.residual,
+                coverage: f.coverage,
+                samples: f.samples,
+                trustworthy: i32::from(f.trustworthy()),
+                reserved: 0,
+            })
+        })
+    })
+}
+
+/// The gyroscope offset from `n` readings (rad/s) taken while the sensor was still: the
+/// model that removes their mean (identity matrix, offset = mean), for
+/// orient_filter_set_sensor_model with ORIENT_SENSOR_GYRO. `*spread` (when not NULL)
+/// receives the readings' RMS deviation from the mean (rad/s): the still period's
+/// noise; a much larger value says the sensor moved. INVALID_ARGUMENT for n = 0,
+/// NON_FINITE for a NaN or infinite reading.
+#[no_mangle]
+pub unsafe extern "C" fn orient_gyro_offset(
+    readings: *const OrientVec3,
+    n: usize,
+    model: *mut OrientSensorModel,
+    spread: *mut f64,
+) -> OrientStatus {
+    guard(|| {
+        need(readings.is_null() || model.is_null())?;
+        if n == 0 {
+            return Err(fail(OrientStatus::InvalidArgument, format_args!("no readings")));
+        }
+        let mut g = GyroOffset::default();
+        for r in items(readings, n, "readings")? {
+            g.add(Vec3::new(r.x, r.y, r.z)).map_err(from_core)?;
+        }
+        let m = g.model().ok_or_else(|| fail(OrientStatus::InvalidArgument, format_args!("no readings")))?;
+        model.write(model_to(&m));
+        if !spread.is_null() {
+            spread.write(g.spread());
+        }
+        Ok(())
+    })
+}
