@@ -111,3 +111,74 @@ fn group_updates_follow_the_policies_like_single_updates() {
         assert_eq!(g.flags(), s.flags());
     }
 }
+
+fn filter_with(kind: Kind, set: &[(u32, f64)]) -> Filter {
+    let mut c = Config::new(kind).unwrap();
+    for &(slot, v) in set {
+        c.set_param(slot, v).unwrap();
+    }
+    let mut f = Filter::new(&c).unwrap();
+    f.update(&still(0.01)).unwrap();
+    f
+}
+
+fn still(dt: f64) -> Sample {
+    Sample { dt, gyro: Some(Vec3::new(0.0, 0.0, 0.1)), accel: Some(Vec3::new(0.0, 0.0, 9.81)), mag: None }
+}
+
+/// Every sample of a burst meets the rules of a lone sample: the one that closes it is
+/// checked as it is, not only the average it makes.
+#[test]
+fn the_sample_that_closes_a_burst_is_checked_as_it_is() {
+    let mut f = filter_with(Kind::Mahony, &[(id::SAME_INSTANT, 1.0), (id::GYRO_RANGE, 10.0)]);
+    for _ in 0..3 {
+        f.update(&still(0.0)).unwrap();
+    }
+    let before = f.clone();
+    let hot = Sample { gyro: Some(Vec3::new(20.0, 0.0, 0.0)), ..still(0.01) };
+    assert_eq!(f.update(&hot), Err(Error::Saturated(orient::Field::Gyro)));
+    assert_eq!(f, before, "a refused sample changes nothing");
+    let huge = Sample { gyro: Some(Vec3::new(5e4, 0.0, 0.0)), ..still(0.01) };
+    let mut g = filter_with(Kind::Mahony, &[(id::SAME_INSTANT, 1.0)]);
+    g.update(&still(0.0)).unwrap();
+    assert_eq!(g.update(&huge), Err(Error::TooLarge(orient::Field::Gyro)));
+}
+
+/// Under the clipping policy a saturated dt = 0 sample is still checked (its clipped form)
+/// and flagged; the closing sample carries the flag and the re-acquisition.
+#[test]
+fn a_saturated_burst_sample_is_checked_and_flagged() {
+    let set = [(id::SAME_INSTANT, 1.0), (id::GYRO_RANGE, 10.0), (id::SATURATION_RECOVERY, 1.0)];
+    let mut f = filter_with(Kind::Robust, &set);
+    let bad = Sample {
+        gyro: Some(Vec3::new(20.0, 0.0, 0.0)),
+        mag: Some(Vec3::new(f64::NAN, 0.0, 0.0)),
+        ..still(0.0)
+    };
+    assert!(f.update(&bad).is_err(), "a NaN magnetometer reading is refused inside a burst too");
+    let hot = Sample { gyro: Some(Vec3::new(20.0, 0.0, 0.0)), ..still(0.0) };
+    f.update(&hot).unwrap();
+    assert_ne!(f.flags() & flags::SATURATED, 0);
+    assert_ne!(f.flags() & flags::REACQUIRE_PENDING, 0);
+}
+
+/// reset() is the state right after new(): readings held for a burst are dropped, and so
+/// are they when the policy is switched off.
+#[test]
+fn reset_and_switching_the_policy_off_drop_held_readings() {
+    let fresh = filter_with(Kind::Madgwick, &[(id::SAME_INSTANT, 1.0)]);
+    let mut f = fresh.clone();
+    f.update(&Sample { gyro: Some(Vec3::new(3.0, 0.0, 0.0)), ..still(0.0) }).unwrap();
+    f.reset();
+    let mut g = fresh.clone();
+    g.reset();
+    assert_eq!(f, g);
+    let mut h = fresh.clone();
+    h.update(&Sample { gyro: Some(Vec3::new(3.0, 0.0, 0.0)), ..still(0.0) }).unwrap();
+    h.set_param(id::SAME_INSTANT, 0.0).unwrap();
+    let mut k = fresh;
+    k.set_param(id::SAME_INSTANT, 0.0).unwrap();
+    h.update(&still(0.01)).unwrap();
+    k.update(&still(0.01)).unwrap();
+    assert_eq!(h.quaternion(), k.quaternion(), "the held reading was not averaged in");
+}

@@ -150,3 +150,19 @@ fn flags_read_from_the_state_survive_a_snapshot() {
     assert_eq!(g.flags(), f.flags());
     assert_ne!(g.flags() & flags::REST, 0);
 }
+
+/// REST follows the option: switched off, a filter that was resting no longer says so.
+#[test]
+fn rest_is_not_reported_once_the_option_is_off() {
+    for (kind, slot) in
+        [(Kind::Madgwick, id::MADGWICK_REST_BIAS_TAU), (Kind::Mahony, id::MAHONY_REST_BIAS_TAU)]
+    {
+        let mut f = filter(kind, &[(slot, 5.0)]);
+        for _ in 0..600 {
+            f.update(&still(0.01, None)).unwrap();
+        }
+        assert_ne!(f.flags() & flags::REST, 0, "{kind:?}");
+        f.set_param(slot, 0.0).unwrap();
+        assert_eq!(f.flags() & flags::REST, 0, "{kind:?}");
+    }
+}

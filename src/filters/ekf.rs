@@ -1335,7 +1335,7 @@ mod estimator_impl {
         }
 
         fn at_rest(&self) -> bool {
-            Ekf::at_rest(self)
+            self.settings.rest_rate_std > 0.0 && Ekf::at_rest(self)
         }
     });
 }

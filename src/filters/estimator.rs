@@ -26,8 +26,8 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     fn configure(&mut self, settings: Self::Settings) {
         *self.settings_mut() = settings;
     }
-    /// Back to the state of [`Estimator::create`] with these settings, without touching
-    /// the heap.
+    /// Back to the state of [`Estimator::create`] with these settings (kinds with boxed
+    /// state override it to keep their boxes).
     fn restart(&mut self, settings: Self::Settings) {
         *self = Self::create(settings);
     }

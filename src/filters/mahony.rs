@@ -270,6 +270,15 @@ mod estimator_impl {
             self.rest.prepare(settings.rest_bias_tau > 0.0);
         }
 
+        fn restart(&mut self, settings: MahonySettings) {
+            // As new(settings), keeping the detector's box: no allocation.
+            self.settings = settings;
+            self.q = Quat::IDENTITY;
+            self.bias = Vec3::ZERO;
+            self.rest.restart();
+            self.rest.prepare(settings.rest_bias_tau > 0.0);
+        }
+
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Mahony::update(self, dt, gyro, accel, mag)
@@ -289,7 +298,7 @@ mod estimator_impl {
         }
 
         fn at_rest(&self) -> bool {
-            Mahony::at_rest(self)
+            self.settings.rest_bias_tau > 0.0 && Mahony::at_rest(self)
         }
     });
 }

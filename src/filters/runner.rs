@@ -158,6 +158,9 @@ impl<E: Estimator> Runner<E> {
         self.same_instant = slots[id::SAME_INSTANT as usize] != 0.0;
         if self.same_instant {
             self.extras_mut();
+        } else if let Some(x) = &mut self.extras.0 {
+            // Readings held for a step that will not come.
+            x.burst = (Vec3::ZERO, 0);
         }
     }
 
@@ -221,6 +224,9 @@ impl<E: Estimator> Runner<E> {
 
     pub(crate) fn reset(&mut self) {
         self.core.restart(*self.core.settings());
+        if let Some(x) = &mut self.extras.0 {
+            x.burst = (Vec3::ZERO, 0);
+        }
         self.last_accel = Vec3::ZERO;
         self.has_accel = false;
         self.flags = 0;
@@ -416,7 +422,10 @@ impl<E: Estimator> Runner<E> {
             let frame = self.frame;
             let q =
                 frame.attitude_from(a, mag).or_else(|| frame.attitude_from(a, None)).ok_or(Error::Numeric)?;
-            let saved = (self.core.clone(), self.flags);
+            // Before initialisation the core is as `restart` leaves it (new, reset, or a
+            // snapshot of either): a failure restarts it rather than restoring a clone,
+            // which would allocate where a kind keeps boxed state.
+            let saved = self.flags;
             self.set_frame_quaternion(q);
             Some(saved)
         };
@@ -442,8 +451,8 @@ impl<E: Estimator> Runner<E> {
                 Ok(())
             }
             None => {
-                if let Some((core, flags)) = saved {
-                    self.core = core;
+                if let Some(flags) = saved {
+                    self.core.restart(*self.core.settings());
                     self.flags = flags;
                 }
                 Err(Error::Numeric)

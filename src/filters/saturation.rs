@@ -37,40 +37,67 @@ impl<E: Estimator> Runner<E> {
         }
     }
 
-    /// The `same_instant` policy: a dt = 0 sample is checked (as if its dt were valid)
-    /// and its gyroscope reading kept; the next sample with dt > 0 integrates the
+    /// The `same_instant` policy: a dt = 0 sample is checked (as if its dt were valid;
+    /// clipped first under the clipping policy, then flagged SATURATED) and its gyroscope
+    /// reading kept; the next sample with dt > 0, checked the same way, integrates the
     /// average of the kept readings and its own over its dt. Nothing changes on error.
     #[cold]
     #[inline(never)]
     pub(crate) fn update_same_instant<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
         let (sum, n) = self.burst();
+        // Every sample of a burst meets the rules a lone sample would: under the
+        // clipping policy its clipped form is checked, else the reading as it is.
+        let probe = Sample { dt: if s.dt() == 0.0 { 1.0 } else { s.dt() }, ..s.to_sample() };
+        let (checked, gyro_clipped, clipped) = self.clipped(&probe);
+        self.check_view(&checked)?;
         if s.dt() == 0.0 {
-            let probe = Sample { dt: 1.0, ..s.to_sample() };
-            if !(self.recover && self.saturated(&probe)) {
-                self.check_view(&probe)?;
-            }
             if self.flags & flags::INITIALIZED == 0 {
                 return Err(Error::NotInitialized);
             }
-            let g = s.gyro().unwrap_or_default();
-            let g = if beyond(Some(g), self.common.gyro_limit, MAX_GYRO) {
-                clip(g, self.common.gyro_limit)
-            } else {
-                g
-            };
+            let g = checked.gyro.unwrap_or_default();
             self.set_burst((sum + g, n.saturating_add(1)));
-            self.flags = (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING)) | flags::SAME_INSTANT;
+            let kept = self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING);
+            self.flags = kept
+                | flags::SAME_INSTANT
+                | if clipped { flags::SATURATED } else { 0 }
+                | if gyro_clipped { flags::REACQUIRE_PENDING } else { 0 };
             return Ok(());
         }
-        let own = s.gyro().unwrap_or_default();
+        let own = checked.gyro.unwrap_or_default();
         let mean = (sum + own) * (1.0 / (n as f64 + 1.0));
-        let folded = Sample { gyro: s.gyro().map(|_| mean), ..s.to_sample() };
+        let folded = Sample { dt: s.dt(), gyro: checked.gyro.map(|_| mean), ..checked };
         self.set_burst((Vec3::ZERO, 0));
-        let result = self.update_inline(&folded);
-        if result.is_err() {
-            self.set_burst((sum, n));
+        let before = self.flags;
+        match self.update_inline(&folded) {
+            Ok(()) => {
+                if clipped && self.flags & flags::INITIALIZED != 0 {
+                    self.flags |= flags::SATURATED | if gyro_clipped { flags::REACQUIRE_PENDING } else { 0 };
+                }
+                Ok(())
+            }
+            Err(e) => {
+                self.set_burst((sum, n));
+                self.flags = before;
+                Err(e)
+            }
         }
-        result
+    }
+
+    /// The sample as the clipping policy uses it (the sample itself with the policy off):
+    /// a gyroscope reading beyond its range clipped just under it, an accelerometer
+    /// reading beyond its range left out; and whether the gyroscope, or any reading, was.
+    fn clipped(&self, s: &Sample) -> (Sample, bool, bool) {
+        if !(self.recover && self.saturated(s)) {
+            return (*s, false, false);
+        }
+        let gyro_saturated = beyond(s.gyro, self.common.gyro_limit, MAX_GYRO);
+        let accel_saturated = beyond(s.accel, self.common.accel_limit, MAX_ACCEL);
+        let sample = Sample {
+            gyro: s.gyro.map(|g| if gyro_saturated { clip(g, self.common.gyro_limit) } else { g }),
+            accel: if accel_saturated { None } else { s.accel },
+            ..*s
+        };
+        (sample, gyro_saturated, true)
     }
 
     /// True when the sample has a reading this policy clips.
