@@ -48,7 +48,7 @@ impl std::error::Error for SmoothError {}
 /// way, so the fusion cancels that error to first order and each pass can lean on the
 /// gyroscope longer; what remains is the magnetometer's error, which a longer average
 /// shrinks. Chosen by leave-one-group-out cross-validation over the 14 shared BROAD
-/// trials (examples/offline_cv.rs: 27 s in six of the seven folds, 36 s in the other).
+/// trials (tools/src/bin/offline_cv.rs: 27 s in six of the seven folds, 36 s in the other).
 pub const OFFLINE_TAU_MAG: f64 = 27.0;
 
 /// The offline defaults: the recommended kind with its defaults, but for the heading time

@@ -254,7 +254,7 @@ const ALL_TRIALS: [&str; 14] =
 #[test]
 fn robust_leads_vqf_over_all_fourteen_trials() {
     let Some(dir) = broad_dir() else { return };
-    // VQF over the 14 trials (shared/data/README.md, reproduced by examples/robust_cv.rs
+    // VQF over the 14 trials (shared/data/README.md, reproduced by tools/src/bin/robust_cv.rs
     // with vqf-rs): 9D 2.94 (0.81), 6D* 2.80 (0.81). Measured (docs/ACCURACY.md): 9D 2.32,
     // 6D* 2.69, inclination 0.80; before issue 19's changes 2.52 / 2.69 / 0.80.
     let config = Config::new(Kind::Robust).unwrap();

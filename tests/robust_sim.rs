@@ -187,7 +187,7 @@ fn started_in_motion_it_settles_quickly() {
     println!("started in motion: robust settles in {r:.2} s, VQF {v:.2} s");
     // Measured 10.8 s against VQF's 11.9: both average the heading from readings seen
     // through the first seconds' tilt error. Two alternatives measured and not taken,
-    // since on 80 starts in motion on BROAD (examples/robust_cv --starts) they were
+    // since on 80 starts in motion on BROAD (tools/src/bin/robust_cv.rs --starts) they were
     // slower: restarting that average once the accelerometer low-pass has settled (6.6 s
     // here, BROAD 6.9 s against 5.3), and settling the low-pass on the first reading
     // instead of averaging (3.1 s here, where the first reading happens to carry little
