@@ -467,6 +467,7 @@ mod tests {
     use super::*;
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn a_model_is_matrix_times_offset_removed() {
         let m = Model {
             matrix: [[2.0, 0.0, 0.0], [0.0, 1.0, 0.5], [0.0, 0.0, 1.0]],
@@ -479,6 +480,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn the_gyro_offset_is_the_still_mean() {
         let mut g = GyroOffset::default();
         assert_eq!(g.offset(), None);
@@ -493,6 +495,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn too_few_or_planar_samples_give_no_fit() {
         let mut c = MagCalibrator::new();
         for i in 0..9 {

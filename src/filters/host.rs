@@ -319,6 +319,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn the_identity_host_leaves_the_bits_alone() {
         let mut f = filter(Frame::Enu);
         let before = f.quaternion();
@@ -329,6 +330,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn the_mounting_gives_the_segment_and_set_quaternion_inverts_it() {
         let mut f = filter(Frame::Ned);
         let q = f.quaternion();
@@ -347,6 +349,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn set_heading_sets_the_yaw_and_keeps_the_inclination() {
         for frame in Frame::ALL {
             let mut f = filter(frame);
@@ -364,6 +367,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn declination_turns_a_magnetic_heading_into_a_true_one() {
         // Heading (clockwise from north) is the NED yaw; ENU's yaw is counter-clockwise
         // from east. East declination adds to the first and subtracts from the second.
@@ -380,6 +384,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn rig_calls_refuse_bad_input_and_change_nothing() {
         let mut a = filter(Frame::Enu);
         let mut b = Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap();
@@ -393,6 +398,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn a_calibrated_rig_reads_its_references() {
         let mut fs: Vec<Filter> = (0..3).map(|_| filter(Frame::Enu)).collect();
         let refs = [
