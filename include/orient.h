@@ -536,6 +536,54 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_PARAM_ROBUST_HARD_IRON_TIME 91
 
 /**
+ * Parameter slot (robust): Gyroscope rate noise density, for the heading uncertainty
+ * only (eq. H1); default 1.745e-4 (0.01 deg/s/sqrt(Hz), the MPU-9250 datasheet's, the
+ * largest of common MEMS gyroscopes: BMI270 0.007, LSM6DSO 0.0038).
+ *
+ * Unit rad/s/sqrt(Hz); range 0 to 1; default 0.00017453292519943296.
+ */
+#define ORIENT_PARAM_ROBUST_GYRO_NOISE 93
+
+/**
+ * Parameter slot (robust): Standard deviation of the gyroscope bias before any rest, and
+ * the most its uncertainty grows back to, for the heading uncertainty only (eq. H1);
+ * default 0.0087 (0.5 deg/s: VQF's biasSigmaInit, and the typical zero-rate offset after
+ * soldering in the BMI270 and LSM6DSO datasheets).
+ *
+ * Unit rad/s; range 0 to 10; default 0.008726646259971648.
+ */
+#define ORIENT_PARAM_ROBUST_BIAS_SIGMA 94
+
+/**
+ * Parameter slot (robust): Standard deviation of the bias learned at rest, for the
+ * heading uncertainty only (eq. H2): what the bias uncertainty settles to during a rest;
+ * default 5.24e-4 (0.03 deg/s, VQF's biasSigmaRest).
+ *
+ * Unit rad/s; range 0 to 10; default 0.0005235987755982989.
+ */
+#define ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST 95
+
+/**
+ * Parameter slot (robust): Random walk of the gyroscope bias, for the heading
+ * uncertainty only (eq. H1): a bias learned at rest is forgotten at this rate; default
+ * 1.745e-4 (0.01 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s).
+ *
+ * Unit rad/s/sqrt(s); range 0 to 10; default 0.00017453292519943296.
+ */
+#define ORIENT_PARAM_ROBUST_BIAS_WALK 96
+
+/**
+ * Parameter slot (robust): Standard deviation of the heading an accepted magnetometer
+ * field gives, for the heading uncertainty only (eq. H3): the floor the uncertainty
+ * settles to while the field is trusted; default 0.0349 (2 deg, orient: indoor fields
+ * that pass the norm and dip tests still turn by this much; robust's and VQF's 9D
+ * heading errors on BROAD's undisturbed trials are 1-2 deg).
+ *
+ * Unit rad; range 0 to 3.2; default 0.03490658503988659.
+ */
+#define ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA 97
+
+/**
  * Version of the C ABI described by this header. It changes only when an existing
  * function, struct layout or constant changes meaning; additions keep it.
  */
@@ -692,6 +740,16 @@ typedef struct OrientFilter OrientFilter;
  * OrientDiagnostics.present: covariance holds values.
  */
 #define ORIENT_DIAG_COVARIANCE 128
+
+/**
+ * OrientUncertainty.present: heading holds a value.
+ */
+#define ORIENT_UNCERTAINTY_HEADING 1
+
+/**
+ * OrientUncertainty.present: inclination holds a value.
+ */
+#define ORIENT_UNCERTAINTY_INCLINATION 2
 
 /**
  * Result of every fallible call. Numbers are fixed and never reused. On any status but
@@ -1128,6 +1186,32 @@ typedef struct OrientEuler {
 } OrientEuler;
 
 /**
+ * One standard deviation of the orientation's error, radians, from the kinds that model
+ * it (orient_filter_uncertainty). A field whose ORIENT_UNCERTAINTY_* bit in `present` is
+ * clear holds NaN.
+ */
+typedef struct OrientUncertainty {
+  /**
+   * ORIENT_UNCERTAINTY_* bits of the fields that hold values.
+   */
+  uint32_t present;
+  /**
+   * 0.
+   */
+  uint32_t reserved;
+  /**
+   * Heading error about the earth's vertical: EKF from its covariance; robust from its
+   * heading error model, growing while the magnetometer is distrusted or absent and
+   * settling to ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while it is used.
+   */
+  double heading;
+  /**
+   * Inclination error (tilt of the estimated vertical): EKF, from its covariance.
+   */
+  double inclination;
+} OrientUncertainty;
+
+/**
  * One sensor sample (88 bytes).
  */
 typedef struct OrientSample {
@@ -1411,6 +1495,19 @@ OrientStatus orient_filter_linear_accel_earth(const OrientFilter *filter, struct
  */
 OrientStatus orient_filter_diagnostics(const OrientFilter *filter,
                                        struct OrientDiagnostics *diagnostics);
+
+/**
+ * One standard deviation (radians) of the heading and inclination errors, from the kinds
+ * that model them: ORIENT_KIND_EKF (both, from its covariance) and ORIENT_KIND_ROBUST
+ * (heading: it grows while the magnetometer is distrusted or absent and settles to
+ * ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while it is used). For the other kinds, and
+ * before initialisation, `present` is 0 and both fields are NaN. The heading is against
+ * the filter's reference (magnetic north once a magnetometer was used, else the start
+ * heading); offsets the host sets (heading, declination, rig calibration, mounting,
+ * frame) are exact and add none.
+ */
+OrientStatus orient_filter_uncertainty(const OrientFilter *filter,
+                                       struct OrientUncertainty *uncertainty);
 
 /**
  * ORIENT_FLAG_* bits of the filter's state.

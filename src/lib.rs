@@ -33,5 +33,5 @@ pub mod offline;
 pub mod ffi;
 
 pub use filters::params::{ParamSpec, MAX_PARAMS};
-pub use filters::{flags, Config, Error, Field, Filter, Init, Kind, Sample};
+pub use filters::{flags, Config, Error, Field, Filter, Init, Kind, Sample, Uncertainty};
 pub use math::{Euler, Frame, Quat, Vec3};

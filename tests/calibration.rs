@@ -178,11 +178,12 @@ fn models_and_host_frames_survive_reset_and_snapshots() {
     assert_eq!(f.sensor_model(Sensor::Accel), None);
 }
 
-/// A blob of format version 2 (before issue 20's fields) is refused as another version.
+/// A blob of format version 2 (before issue 20's fields) is refused as another version,
+/// as is one of version 3 (before the robust kind's heading uncertainty).
 #[test]
 fn a_version_2_snapshot_is_refused_as_another_version() {
     use orient::filters::state::{checksum, StateError, VERSION};
-    assert_eq!(VERSION, 3);
+    assert_eq!(VERSION, 4);
     let mut f = Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap();
     let before = f.clone();
     let mut blob = vec![0u8; f.state_size()];

@@ -249,6 +249,16 @@ public:
         return orient_filter_linear_accel_earth(h_, &v);
     }
     OrientStatus diagnostics(OrientDiagnostics& d) const noexcept { return orient_filter_diagnostics(h_, &d); }
+    /// One standard deviation (rad) of the heading and inclination errors where the kind
+    /// models them (EKF: both; robust: heading); fields absent from `present` hold NaN.
+    OrientStatus uncertainty(OrientUncertainty& u) const noexcept { return orient_filter_uncertainty(h_, &u); }
+    /// The heading's standard deviation (rad); NaN where the kind has none.
+    double heading_sigma() const noexcept {
+        constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+        OrientUncertainty u{0, 0, nan, nan};
+        orient_filter_uncertainty(h_, &u);
+        return u.heading;
+    }
     uint32_t flags() const noexcept {
         uint32_t f = 0;
         orient_filter_flags(h_, &f);

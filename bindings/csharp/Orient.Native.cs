@@ -683,6 +683,54 @@ namespace Orient.Native
         public const uint ParamRobustHardIronTime = 91;
 
         /// <summary>
+        /// Parameter slot (robust): Gyroscope rate noise density, for the heading uncertainty
+        /// only (eq. H1); default 1.745e-4 (0.01 deg/s/sqrt(Hz), the MPU-9250 datasheet's, the
+        /// largest of common MEMS gyroscopes: BMI270 0.007, LSM6DSO 0.0038).
+        ///
+        /// Unit rad/s/sqrt(Hz); range 0 to 1; default 0.00017453292519943296.
+        /// </summary>
+        public const uint ParamRobustGyroNoise = 93;
+
+        /// <summary>
+        /// Parameter slot (robust): Standard deviation of the gyroscope bias before any rest, and
+        /// the most its uncertainty grows back to, for the heading uncertainty only (eq. H1);
+        /// default 0.0087 (0.5 deg/s: VQF's biasSigmaInit, and the typical zero-rate offset after
+        /// soldering in the BMI270 and LSM6DSO datasheets).
+        ///
+        /// Unit rad/s; range 0 to 10; default 0.008726646259971648.
+        /// </summary>
+        public const uint ParamRobustBiasSigma = 94;
+
+        /// <summary>
+        /// Parameter slot (robust): Standard deviation of the bias learned at rest, for the
+        /// heading uncertainty only (eq. H2): what the bias uncertainty settles to during a rest;
+        /// default 5.24e-4 (0.03 deg/s, VQF's biasSigmaRest).
+        ///
+        /// Unit rad/s; range 0 to 10; default 0.0005235987755982989.
+        /// </summary>
+        public const uint ParamRobustBiasSigmaRest = 95;
+
+        /// <summary>
+        /// Parameter slot (robust): Random walk of the gyroscope bias, for the heading
+        /// uncertainty only (eq. H1): a bias learned at rest is forgotten at this rate; default
+        /// 1.745e-4 (0.01 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s).
+        ///
+        /// Unit rad/s/sqrt(s); range 0 to 10; default 0.00017453292519943296.
+        /// </summary>
+        public const uint ParamRobustBiasWalk = 96;
+
+        /// <summary>
+        /// Parameter slot (robust): Standard deviation of the heading an accepted magnetometer
+        /// field gives, for the heading uncertainty only (eq. H3): the floor the uncertainty
+        /// settles to while the field is trusted; default 0.0349 (2 deg, orient: indoor fields
+        /// that pass the norm and dip tests still turn by this much; robust's and VQF's 9D
+        /// heading errors on BROAD's undisturbed trials are 1-2 deg).
+        ///
+        /// Unit rad; range 0 to 3.2; default 0.03490658503988659.
+        /// </summary>
+        public const uint ParamRobustMagHeadingSigma = 97;
+
+        /// <summary>
         /// Version of the C ABI described by this header. It changes only when an existing
         /// function, struct layout or constant changes meaning; additions keep it.
         /// </summary>
@@ -839,6 +887,16 @@ namespace Orient.Native
         /// OrientDiagnostics.present: covariance holds values.
         /// </summary>
         public const uint DiagCovariance = 128;
+
+        /// <summary>
+        /// OrientUncertainty.present: heading holds a value.
+        /// </summary>
+        public const uint UncertaintyHeading = 1;
+
+        /// <summary>
+        /// OrientUncertainty.present: inclination holds a value.
+        /// </summary>
+        public const uint UncertaintyInclination = 2;
     }
 
     /// <summary>
@@ -1116,6 +1174,37 @@ namespace Orient.Native
         /// (-pi, pi].
         /// </summary>
         public double Roll;
+    }
+
+    /// <summary>
+    /// One standard deviation of the orientation's error, radians, from the kinds that model
+    /// it (orient_filter_uncertainty). A field whose ORIENT_UNCERTAINTY_* bit in `present` is
+    /// clear holds NaN.
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public partial struct Uncertainty
+    {
+        /// <summary>
+        /// ORIENT_UNCERTAINTY_* bits of the fields that hold values.
+        /// </summary>
+        public uint Present;
+
+        /// <summary>
+        /// 0.
+        /// </summary>
+        public uint Reserved;
+
+        /// <summary>
+        /// Heading error about the earth's vertical: EKF from its covariance; robust from its
+        /// heading error model, growing while the magnetometer is distrusted or absent and
+        /// settling to ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while it is used.
+        /// </summary>
+        public double Heading;
+
+        /// <summary>
+        /// Inclination error (tilt of the estimated vertical): EKF, from its covariance.
+        /// </summary>
+        public double Inclination;
     }
 
     /// <summary>
@@ -1427,6 +1516,19 @@ namespace Orient.Native
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_filter_diagnostics(IntPtr filter, Diagnostics* diagnostics);
+
+        /// <summary>
+        /// One standard deviation (radians) of the heading and inclination errors, from the kinds
+        /// that model them: ORIENT_KIND_EKF (both, from its covariance) and ORIENT_KIND_ROBUST
+        /// (heading: it grows while the magnetometer is distrusted or absent and settles to
+        /// ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while it is used). For the other kinds, and
+        /// before initialisation, `present` is 0 and both fields are NaN. The heading is against
+        /// the filter's reference (magnetic north once a magnetometer was used, else the start
+        /// heading); offsets the host sets (heading, declination, rig calibration, mounting,
+        /// frame) are exact and add none.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_filter_uncertainty(IntPtr filter, Uncertainty* uncertainty);
 
         /// <summary>
         /// ORIENT_FLAG_* bits of the filter's state.

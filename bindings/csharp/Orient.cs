@@ -584,6 +584,20 @@ namespace Orient
             }
         }
 
+        /// <summary>One standard deviation (rad) of the heading and inclination errors where
+        /// the kind models them (EKF: both; robust: heading, growing while the magnetometer
+        /// is distrusted or absent); a field whose bit in Present is clear is NaN.</summary>
+        public Uncertainty Uncertainty
+        {
+            get
+            {
+                Uncertainty u;
+                OrientException.Check(NativeMethods.orient_filter_uncertainty(H, &u));
+                GC.KeepAlive(this);
+                return u;
+            }
+        }
+
         public uint Flags
         {
             get

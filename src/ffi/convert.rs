@@ -143,6 +143,17 @@ pub(crate) unsafe fn config_from(c: *const OrientConfig) -> Result<Config, Orien
     Config::from_slots(kind, frame, init, &c.params).map_err(from_core)
 }
 
+pub(crate) fn uncertainty_to(u: &crate::filters::Uncertainty) -> OrientUncertainty {
+    let bit = |v: Option<f64>, b: u32| if v.is_some() { b } else { 0 };
+    OrientUncertainty {
+        present: bit(u.heading, ORIENT_UNCERTAINTY_HEADING)
+            | bit(u.inclination, ORIENT_UNCERTAINTY_INCLINATION),
+        reserved: 0,
+        heading: u.heading.unwrap_or(f64::NAN),
+        inclination: u.inclination.unwrap_or(f64::NAN),
+    }
+}
+
 pub(crate) fn diagnostics_to(d: &crate::filters::Diagnostics) -> OrientDiagnostics {
     OrientDiagnostics {
         present: d.present,

@@ -215,6 +215,11 @@ mod tests {
             (ORIENT_PARAM_ROBUST_MAG_DIP_TH, params::id::ROBUST_MAG_DIP_TH),
             (ORIENT_PARAM_ROBUST_HARD_IRON_TIME, params::id::ROBUST_HARD_IRON_TIME),
             (ORIENT_PARAM_ROBUST_REST_TILT, params::id::ROBUST_REST_TILT),
+            (ORIENT_PARAM_ROBUST_GYRO_NOISE, params::id::ROBUST_GYRO_NOISE),
+            (ORIENT_PARAM_ROBUST_BIAS_SIGMA, params::id::ROBUST_BIAS_SIGMA),
+            (ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST, params::id::ROBUST_BIAS_SIGMA_REST),
+            (ORIENT_PARAM_ROBUST_BIAS_WALK, params::id::ROBUST_BIAS_WALK),
+            (ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA, params::id::ROBUST_MAG_HEADING_SIGMA),
         ];
         for (c, r) in slots {
             assert_eq!(c, r);

@@ -82,6 +82,22 @@ pub unsafe extern "C" fn orient_filter_diagnostics(
     guard(|| put(diagnostics, || Ok(diagnostics_to(&handle(filter)?.filter.diagnostics()))))
 }
 
+/// One standard deviation (radians) of the heading and inclination errors, from the kinds
+/// that model them: ORIENT_KIND_EKF (both, from its covariance) and ORIENT_KIND_ROBUST
+/// (heading: it grows while the magnetometer is distrusted or absent and settles to
+/// ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while it is used). For the other kinds, and
+/// before initialisation, `present` is 0 and both fields are NaN. The heading is against
+/// the filter's reference (magnetic north once a magnetometer was used, else the start
+/// heading); offsets the host sets (heading, declination, rig calibration, mounting,
+/// frame) are exact and add none.
+#[no_mangle]
+pub unsafe extern "C" fn orient_filter_uncertainty(
+    filter: *const OrientFilter,
+    uncertainty: *mut OrientUncertainty,
+) -> OrientStatus {
+    guard(|| put(uncertainty, || Ok(uncertainty_to(&handle(filter)?.filter.uncertainty()))))
+}
+
 /// ORIENT_FLAG_* bits of the filter's state.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_flags(filter: *const OrientFilter, flags: *mut u32) -> OrientStatus {

@@ -363,3 +363,41 @@ pub const ORIENT_PARAM_ROBUST_MAG_DIP_TH: u32 = 90;
 ///
 /// Unit s; range 0 (off) or 0.001 to 3600; default 3.
 pub const ORIENT_PARAM_ROBUST_HARD_IRON_TIME: u32 = 91;
+
+/// Parameter slot (robust): Gyroscope rate noise density, for the heading uncertainty
+/// only (eq. H1); default 1.745e-4 (0.01 deg/s/sqrt(Hz), the MPU-9250 datasheet's, the
+/// largest of common MEMS gyroscopes: BMI270 0.007, LSM6DSO 0.0038).
+///
+/// Unit rad/s/sqrt(Hz); range 0 to 1; default 0.00017453292519943296.
+pub const ORIENT_PARAM_ROBUST_GYRO_NOISE: u32 = 93;
+
+/// Parameter slot (robust): Standard deviation of the gyroscope bias before any rest, and
+/// the most its uncertainty grows back to, for the heading uncertainty only (eq. H1);
+/// default 0.0087 (0.5 deg/s: VQF's biasSigmaInit, and the typical zero-rate offset after
+/// soldering in the BMI270 and LSM6DSO datasheets).
+///
+/// Unit rad/s; range 0 to 10; default 0.008726646259971648.
+pub const ORIENT_PARAM_ROBUST_BIAS_SIGMA: u32 = 94;
+
+/// Parameter slot (robust): Standard deviation of the bias learned at rest, for the
+/// heading uncertainty only (eq. H2): what the bias uncertainty settles to during a rest;
+/// default 5.24e-4 (0.03 deg/s, VQF's biasSigmaRest).
+///
+/// Unit rad/s; range 0 to 10; default 0.0005235987755982989.
+pub const ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST: u32 = 95;
+
+/// Parameter slot (robust): Random walk of the gyroscope bias, for the heading
+/// uncertainty only (eq. H1): a bias learned at rest is forgotten at this rate; default
+/// 1.745e-4 (0.01 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s).
+///
+/// Unit rad/s/sqrt(s); range 0 to 10; default 0.00017453292519943296.
+pub const ORIENT_PARAM_ROBUST_BIAS_WALK: u32 = 96;
+
+/// Parameter slot (robust): Standard deviation of the heading an accepted magnetometer
+/// field gives, for the heading uncertainty only (eq. H3): the floor the uncertainty
+/// settles to while the field is trusted; default 0.0349 (2 deg, orient: indoor fields
+/// that pass the norm and dip tests still turn by this much; robust's and VQF's 9D
+/// heading errors on BROAD's undisturbed trials are 1-2 deg).
+///
+/// Unit rad; range 0 to 3.2; default 0.03490658503988659.
+pub const ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA: u32 = 97;

@@ -88,6 +88,11 @@ pub const ORIENT_DIAG_RATE: u32 = 64;
 /// OrientDiagnostics.present: covariance holds values.
 pub const ORIENT_DIAG_COVARIANCE: u32 = 128;
 
+/// OrientUncertainty.present: heading holds a value.
+pub const ORIENT_UNCERTAINTY_HEADING: u32 = 1;
+/// OrientUncertainty.present: inclination holds a value.
+pub const ORIENT_UNCERTAINTY_INCLINATION: u32 = 2;
+
 /// Result of every fallible call. Numbers are fixed and never reused. On any status but
 /// ORIENT_STATUS_OK the call changed nothing (a batch keeps the samples before the bad
 /// one), and orient_last_error() has the detail.
@@ -338,4 +343,22 @@ pub struct OrientDiagnostics {
     /// EKF covariance diagonal, state order [q0, q1, q2, q3, omega_xyz, drift_xyz]
     /// (the quaternion in the filter's native North-East-Down frame).
     pub covariance: [f64; 10],
+}
+
+/// One standard deviation of the orientation's error, radians, from the kinds that model
+/// it (orient_filter_uncertainty). A field whose ORIENT_UNCERTAINTY_* bit in `present` is
+/// clear holds NaN.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct OrientUncertainty {
+    /// ORIENT_UNCERTAINTY_* bits of the fields that hold values.
+    pub present: u32,
+    /// 0.
+    pub reserved: u32,
+    /// Heading error about the earth's vertical: EKF from its covariance; robust from its
+    /// heading error model, growing while the magnetometer is distrusted or absent and
+    /// settling to ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while it is used.
+    pub heading: f64,
+    /// Inclination error (tilt of the estimated vertical): EKF, from its covariance.
+    pub inclination: f64,
 }

@@ -38,6 +38,19 @@ pub struct Diagnostics {
     pub covariance: [f64; 10],
 }
 
+/// One standard deviation of the orientation's error (rad), where a kind has a model of
+/// it (see [`crate::Filter::uncertainty`]); `None` where it has none.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Uncertainty {
+    /// The heading error, about the earth's vertical: the EKF's from its covariance P,
+    /// the robust kind's from its heading error model (it grows while the magnetometer
+    /// is distrusted or absent, and settles to `mag_heading_sigma` while it is used).
+    pub heading: Option<f64>,
+    /// The inclination error: the tilt of the estimated vertical, the root of the
+    /// variances about the two horizontal axes (the EKF's, from P).
+    pub inclination: Option<f64>,
+}
+
 impl Default for Diagnostics {
     fn default() -> Self {
         let nan = f64::NAN;

@@ -750,6 +750,26 @@ impl Ekf {
         Vec3::new(lane(self.x.d, 0), lane(self.x.d, 1), lane(self.x.d, 2))
     }
 
+    /// One standard deviation (rad) of the heading and inclination errors, from the q
+    /// block of P: the earth-frame error angle of an error Δq is δθ = 2 vec(Δq ⊗ q̂*),
+    /// linear in Δq with rows J_x, J_y, J_z, so var(δθ_i) = J_i P_qq J_iᵀ; heading is
+    /// about the vertical (z in NED), inclination the root of the two horizontal ones.
+    pub fn attitude_sigmas(&self) -> (f64, f64) {
+        let q = self.quaternion();
+        let (w, x, y, z) = (q.w, q.x, q.y, q.z);
+        let rows = [[-x, w, -z, y], [-y, z, w, -x], [-z, -y, x, w]].map(|r| r.map(|v| 2.0 * v));
+        let var = |j: &[f64; 4]| -> f64 {
+            let mut s = 0.0;
+            for (a, ja) in j.iter().enumerate() {
+                for (b, jb) in j.iter().enumerate() {
+                    s += ja * lane(self.p.qq[b], a) * jb;
+                }
+            }
+            s.max(0.0)
+        };
+        (var(&rows[2]).sqrt(), (var(&rows[0]) + var(&rows[1])).sqrt())
+    }
+
     /// The diagonal of the state covariance P, in state order [q0..q3, ω, δ].
     pub fn covariance_diagonal(&self) -> [f64; 10] {
         let p = &self.p;
@@ -1264,6 +1284,30 @@ mod tests {
         assert!((e.w - 0.5f64.cos()).abs() < 1e-15 && (e.z - 0.5f64.sin()).abs() < 1e-15);
     }
 
+    /// The heading and inclination σ read the earth-frame error angle: with P_qq the
+    /// outer product of one error Δq (a known small rotation ε about an earth axis, applied
+    /// as q' = Δ ⊗ q), heading σ is |ε| for a vertical axis and inclination σ |ε| for a
+    /// horizontal one, to first order.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn attitude_sigmas_read_the_earth_frame_error_angle() {
+        let mut f = Ekf::new(EkfSettings::default());
+        let q = Quat::from_axis_angle(Vec3::new(0.3, -0.5, 0.8).normalized(), 1.1);
+        f.set_quaternion(q);
+        let eps = 1e-6;
+        for (axis, vertical) in [(Vec3::new(0.0, 0.0, 1.0), true), (Vec3::new(0.6, 0.8, 0.0), false)] {
+            let d = Quat::from_axis_angle(axis, eps) * q;
+            let dq = [d.w - q.w, d.x - q.x, d.y - q.y, d.z - q.z];
+            for (j, col) in f.p.qq.iter_mut().enumerate() {
+                *col = f64x4::new(dq.map(|v| v * dq[j]));
+            }
+            let (heading, inclination) = f.attitude_sigmas();
+            let (along, across) = if vertical { (heading, inclination) } else { (inclination, heading) };
+            assert!((along - eps).abs() < 1e-6 * eps, "{axis:?}: {along} {across}");
+            assert!(across < 1e-6 * eps, "{axis:?}: {across}");
+        }
+    }
+
     #[test]
     #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn covariance_stays_symmetric_positive_definite() {
@@ -1336,6 +1380,11 @@ mod estimator_impl {
 
         fn at_rest(&self) -> bool {
             self.settings.rest_rate_std > 0.0 && Ekf::at_rest(self)
+        }
+
+        fn uncertainty(&self) -> crate::filters::Uncertainty {
+            let (heading, inclination) = self.attitude_sigmas();
+            crate::filters::Uncertainty { heading: Some(heading), inclination: Some(inclination) }
         }
     });
 }

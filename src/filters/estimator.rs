@@ -3,7 +3,7 @@
 
 use super::params::Settings;
 use super::state::Codec;
-use super::{Diagnostics, Kind};
+use super::{Diagnostics, Kind, Uncertainty};
 use crate::math::{Frame, Quat, Vec3};
 
 /// One filter kind: its settings and parameter table, its native frame, and its state
@@ -59,6 +59,10 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     /// Fills the fields of [`Diagnostics`] this filter has (its `present` bits are set to
     /// [`Estimator::fields`] before; a kind clears those it has no value for yet).
     fn diagnose(&self, d: &mut Diagnostics);
+    /// The kind's model of its error, where it has one (none by default).
+    fn uncertainty(&self) -> Uncertainty {
+        Uncertainty::default()
+    }
     /// True when the kind counts the sensor as resting now ([`super::flags::REST`]).
     fn at_rest(&self) -> bool {
         false

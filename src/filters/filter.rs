@@ -260,6 +260,18 @@ impl Filter {
         each!(&self.0, r => r.diagnostics())
     }
 
+    /// One standard deviation (rad) of the heading and inclination errors, from the kinds
+    /// that model them: the EKF (both, from its covariance P) and the robust kind (heading:
+    /// it grows while the magnetometer is distrusted or absent, and settles to
+    /// `mag_heading_sigma` while it is used; `src/filters/robust.rs`, eqs. (H1)-(H4)).
+    /// Every field is `None` for the other kinds and before initialisation. The heading
+    /// is against the kind's reference (magnetic north once a magnetometer was used, else
+    /// the start heading); offsets the host sets (heading, declination, rig calibration,
+    /// mounting, frame) are exact and add none.
+    pub fn uncertainty(&self) -> super::Uncertainty {
+        each!(&self.0, r => r.uncertainty())
+    }
+
     /// The [`super::diag`] bits of the [`Diagnostics`] fields this filter reports with its
     /// settings: [`Kind::diagnostics`] less those of an option that is off (Madgwick's bias
     /// and rest, Mahony's and the EKF's rest without their rest options). GMVDK's μ values

@@ -36,7 +36,7 @@ mod sample;
 mod saturation;
 
 pub use config::{Config, Init};
-pub use diagnostics::{diag, Diagnostics};
+pub use diagnostics::{diag, Diagnostics, Uncertainty};
 pub use error::{Error, Field};
 pub(crate) use estimator::twist_about;
 pub(crate) use estimator::Reacquisition;

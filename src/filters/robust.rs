@@ -43,6 +43,41 @@
 //!
 //! Low-pass filters use the gain `dt / (τ + dt)` (backward Euler), which is stable for
 //! any dt and needs no transcendental per sample.
+//!
+//! ## Heading uncertainty
+//!
+//! The filter reports one standard deviation of its heading error e (rad, about the
+//! vertical, against its reference: magnetic north once the magnetometer was used, else
+//! the start heading), propagated with the error of the vertical bias component b
+//! (rad/s) as the 2×2 covariance `P = [[P_ee, P_eb], [P_eb, P_bb]]` of a linear error
+//! model of this filter's own fixed-gain steps (orient's; no covariance drives the
+//! estimate; the bias terms follow VQF's bias uncertainty and take its defaults). With
+//! σ_g the gyroscope noise density (`gyro_noise`), σ_b the bias before any rest
+//! (`bias_sigma`), σ_r the bias learned at rest (`bias_sigma_rest`), σ_w the bias random
+//! walk (`bias_walk`) and σ_m the heading error of an accepted field
+//! (`mag_heading_sigma`):
+//!
+//! - (H1) gyroscope step, e' = e + b dt + rate noise, b' = b + bias walk:
+//!   `P_ee += 2 dt P_eb + dt² P_bb + σ_g² dt`, `P_eb += dt P_bb`,
+//!   `P_bb = min(P_bb + σ_w² dt, σ_b²)` (|P_eb| then kept within √(P_ee P_bb)); from the
+//!   start `P_ee = P_eb = 0` (the start heading is the reference), `P_bb = σ_b²`;
+//! - (H2) bias step at rest with gain k_b (the bias's own, `bias_tau_rest`),
+//!   b' = (1 - k_b) b + k_b ε with ε the rest estimate's error:
+//!   `P_bb = (1 - k_b)² P_bb + k_b (2 - k_b) σ_r²`, `P_eb *= 1 - k_b`, so a rest brings
+//!   the bias uncertainty to σ_r at any sample rate; the bias learned in motion is not
+//!   credited (it sees the horizontal components only), so the uncertainty errs large;
+//! - (H3) heading step with the gain k of an accepted field, e' = (1 - k) e + k v:
+//!   `P_ee = (1 - k)² P_ee + k (2 - k) σ_m²`, `P_eb *= 1 - k`. An accepted field's
+//!   error lasts (a disturbance that passes the tests does not flip sign each sample),
+//!   so v is counted with the variance that makes σ_m the floor at any sample rate, not
+//!   as white noise that averaging would shrink; the first field (k = 1) sets σ_m;
+//! - (H4) no heading is more uncertain than one uniform on the circle: P_ee is capped at
+//!   π²/3, and P_eb set to 0 when it is. A gap re-acquired without the magnetometer
+//!   loses the gap's rotation, so P_ee is set to that cap; with it, to σ_m². A host's
+//!   `set_quaternion` makes the heading exact (P_ee = P_eb = 0).
+//!
+//! While the magnetometer is distrusted only (H1) and (H2) act, so the uncertainty grows
+//! (with the bias error as σ_b t); once it is trusted again (H3) brings it back to σ_m.
 
 use super::complementary::rotation_of;
 use super::params::settings;
@@ -176,6 +211,59 @@ settings! {
             zero_off: true,
             doc: "A sensor-fixed disturbance (attached magnet) is compensated once its estimate has \
                  been consistent this long; default 3 (orient); 0 turns compensation off.",
+        },
+        gyro_noise: f64 = ROBUST_GYRO_NOISE 93 {
+            unit: "rad/s/sqrt(Hz)",
+            default: 1.7453292519943296e-4,
+            min: 0.0,
+            max: 1.0,
+            zero_off: false,
+            doc: "Gyroscope rate noise density, for the heading uncertainty only (eq. H1); default \
+                 1.745e-4 (0.01 deg/s/sqrt(Hz), the MPU-9250 datasheet's, the largest of common \
+                 MEMS gyroscopes: BMI270 0.007, LSM6DSO 0.0038).",
+        },
+        bias_sigma: f64 = ROBUST_BIAS_SIGMA 94 {
+            unit: "rad/s",
+            default: 0.008726646259971648,
+            min: 0.0,
+            max: 10.0,
+            zero_off: false,
+            doc: "Standard deviation of the gyroscope bias before any rest, and the most its \
+                 uncertainty grows back to, for the heading uncertainty only (eq. H1); default \
+                 0.0087 (0.5 deg/s: VQF's biasSigmaInit, and the typical zero-rate offset after \
+                 soldering in the BMI270 and LSM6DSO datasheets).",
+        },
+        bias_sigma_rest: f64 = ROBUST_BIAS_SIGMA_REST 95 {
+            unit: "rad/s",
+            default: 5.235987755982989e-4,
+            min: 0.0,
+            max: 10.0,
+            zero_off: false,
+            doc: "Standard deviation of the bias learned at rest, for the heading uncertainty only \
+                 (eq. H2): what the bias uncertainty settles to during a rest; default 5.24e-4 \
+                 (0.03 deg/s, VQF's biasSigmaRest).",
+        },
+        bias_walk: f64 = ROBUST_BIAS_WALK 96 {
+            unit: "rad/s/sqrt(s)",
+            default: 1.7453292519943296e-4,
+            min: 0.0,
+            max: 10.0,
+            zero_off: false,
+            doc: "Random walk of the gyroscope bias, for the heading uncertainty only (eq. H1): a \
+                 bias learned at rest is forgotten at this rate; default 1.745e-4 (0.01 deg/s/sqrt(s): \
+                 VQF's 0.1 deg/s over its biasForgettingTime of 100 s).",
+        },
+        mag_heading_sigma: f64 = ROBUST_MAG_HEADING_SIGMA 97 {
+            unit: "rad",
+            default: 0.03490658503988659,
+            min: 0.0,
+            max: 3.2,
+            zero_off: false,
+            doc: "Standard deviation of the heading an accepted magnetometer field gives, for the \
+                 heading uncertainty only (eq. H3): the floor the uncertainty settles to while the \
+                 field is trusted; default 0.0349 (2 deg, orient: indoor fields that pass the norm \
+                 and dip tests still turn by this much; robust's and VQF's 9D heading errors on \
+                 BROAD's undisturbed trials are 1-2 deg).",
         },
     }
 }
@@ -325,6 +413,75 @@ const MAG_NEW_TIME: f64 = 20.0;
 /// disturbance the sensor started in).
 const MAG_FIRST_TIME: f64 = 3.0;
 
+/// The heading error covariance of (H1)-(H4) in the module documentation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct HeadingVariance {
+    p_ee: f64,
+    p_eb: f64,
+    p_bb: f64,
+}
+
+/// (H4): the variance of a heading uniform on the circle.
+const HEADING_VAR_MAX: f64 = core::f64::consts::PI * core::f64::consts::PI / 3.0;
+
+impl HeadingVariance {
+    fn start(s: &RobustSettings) -> HeadingVariance {
+        HeadingVariance { p_ee: 0.0, p_eb: 0.0, p_bb: s.bias_sigma * s.bias_sigma }
+    }
+
+    /// (H1) and (H4).
+    fn gyro_step(&mut self, dt: f64, s: &RobustSettings) {
+        let (sigma_g, sigma_w, sigma_b) = (s.gyro_noise, s.bias_walk, s.bias_sigma);
+        self.p_ee += 2.0 * dt * self.p_eb + dt * dt * self.p_bb + sigma_g * sigma_g * dt;
+        self.p_eb += dt * self.p_bb;
+        self.p_bb = (self.p_bb + sigma_w * sigma_w * dt).min(sigma_b * sigma_b);
+        // max/min, not clamp: no panic on a NaN from a step about to be undone.
+        let bound = (self.p_ee * self.p_bb).sqrt();
+        self.p_eb = self.p_eb.max(-bound).min(bound);
+        if self.p_ee.is_nan() || self.p_ee > HEADING_VAR_MAX {
+            self.lost();
+        }
+    }
+
+    /// (H2).
+    fn bias_step(&mut self, k_b: f64, sigma_r: f64) {
+        self.p_bb = (1.0 - k_b) * (1.0 - k_b) * self.p_bb + k_b * (2.0 - k_b) * sigma_r * sigma_r;
+        self.p_eb *= 1.0 - k_b;
+    }
+
+    /// (H3), and (H4) for a σ_m set beyond it.
+    fn heading_step(&mut self, k: f64, sigma_m: f64) {
+        let p_ee = (1.0 - k) * (1.0 - k) * self.p_ee + k * (2.0 - k) * sigma_m * sigma_m;
+        self.p_ee = p_ee.min(HEADING_VAR_MAX);
+        self.p_eb *= 1.0 - k;
+    }
+
+    /// (H4): the heading is anything.
+    fn lost(&mut self) {
+        self.p_ee = HEADING_VAR_MAX;
+        self.p_eb = 0.0;
+    }
+
+    fn finite(&self) -> bool {
+        self.p_ee.is_finite() && self.p_eb.is_finite() && self.p_bb.is_finite()
+    }
+
+    /// What (H1)-(H4) can leave: variances in range, and a covariance (|P_eb|² ≤ P_ee P_bb,
+    /// to rounding).
+    fn valid(&self) -> bool {
+        let bias_max = (10.0 * super::MAX_GYRO) * (10.0 * super::MAX_GYRO);
+        (0.0..=HEADING_VAR_MAX).contains(&self.p_ee)
+            && (0.0..=bias_max).contains(&self.p_bb)
+            && self.p_eb * self.p_eb <= self.p_ee * self.p_bb * (1.0 + 1e-9) + 1e-300
+    }
+
+    fn codec(&mut self, c: &mut dyn Codec) {
+        c.f64(&mut self.p_ee);
+        c.f64(&mut self.p_eb);
+        c.f64(&mut self.p_bb);
+    }
+}
+
 /// The recommended filter. See the module documentation.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Robust {
@@ -363,11 +520,14 @@ pub struct Robust {
     cand_norm: f64,
     cand_dip: f64,
     cand_clock: f64,
+    /// The heading uncertainty (module documentation, (H1)-(H4)).
+    heading_var: HeadingVariance,
 }
 
 impl Robust {
     pub fn new(settings: RobustSettings) -> Robust {
         Robust {
+            heading_var: HeadingVariance::start(&settings),
             settings,
             q_gyr: Quat::IDENTITY,
             q_inc: Quat::IDENTITY,
@@ -405,6 +565,8 @@ impl Robust {
         self.delta = 0.0;
         self.q = q;
         self.acc_seen = false;
+        self.heading_var.p_ee = 0.0;
+        self.heading_var.p_eb = 0.0;
     }
 
     pub fn bias(&self) -> Vec3 {
@@ -439,7 +601,18 @@ impl Robust {
         self.hi_started = false;
         self.hi_clock = 0.0;
         self.mag_disturbed = !used_mag && r.mag.is_some();
+        if used_mag {
+            self.heading_var.heading_step(1.0, self.settings.mag_heading_sigma);
+        } else {
+            self.heading_var.lost();
+        }
         used_mag
+    }
+
+    /// One standard deviation of the heading error (rad; module documentation,
+    /// (H1)-(H4)).
+    pub fn heading_sigma(&self) -> f64 {
+        self.heading_var.p_ee.sqrt()
     }
 
     /// True when the last sample was classified as rest.
@@ -478,6 +651,7 @@ impl Robust {
             && holds::mag_norm(self.cand_norm)
             && holds::within(self.cand_dip, -PI, PI)
             && self.cand_clock >= 0.0
+            && self.heading_var.valid()
     }
 
     pub(crate) fn codec(&mut self, c: &mut dyn Codec) {
@@ -503,6 +677,7 @@ impl Robust {
         c.f64(&mut self.cand_norm);
         c.f64(&mut self.cand_dip);
         c.f64(&mut self.cand_clock);
+        self.heading_var.codec(c);
     }
 
     /// Out of line for the reason given at `Complementary::update`.
@@ -514,7 +689,11 @@ impl Robust {
         // them to retire.
         let before = self.clone();
         let step = self.step(dt, gyro, accel, mag);
-        if !(self.q.is_finite() && self.bias.is_finite() && self.delta.is_finite()) {
+        if !(self.q.is_finite()
+            && self.bias.is_finite()
+            && self.delta.is_finite()
+            && self.heading_var.finite())
+        {
             *self = before;
             return None;
         }
@@ -532,9 +711,12 @@ impl Robust {
             tau: s.rest_tau,
         };
         if self.rest.update_with_bias(dt, gyro, self.bias, accel, &th) {
-            self.bias = self.bias + (self.rest.gyro_lp() - self.bias) * lp_gain(dt, s.bias_tau_rest);
+            let k_b = lp_gain(dt, s.bias_tau_rest);
+            self.bias = self.bias + (self.rest.gyro_lp() - self.bias) * k_b;
+            self.heading_var.bias_step(k_b, s.bias_sigma_rest);
         }
         self.q_gyr = (self.q_gyr * rotation_of(gyro - self.bias, dt)).normalized();
+        self.heading_var.gyro_step(dt, &s);
         if let Some(a) = accel {
             step.used_accel = true;
             self.correct_inclination(dt, a);
@@ -623,6 +805,7 @@ impl Robust {
         // The first samples are averaged (gain 1/n) until the exponential gain is larger.
         let k = lp_gain(dt, s.tau_mag).max(1.0 / self.mag_count as f64);
         self.delta = wrap(self.delta + k * wrap(target - self.delta));
+        self.heading_var.heading_step(k, s.mag_heading_sigma);
         let kr = lp_gain(dt, 10.0 * s.tau_mag).max(1.0 / self.mag_count as f64);
         self.ref_norm += (f.norm() - self.ref_norm) * kr;
         self.ref_dip += (f_dip - self.ref_dip) * kr;
@@ -941,6 +1124,110 @@ mod tests {
         assert!((f.bias() - bias).norm() < 1e-3, "{:?}", f.bias());
     }
 
+    /// (H1) alone, without noise or walk, is a bias error of σ_b integrated: σ_b t; (H3)
+    /// alone settles to σ_m whatever the sample rate; (H2) to σ_r likewise.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn the_heading_model_steps_its_equations() {
+        let s = RobustSettings { gyro_noise: 0.0, bias_walk: 0.0, ..Default::default() };
+        let mut p = HeadingVariance::start(&s);
+        for _ in 0..1000 {
+            p.gyro_step(DT, &s);
+        }
+        let t = 1000.0 * DT;
+        assert!((p.p_ee.sqrt() - s.bias_sigma * t).abs() < 1e-12 * t, "{p:?}");
+        assert!((p.p_eb - s.bias_sigma * s.bias_sigma * t).abs() < 1e-15 * t);
+        for dt in [1e-3, 1e-2, 0.1] {
+            let k = lp_gain(dt, s.tau_mag);
+            let mut h = HeadingVariance { p_ee: 1.0, p_eb: 0.0, p_bb: 1.0 };
+            for _ in 0..(100.0 * s.tau_mag / dt) as usize {
+                h.heading_step(k, s.mag_heading_sigma);
+                h.bias_step(lp_gain(dt, s.bias_tau_rest), s.bias_sigma_rest);
+            }
+            assert!((h.p_ee.sqrt() - s.mag_heading_sigma).abs() < 1e-9, "{dt} {h:?}");
+            assert!((h.p_bb.sqrt() - s.bias_sigma_rest).abs() < 1e-9, "{dt} {h:?}");
+        }
+        // A first field (gain 1) sets σ_m at once; (H4) caps a heading that is anything.
+        p.heading_step(1.0, s.mag_heading_sigma);
+        assert_eq!((p.p_ee, p.p_eb), (s.mag_heading_sigma * s.mag_heading_sigma, 0.0));
+        for _ in 0..100_000 {
+            p.gyro_step(1.0, &s);
+        }
+        assert_eq!(p.p_ee, HEADING_VAR_MAX);
+        assert!(p.valid());
+    }
+
+    /// Simulated truth: a sensor turning about the vertical with a vertical gyro bias of
+    /// 0.3 °/s (within the default σ_b) and no rest. While a magnet in the room is
+    /// rejected the heading drifts as b t and the reported σ grows every step, covering
+    /// the error; once the field is trusted again σ falls back to its floor (σ_m and the
+    /// lag b τ_mag the unlearned bias leaves, also covered).
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn the_heading_uncertainty_grows_while_the_field_is_distrusted() {
+        let s = RobustSettings { hard_iron_time: 0.0, ..Default::default() };
+        let mut f = Robust::new(s);
+        let (rate, bias) = (0.5, 0.3f64.to_radians());
+        let up = Vec3::new(0.0, 0.0, 1.0);
+        let truth = |t: f64| Quat::from_axis_angle(up, rate * t);
+        let error = |f: &Robust, t: f64| wrap(heading(f.quaternion()) - heading(truth(t))).abs();
+        let mut t = 0.0;
+        let step = |f: &mut Robust, magnet: Vec3, t: &mut f64| {
+            *t += DT;
+            let q = truth(*t);
+            let m = q.rotate_inverse(FIELD + magnet);
+            f.update(DT, up * (rate + bias), Some(q.rotate_inverse(G)), Some(m)).unwrap();
+        };
+        for _ in 0..3000 {
+            step(&mut f, Vec3::ZERO, &mut t);
+        }
+        let settled = f.heading_sigma();
+        assert!(!f.mag_disturbed() && error(&f, t) < 2.0 * settled, "{} {settled}", error(&f, t));
+        let (mut last, start) = (settled, error(&f, t));
+        // 15 s: a field that stays different for 20 s while turning is taken as the
+        // place's (`new_field`).
+        for _ in 0..1500 {
+            step(&mut f, Vec3::new(30.0, 0.0, 0.0), &mut t);
+            assert!(f.mag_disturbed());
+            let sigma = f.heading_sigma();
+            assert!(sigma > last, "{sigma} after {last}");
+            assert!(error(&f, t) < 2.0 * sigma, "error {} sigma {sigma}", error(&f, t));
+            last = sigma;
+        }
+        let drift = error(&f, t) - start;
+        assert!(last > 1.5 * settled && drift > 0.9 * bias * 15.0, "{last} {settled} {drift}");
+        for _ in 0..6000 {
+            step(&mut f, Vec3::ZERO, &mut t);
+            assert!(error(&f, t) < 2.0 * f.heading_sigma().max(settled));
+        }
+        assert!((f.heading_sigma() - settled).abs() < 0.05 * settled, "{} {settled}", f.heading_sigma());
+    }
+
+    /// A rest teaches the bias, and the heading uncertainty then grows at σ_r, not σ_b.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn a_rest_slows_the_growth() {
+        let s = RobustSettings::default();
+        let grow = |rest: bool| {
+            let mut f = Robust::new(s);
+            let still = |_: f64| (Quat::IDENTITY, Vec3::ZERO, Vec3::ZERO);
+            if rest {
+                run(&mut f, 20.0, still, |_, _| None);
+                assert!(f.at_rest());
+            }
+            let before = f.heading_sigma();
+            let turning = |t: f64| {
+                let w = Vec3::new(0.0, 0.0, 0.5);
+                (Quat::from_axis_angle(w.normalized(), 0.5 * t), w, Vec3::ZERO)
+            };
+            run(&mut f, 30.0, turning, |_, _| None);
+            f.heading_sigma() - before
+        };
+        let (with, without) = (grow(true), grow(false));
+        assert!(with < 0.2 * without, "{with} {without}");
+        assert!((without - s.bias_sigma * 30.0).abs() < 0.05 * without, "{without}");
+    }
+
     #[test]
     #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn butterworth_has_unit_gain_and_settles() {
@@ -982,6 +1269,10 @@ mod estimator_impl {
 
         fn at_rest(&self) -> bool {
             Robust::at_rest(self)
+        }
+
+        fn uncertainty(&self) -> crate::filters::Uncertainty {
+            crate::filters::Uncertainty { heading: Some(self.heading_sigma()), inclination: None }
         }
 
         fn mag_disturbed(&self) -> bool {

@@ -526,6 +526,14 @@ impl<E: Estimator> Runner<E> {
         d
     }
 
+    /// The kind's error model; none before initialisation.
+    pub(crate) fn uncertainty(&self) -> super::Uncertainty {
+        if self.flags() & flags::INITIALIZED == 0 {
+            return super::Uncertainty::default();
+        }
+        self.core.uncertainty()
+    }
+
     /// The configuration and state fields of a snapshot, in order (see [`state`]).
     fn codec(&mut self, c: &mut dyn Codec) {
         let mut head = ConfigFields::of(&self.config());
@@ -535,7 +543,7 @@ impl<E: Estimator> Runner<E> {
         c.opt_vec3(&mut last);
         self.has_accel = last.is_some();
         self.last_accel = last.unwrap_or(Vec3::ZERO);
-        // Format version 3: the host's frames, the sensor models, the burst readings.
+        // Since format version 3: the host's frames, the sensor models, the burst readings.
         let mut x = self.extras.0.as_deref().copied().unwrap_or_default();
         extras_codec(&mut x, c);
         if self.extras.0.is_some() || !x.is_plain() {
@@ -661,7 +669,7 @@ impl Extras {
     }
 }
 
-/// The extras' snapshot fields, in order (format version 3).
+/// The extras' snapshot fields, in order (since format version 3).
 fn extras_codec(x: &mut Extras, c: &mut dyn Codec) {
     c.quat(&mut x.host.mounting);
     c.f64(&mut x.host.heading);

@@ -242,6 +242,8 @@ static void layout(void) {
     CHECK(offsetof(OrientSample, flags) == 80);
     CHECK(offsetof(OrientConfig, params) == 48);
     CHECK(offsetof(OrientDiagnostics, covariance) == 96);
+    CHECK(sizeof(OrientUncertainty) == 24);
+    CHECK(offsetof(OrientUncertainty, heading) == 8);
     CHECK(orient_abi_version() == ORIENT_ABI_VERSION);
     CHECK(orient_version() != NULL && strlen(orient_version()) > 0);
 }
@@ -498,6 +500,7 @@ static void null_pointers_come_first(void) {
     CHECK_STATUS(orient_filter_rotation_matrix(bad, NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_filter_gravity(bad, NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_filter_diagnostics(bad, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_uncertainty(bad, NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_filter_flags(bad, NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_filter_kind(bad, NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_filter_get_param(bad, 9999, NULL), ORIENT_STATUS_NULL_POINTER);
@@ -869,6 +872,58 @@ static void diagnostics(int32_t kind) {
     CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
 }
 
+/* orient_filter_uncertainty (issue 20): which kinds fill which field, NaN elsewhere and
+ * before initialisation; the robust kind's heading settles to its
+ * ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while the magnetometer is used and grows at every
+ * sample without it; offsets the host sets change nothing. */
+static void uncertainty(int32_t kind) {
+    OrientFilter *f = new_filter(kind);
+    OrientUncertainty u, v;
+    OrientSample s = good_sample();
+    uint32_t expected;
+    double sigma_m = 0.0;
+    int i, grows = 1;
+    CHECK(f != NULL);
+    if (!f) return;
+    CHECK_STATUS(orient_filter_uncertainty(f, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_uncertainty(f, &u), ORIENT_STATUS_OK);
+    CHECK(u.present == 0 && isnan(u.heading) && isnan(u.inclination));
+    CHECK(warm_up(f) > 0);
+    s.gyro.x = s.gyro.y = s.gyro.z = 0.0;
+    for (i = 0; i < 100; i++) CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_uncertainty(f, &u), ORIENT_STATUS_OK);
+    switch (kind) {
+    case ORIENT_KIND_ROBUST: expected = ORIENT_UNCERTAINTY_HEADING; break;
+    case ORIENT_KIND_EKF: expected = ORIENT_UNCERTAINTY_HEADING | ORIENT_UNCERTAINTY_INCLINATION; break;
+    default: expected = 0; break;
+    }
+    CHECK(u.present == expected && u.reserved == 0);
+    CHECK((u.present & ORIENT_UNCERTAINTY_HEADING) ? (u.heading > 0.0 && u.heading < 2.0) : isnan(u.heading));
+    CHECK((u.present & ORIENT_UNCERTAINTY_INCLINATION) ? (u.inclination > 0.0 && u.inclination < 2.0)
+                                                       : isnan(u.inclination));
+    CHECK_STATUS(orient_filter_set_heading(f, 1.0), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_declination(f, 0.2), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_uncertainty(f, &v), ORIENT_STATUS_OK);
+    CHECK(v.present == u.present && (v.present == 0 || (v.heading == u.heading)));
+    if (kind == ORIENT_KIND_ROBUST) {
+        CHECK_STATUS(orient_filter_get_param(f, ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA, &sigma_m), ORIENT_STATUS_OK);
+        CHECK(fabs(u.heading - sigma_m) < 0.01 * sigma_m);
+        s.flags &= ~(uint32_t)ORIENT_SAMPLE_MAG;
+        for (i = 0; i < 200; i++) {
+            CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+            CHECK_STATUS(orient_filter_uncertainty(f, &v), ORIENT_STATUS_OK);
+            grows = grows && v.heading > u.heading;
+            u = v;
+        }
+        CHECK(grows);
+        s.flags |= ORIENT_SAMPLE_MAG;
+        for (i = 0; i < 10000; i++) CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_uncertainty(f, &u), ORIENT_STATUS_OK);
+        CHECK(fabs(u.heading - sigma_m) < 0.01 * sigma_m);
+    }
+    CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
+}
+
 /* A hand of 20 Madgwick filters: groups of four run side by side in lanes; the bits
  * must still equal separate updates, and a bad sample inside a group must stop the
  * frame at its index with the filters before it updated. */
@@ -1079,6 +1134,7 @@ int main(int argc, char **argv) {
     for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_ROBUST; k++) {
         bad_input(k);
         diagnostics(k);
+        uncertainty(k);
     }
     multi_sensor();
     offline_smoothing();

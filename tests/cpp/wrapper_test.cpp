@@ -185,6 +185,9 @@ static void wrapper() {
     OrientDiagnostics d{};
     CHECK(c.diagnostics(d) == ORIENT_STATUS_OK);
     CHECK(d.present == 0 && std::isnan(d.alpha));
+    OrientUncertainty u{};
+    CHECK(c.uncertainty(u) == ORIENT_STATUS_OK && u.present == 0 && std::isnan(u.heading));
+    CHECK(std::isnan(c.heading_sigma()));
     CHECK(c.reset() == ORIENT_STATUS_OK && !c.initialized());
 }
 
@@ -345,6 +348,32 @@ static void calibration() {
     CHECK(fit && std::fabs(fit->model.offset.x - 10) < 1e-6 && fit->trustworthy == 1);
 }
 
+/* Issue 20: the robust kind's heading uncertainty through the wrapper: it settles while
+ * the magnetometer is used and grows at every sample without it. */
+static void uncertainty() {
+    orient::Filter f = orient::Filter::create(orient::Config::defaults(orient::Kind::Robust).value()).value();
+    OrientSample s{};
+    s.dt = 0.01;
+    s.accel = OrientVec3{0.0, 0.0, 9.81};
+    s.mag = OrientVec3{0.0, 20.0, -40.0};
+    s.flags = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL | ORIENT_SAMPLE_MAG;
+    CHECK(std::isnan(f.heading_sigma()));
+    for (int i = 0; i < 300; ++i) CHECK(f.update(s) == ORIENT_STATUS_OK);
+    double settled = f.heading_sigma(), sigma_m = 0.0;
+    CHECK(f.get_param(ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA, sigma_m) == ORIENT_STATUS_OK);
+    CHECK(std::fabs(settled - sigma_m) < 0.05 * sigma_m); /* plus the drift of the bias not yet learned */
+    s.flags &= ~static_cast<uint32_t>(ORIENT_SAMPLE_MAG);
+    bool grows = true;
+    for (int i = 0; i < 100; ++i) {
+        double before = f.heading_sigma();
+        CHECK(f.update(s) == ORIENT_STATUS_OK);
+        grows = grows && f.heading_sigma() > before;
+    }
+    CHECK(grows);
+    OrientUncertainty u{};
+    CHECK(f.uncertainty(u) == ORIENT_STATUS_OK && u.present == ORIENT_UNCERTAINTY_HEADING && std::isnan(u.inclination));
+}
+
 int main(int argc, char** argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: %s GOLDEN_FILE\n", argv[0]);
@@ -355,6 +384,7 @@ int main(int argc, char** argv) {
     offline();
     mounting_and_heading();
     calibration();
+    uncertainty();
 #if ORIENT_HPP_EXCEPTIONS
     exceptions();
 #endif

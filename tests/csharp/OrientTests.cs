@@ -172,6 +172,11 @@ public static class OrientTests
                 Diagnostics d = f.Diagnostics;
                 Check((d.Present != 0) == (kind != Kind.Madgwick), kind + " diagnostics present");
                 Check(kind == Kind.Gmvdk ? d.Alpha >= 0 && d.Alpha <= 1 : double.IsNaN(d.Alpha), kind + " alpha");
+                Uncertainty u = f.Uncertainty;
+                bool models = kind == Kind.Ekf || kind == Kind.Robust;
+                Check(((u.Present & Consts.UncertaintyHeading) != 0) == models, kind + " heading uncertainty present");
+                Check(models ? u.Heading > 0 && u.Heading < 2 : double.IsNaN(u.Heading), kind + " heading sigma");
+                Check(((u.Present & Consts.UncertaintyInclination) != 0) == (kind == Kind.Ekf), kind + " inclination sigma");
             }
         }
 

@@ -19,14 +19,16 @@ def code_only(text):
 
 def test_constants_the_package_uses_have_the_header_values(root):
     defines = dict(re.findall(r"^#define ORIENT_(\w+) (\d+)$", header(root), re.M))
-    used = {name: getattr(n, name) for name in dir(n) if re.fullmatch(r"(SAMPLE|FLAG|DIAG)_[A-Z_]+", name)}
+    used = {
+        name: getattr(n, name) for name in dir(n) if re.fullmatch(r"(SAMPLE|FLAG|DIAG|UNCERTAINTY)_[A-Z_]+", name)
+    }
     used.update(ABI_VERSION=n.ABI_VERSION, MAX_PARAMS=n.MAX_PARAMS)
-    assert len(used) == 25  # issue 20: FLAG_SATURATED, FLAG_SAME_INSTANT
+    assert len(used) == 27  # issue 20: FLAG_SATURATED, FLAG_SAME_INSTANT, UNCERTAINTY_*
     for name, value in used.items():
         assert int(defines[name]) == value, name
     # Every flag and diagnostics bit of the header is here.
     for name in defines:
-        if name.startswith(("SAMPLE_", "FLAG_", "DIAG_")):
+        if name.startswith(("SAMPLE_", "FLAG_", "DIAG_", "UNCERTAINTY_")):
             assert name in used, name
 
 
@@ -45,7 +47,7 @@ def test_structs_match_the_header_field_by_field(root):
     text = code_only(header(root))
     structs = dict(re.findall(r"typedef struct (Orient\w+) \{(.*?)\} \1;", text, re.S))
     for name in ["OrientQuaternion", "OrientVec3", "OrientConfig", "OrientParamInfo", "OrientSample",
-                 "OrientEuler", "OrientDiagnostics"]:
+                 "OrientEuler", "OrientDiagnostics", "OrientUncertainty"]:
         fields = []
         for decl in structs[name].split(";"):
             decl = decl.strip()

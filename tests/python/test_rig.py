@@ -85,3 +85,26 @@ def test_sensor_models_and_calibrators():
     fit = cal.solve()
     assert np.allclose(fit.hard_iron, [10, -20, 5], atol=1e-6)
     assert fit.trustworthy and fit.samples == 288
+
+
+def test_heading_uncertainty():
+    """The robust kind's heading sigma settles while the magnetometer is used and grows
+    at every sample without it; the EKF gives heading and inclination; Mahony none."""
+    f = orient.Filter("robust")
+    assert f.uncertainty == {}
+    for _ in range(300):
+        f.update([0.0, 0.0, 0.0], [0.0, 0.0, 9.81], [0.0, 20.0, -40.0], dt=0.01)
+    sigma_m = f["mag_heading_sigma"]
+    assert abs(f.uncertainty["heading"] - sigma_m) < 0.05 * sigma_m
+    before = f.uncertainty["heading"]
+    for _ in range(100):
+        f.update([0.0, 0.0, 0.0], [0.0, 0.0, 9.81], dt=0.01)
+        now = f.uncertainty["heading"]
+        assert now > before
+        before = now
+    assert set(f.uncertainty) == {"heading"}
+    assert set(warmed(1).uncertainty) == set()
+    e = orient.Filter("ekf")
+    e.update([0.0, 0.0, 0.0], [0.0, 0.0, 9.81], [0.0, 20.0, -40.0], dt=0.01)
+    u = e.uncertainty
+    assert set(u) == {"heading", "inclination"} and 0 < u["heading"] < 2 and 0 < u["inclination"] < 2

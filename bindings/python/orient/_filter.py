@@ -524,6 +524,21 @@ class Filter:
                 out[name] = float(v) if np.ndim(v) == 0 else np.array(v)
         return out
 
+    @property
+    def uncertainty(self) -> Dict[str, float]:
+        """One standard deviation (rad) of the orientation's error where the kind models
+        it, by name: ``heading`` (EKF and robust; the robust kind's grows while the
+        magnetometer is distrusted or absent) and ``inclination`` (EKF). Empty for the
+        other kinds and before initialisation."""
+        u = n.OrientUncertainty()
+        _check(lib.orient_filter_uncertainty(self._h, byref(u)))
+        out: Dict[str, float] = {}
+        if u.present & n.UNCERTAINTY_HEADING:
+            out["heading"] = u.heading
+        if u.present & n.UNCERTAINTY_INCLINATION:
+            out["inclination"] = u.inclination
+        return out
+
     # -- state -------------------------------------------------------------------------
 
     @property

@@ -46,6 +46,8 @@ DIAG_MU_KM = 16
 DIAG_MU_K = 32
 DIAG_RATE = 64
 DIAG_COVARIANCE = 128
+UNCERTAINTY_HEADING = 1
+UNCERTAINTY_INCLINATION = 2
 
 
 class Status(enum.IntEnum):
@@ -192,6 +194,15 @@ class OrientDiagnostics(Structure):
     ]
 
 
+class OrientUncertainty(Structure):
+    _fields_ = [
+        ("present", c_uint32),
+        ("reserved", c_uint32),
+        ("heading", c_double),
+        ("inclination", c_double),
+    ]
+
+
 #: OrientDiagnostics as a NumPy record: update_batch fills an array of these in place.
 DIAGNOSTICS_DTYPE = np.dtype(
     [
@@ -266,6 +277,7 @@ PROTOTYPES = {
     "orient_filter_linear_accel": (c_int32, [c_void_p, _P(OrientVec3)]),
     "orient_filter_linear_accel_earth": (c_int32, [c_void_p, _P(OrientVec3)]),
     "orient_filter_diagnostics": (c_int32, [c_void_p, c_void_p]),
+    "orient_filter_uncertainty": (c_int32, [c_void_p, _P(OrientUncertainty)]),
     "orient_filter_state_size": (c_int32, [c_void_p, _P(c_size_t)]),
     "orient_filter_save": (c_int32, [c_void_p, _P(c_uint8), c_size_t, _P(c_size_t)]),
     "orient_filter_load": (c_int32, [c_void_p, _P(c_uint8), c_size_t]),
