@@ -434,10 +434,15 @@ impl HeadingVariance {
         let (sigma_g, sigma_w, sigma_b) = (s.gyro_noise, s.bias_walk, s.bias_sigma);
         self.p_ee += 2.0 * dt * self.p_eb + dt * dt * self.p_bb + sigma_g * sigma_g * dt;
         self.p_eb += dt * self.p_bb;
-        self.p_bb = (self.p_bb + sigma_w * sigma_w * dt).min(sigma_b * sigma_b);
-        // max/min, not clamp: no panic on a NaN from a step about to be undone.
-        let bound = (self.p_ee * self.p_bb).sqrt();
-        self.p_eb = self.p_eb.max(-bound).min(bound);
+        let grown = self.p_bb + sigma_w * sigma_w * dt;
+        if grown > sigma_b * sigma_b {
+            self.p_bb = sigma_b * sigma_b;
+            // max/min, not clamp: no panic on a NaN from a step about to be undone.
+            let bound = (self.p_ee * self.p_bb).sqrt();
+            self.p_eb = self.p_eb.max(-bound).min(bound);
+        } else {
+            self.p_bb = grown;
+        }
         if self.p_ee.is_nan() || self.p_ee > HEADING_VAR_MAX {
             self.lost();
         }
