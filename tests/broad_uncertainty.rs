@@ -85,6 +85,10 @@ fn the_heading_uncertainty_covers_the_heading_error_on_broad() {
             let mut all = sigmas;
             let m = median(&mut all).to_degrees();
             assert!(m < 3.0, "robust's median sigma {m} deg is too large to be of use");
+        } else {
+            // The EKF's covariance is the paper's model: measured 87.2 % and 91.1 %, over-
+            // confident in fast combined motion (21) and near a stationary magnet (28).
+            assert!(f2 > 0.82 && f3 > 0.87, "the EKF's sigma covers {f2} (2 sigma), {f3} (3 sigma)");
         }
     }
 }

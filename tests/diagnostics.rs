@@ -166,3 +166,30 @@ fn rest_is_not_reported_once_the_option_is_off() {
         assert_eq!(f.flags() & flags::REST, 0, "{kind:?}");
     }
 }
+
+/// `Filter::uncertainty`: the frame, the mounting, the heading offset, the declination
+/// and a rig calibration add nothing to it (they are exact), for both kinds that have it.
+#[test]
+fn the_uncertainty_does_not_depend_on_the_hosts_offsets() {
+    use orient::{filters::RigHeading, Frame, Quat};
+    for kind in [Kind::Robust, Kind::Ekf] {
+        let mut enu = Filter::new(&Config::new(kind).unwrap()).unwrap();
+        let mut config = Config::new(kind).unwrap();
+        config.frame = Frame::Ned;
+        let mut ned = Filter::new(&config).unwrap();
+        for i in 0..500 {
+            enu.update(&moving(i, Some(FIELD))).unwrap();
+            ned.update(&moving(i, Some(FIELD))).unwrap();
+        }
+        let u = enu.uncertainty();
+        assert!(u.heading.is_some(), "{kind:?}");
+        assert_eq!(ned.uncertainty(), u, "{kind:?}");
+        enu.set_mounting(Quat::new(0.8, 0.2, 0.5, -0.1).normalized()).unwrap();
+        enu.set_heading(1.0).unwrap();
+        enu.set_declination(0.2).unwrap();
+        assert_eq!(enu.uncertainty(), u, "{kind:?}");
+        let reference = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), 0.3);
+        Filter::calibrate_rig(&mut [&mut enu], &[reference], RigHeading::Given(0.0)).unwrap();
+        assert_eq!(enu.uncertainty(), u, "{kind:?}");
+    }
+}

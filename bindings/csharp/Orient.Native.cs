@@ -721,12 +721,13 @@ namespace Orient.Native
 
         /// <summary>
         /// Parameter slot (robust): Standard deviation of the heading an accepted magnetometer
-        /// field gives, for the heading uncertainty only (eq. H3): the floor the uncertainty
-        /// settles to while the field is trusted; default 0.0349 (2 deg, orient: indoor fields
+        /// field gives, for the heading uncertainty only (eq. H3): with the bias's lag, the floor
+        /// the uncertainty settles to while the field is trusted; at most 1.8, the sigma of a
+        /// heading uniform on the circle (eq. H4); default 0.0349 (2 deg, orient: indoor fields
         /// that pass the norm and dip tests still turn by this much; robust's and VQF's 9D
         /// heading errors on BROAD's undisturbed trials are 1-2 deg).
         ///
-        /// Unit rad; range 0 to 3.2; default 0.03490658503988659.
+        /// Unit rad; range 0 to 1.8; default 0.03490658503988659.
         /// </summary>
         public const uint ParamRobustMagHeadingSigma = 97;
 
@@ -1197,7 +1198,7 @@ namespace Orient.Native
         /// <summary>
         /// Heading error about the earth's vertical: EKF from its covariance; robust from its
         /// heading error model, growing while the magnetometer is distrusted or absent and
-        /// settling to ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while it is used.
+        /// settling while it is used (orient_filter_uncertainty says to what).
         /// </summary>
         public double Heading;
 
@@ -1520,12 +1521,16 @@ namespace Orient.Native
         /// <summary>
         /// One standard deviation (radians) of the heading and inclination errors, from the kinds
         /// that model them: ORIENT_KIND_EKF (both, from its covariance) and ORIENT_KIND_ROBUST
-        /// (heading: it grows while the magnetometer is distrusted or absent and settles to
-        /// ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while it is used). For the other kinds, and
-        /// before initialisation, `present` is 0 and both fields are NaN. The heading is against
-        /// the filter's reference (magnetic north once a magnetometer was used, else the start
-        /// heading); offsets the host sets (heading, declination, rig calibration, mounting,
-        /// frame) are exact and add none.
+        /// (heading: it grows while the magnetometer is distrusted or absent; while it is used it
+        /// settles to about sqrt(sigma_m^2 + (sigma_b tau)^2), with sigma_m =
+        /// ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA, tau = ORIENT_PARAM_ROBUST_TAU_MAG and sigma_b
+        /// the bias uncertainty, ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST after a rest, else
+        /// ORIENT_PARAM_ROBUST_BIAS_SIGMA). For the other kinds, and before initialisation,
+        /// `present` is 0 and both fields are NaN. The heading is against the filter's reference
+        /// (magnetic north once a magnetometer was used, else the start heading); offsets the
+        /// host sets (heading, declination, rig calibration, mounting, frame) are exact and add
+        /// none. orient_filter_set_quaternion makes the robust kind's heading exact (0 until the
+        /// next update); the EKF keeps its covariance.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_filter_uncertainty(IntPtr filter, Uncertainty* uncertainty);

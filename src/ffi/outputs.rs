@@ -84,12 +84,16 @@ pub unsafe extern "C" fn orient_filter_diagnostics(
 
 /// One standard deviation (radians) of the heading and inclination errors, from the kinds
 /// that model them: ORIENT_KIND_EKF (both, from its covariance) and ORIENT_KIND_ROBUST
-/// (heading: it grows while the magnetometer is distrusted or absent and settles to
-/// ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while it is used). For the other kinds, and
-/// before initialisation, `present` is 0 and both fields are NaN. The heading is against
-/// the filter's reference (magnetic north once a magnetometer was used, else the start
-/// heading); offsets the host sets (heading, declination, rig calibration, mounting,
-/// frame) are exact and add none.
+/// (heading: it grows while the magnetometer is distrusted or absent; while it is used it
+/// settles to about sqrt(sigma_m^2 + (sigma_b tau)^2), with sigma_m =
+/// ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA, tau = ORIENT_PARAM_ROBUST_TAU_MAG and sigma_b
+/// the bias uncertainty, ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST after a rest, else
+/// ORIENT_PARAM_ROBUST_BIAS_SIGMA). For the other kinds, and before initialisation,
+/// `present` is 0 and both fields are NaN. The heading is against the filter's reference
+/// (magnetic north once a magnetometer was used, else the start heading); offsets the
+/// host sets (heading, declination, rig calibration, mounting, frame) are exact and add
+/// none. orient_filter_set_quaternion makes the robust kind's heading exact (0 until the
+/// next update); the EKF keeps its covariance.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_uncertainty(
     filter: *const OrientFilter,

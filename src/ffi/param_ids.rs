@@ -394,10 +394,11 @@ pub const ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST: u32 = 95;
 pub const ORIENT_PARAM_ROBUST_BIAS_WALK: u32 = 96;
 
 /// Parameter slot (robust): Standard deviation of the heading an accepted magnetometer
-/// field gives, for the heading uncertainty only (eq. H3): the floor the uncertainty
-/// settles to while the field is trusted; default 0.0349 (2 deg, orient: indoor fields
+/// field gives, for the heading uncertainty only (eq. H3): with the bias's lag, the floor
+/// the uncertainty settles to while the field is trusted; at most 1.8, the sigma of a
+/// heading uniform on the circle (eq. H4); default 0.0349 (2 deg, orient: indoor fields
 /// that pass the norm and dip tests still turn by this much; robust's and VQF's 9D
 /// heading errors on BROAD's undisturbed trials are 1-2 deg).
 ///
-/// Unit rad; range 0 to 3.2; default 0.03490658503988659.
+/// Unit rad; range 0 to 1.8; default 0.03490658503988659.
 pub const ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA: u32 = 97;

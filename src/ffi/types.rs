@@ -357,7 +357,7 @@ pub struct OrientUncertainty {
     pub reserved: u32,
     /// Heading error about the earth's vertical: EKF from its covariance; robust from its
     /// heading error model, growing while the magnetometer is distrusted or absent and
-    /// settling to ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA while it is used.
+    /// settling while it is used (orient_filter_uncertainty says to what).
     pub heading: f64,
     /// Inclination error (tilt of the estimated vertical): EKF, from its covariance.
     pub inclination: f64,

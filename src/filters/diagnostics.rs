@@ -44,7 +44,8 @@ pub struct Diagnostics {
 pub struct Uncertainty {
     /// The heading error, about the earth's vertical: the EKF's from its covariance P,
     /// the robust kind's from its heading error model (it grows while the magnetometer
-    /// is distrusted or absent, and settles to `mag_heading_sigma` while it is used).
+    /// is distrusted or absent, and settles while it is used; see
+    /// [`crate::Filter::uncertainty`]).
     pub heading: Option<f64>,
     /// The inclination error: the tilt of the estimated vertical, the root of the
     /// variances about the two horizontal axes (the EKF's, from P).

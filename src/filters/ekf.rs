@@ -752,22 +752,18 @@ impl Ekf {
 
     /// One standard deviation (rad) of the heading and inclination errors, from the q
     /// block of P: the earth-frame error angle of an error Δq is δθ = 2 vec(Δq ⊗ q̂*),
-    /// linear in Δq with rows J_x, J_y, J_z, so var(δθ_i) = J_i P_qq J_iᵀ; heading is
+    /// linear in Δq; its row for the earth axis e is J_e = 2 (ê ⊗ q̂) (the heading row is
+    /// the `hq` of the magnetometer update), so var(δθ_e) = J_e P_qq J_eᵀ. Heading is
     /// about the vertical (z in NED), inclination the root of the two horizontal ones.
     pub fn attitude_sigmas(&self) -> (f64, f64) {
         let q = self.quaternion();
-        let (w, x, y, z) = (q.w, q.x, q.y, q.z);
-        let rows = [[-x, w, -z, y], [-y, z, w, -x], [-z, -y, x, w]].map(|r| r.map(|v| 2.0 * v));
-        let var = |j: &[f64; 4]| -> f64 {
-            let mut s = 0.0;
-            for (a, ja) in j.iter().enumerate() {
-                for (b, jb) in j.iter().enumerate() {
-                    s += ja * lane(self.p.qq[b], a) * jb;
-                }
-            }
-            s.max(0.0)
+        let var = |e: Quat| -> f64 {
+            let j = vector_of::<f64x4>((), e * q) * f64x4::splat(2.0);
+            dot4(j, self.p.times_q(j).q).max(0.0)
         };
-        (var(&rows[2]).sqrt(), (var(&rows[0]) + var(&rows[1])).sqrt())
+        let (x, y, z) =
+            (Quat::new(0.0, 1.0, 0.0, 0.0), Quat::new(0.0, 0.0, 1.0, 0.0), Quat::new(0.0, 0.0, 0.0, 1.0));
+        (var(z).sqrt(), (var(x) + var(y)).sqrt())
     }
 
     /// The diagonal of the state covariance P, in state order [q0..q3, ω, δ].

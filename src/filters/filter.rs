@@ -262,8 +262,11 @@ impl Filter {
 
     /// One standard deviation (rad) of the heading and inclination errors, from the kinds
     /// that model them: the EKF (both, from its covariance P) and the robust kind (heading:
-    /// it grows while the magnetometer is distrusted or absent, and settles to
-    /// `mag_heading_sigma` while it is used; `src/filters/robust.rs`, eqs. (H1)-(H4)).
+    /// it grows while the magnetometer is distrusted or absent, and settles while it is
+    /// used to about √(σ_m² + (σ τ_mag)²), σ_m = `mag_heading_sigma` and σ the bias
+    /// uncertainty, `bias_sigma_rest` after a rest, else `bias_sigma`;
+    /// `src/filters/robust.rs`, eqs. (H1)-(H4)). `set_quaternion` makes the robust
+    /// kind's heading exact; the EKF keeps its covariance.
     /// Every field is `None` for the other kinds and before initialisation. The heading
     /// is against the kind's reference (magnetic north once a magnetometer was used, else
     /// the start heading); offsets the host sets (heading, declination, rig calibration,

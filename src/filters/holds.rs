@@ -19,6 +19,11 @@ pub fn rate(v: Vec3) -> bool {
     v.max_abs() < MARGIN * MAX_GYRO
 }
 
+/// The variance of a rate: at most the square of [`rate`]'s bound.
+pub fn rate_variance(x: f64) -> bool {
+    (0.0..=(MARGIN * MAX_GYRO) * (MARGIN * MAX_GYRO)).contains(&x)
+}
+
 /// An accelerometer-like value (a low-pass of readings, a reference).
 pub fn accel(v: Vec3) -> bool {
     v.max_abs() < MARGIN * MAX_ACCEL

@@ -903,6 +903,10 @@ static void uncertainty(int32_t kind) {
                                                        : isnan(u.inclination));
     CHECK_STATUS(orient_filter_set_heading(f, 1.0), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_filter_set_declination(f, 0.2), ORIENT_STATUS_OK);
+    {
+        OrientQuaternion m = {0.8, 0.2, 0.5, -0.1};
+        CHECK_STATUS(orient_filter_set_mounting(f, &m), ORIENT_STATUS_OK);
+    }
     CHECK_STATUS(orient_filter_uncertainty(f, &v), ORIENT_STATUS_OK);
     CHECK(v.present == u.present && (v.present == 0 || (v.heading == u.heading)));
     if (kind == ORIENT_KIND_ROBUST) {
