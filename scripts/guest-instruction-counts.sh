@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Guest instructions per update of every kind on the board targets (aarch64, armv7),
+# counted under qemu-user by a TCG plugin (scripts/qemu/insn_count.c, built here with
+# the host's cc): (count for B + N updates - count for B updates) / N, through the Rust
+# API (tools/src/bin/bench.rs --count), so start-up, reading the recording and printing
+# cancel out. The plugin's totals equal qemu's single-step log (one line per executed
+# instruction, scripts/instruction-counts.sh's method) to the instruction. Counts, not
+# times: emulation says nothing about a board's clock, but on in-order cores
+# (Cortex-A7/A53) instruction count is close to time.
+#   scripts/guest-instruction-counts.sh [N]      (default 10000; needs setup-debian.sh --cross)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export PATH="$HOME/.cargo/bin:$PATH"
+n="${1:-10000}"
+base=200
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cc -shared -fPIC -O2 -o "$work/insn_count.so" scripts/qemu/insn_count.c
+printf '%-30s %-14s %-5s %12s\n' target kind mode instr/update
+for spec in "aarch64-unknown-linux-gnu:qemu-aarch64:/usr/aarch64-linux-gnu" \
+            "armv7-unknown-linux-gnueabihf:qemu-arm:/usr/arm-linux-gnueabihf"; do
+  IFS=: read -r target qemu sysroot <<< "$spec"
+  cargo build --quiet --release -p orient-tools --bin bench --target "$target"
+  bin="target/$target/release/bench"
+  count() {
+    "$qemu" -L "$sysroot" -plugin "$work/insn_count.so" "$bin" --count "$1" "$2" "$3" 2>&1 >/dev/null \
+      | sed -n 's/^guest instructions: //p'
+  }
+  for kind in madgwick mahony complementary ekf gmvdk robust; do
+    for mode in imu marg; do
+      a=$(count "$kind" "$mode" "$base")
+      b=$(count "$kind" "$mode" $((base + n)))
+      printf '%-30s %-14s %-5s %12.1f\n' "$target" "$kind" "$mode" "$(echo "($b - $a) / $n" | bc -l)"
+    done
+  done
+done
