@@ -134,6 +134,7 @@ impl Filter {
             Sensor::Accel => self.models_mut().accel = model,
             Sensor::Mag => self.models_mut().mag = model,
         }
+        self.refresh_models();
         Ok(())
     }
 
@@ -159,10 +160,12 @@ impl<E: Estimator> Runner<E> {
         if let Some(x) = &mut self.extras.0 {
             x.models = Models::default();
         }
+        self.refresh_models();
         let result = self.update_inline(&calibrated);
         if let Some(x) = &mut self.extras.0 {
             x.models = models;
         }
+        self.refresh_models();
         result
     }
 }

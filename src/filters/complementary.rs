@@ -110,6 +110,20 @@ settings! {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Complementary {
     pub settings: ComplementarySettings,
+    phase: Phase,
+}
+
+/// The start-up period's sums and the state after it share their bytes: the sums are
+/// needed only until the period ends, and the state is the initial one until then.
+#[derive(Clone, Debug, PartialEq)]
+enum Phase {
+    Starting(StartupMeans),
+    Running(Running),
+}
+
+/// The filter's state once it has an orientation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Running {
     q: Quat,
     bias: Vec3,
     /// g₀: mean accelerometer norm at start-up (m/s²); 0 until known.
@@ -117,7 +131,22 @@ pub struct Complementary {
     /// ω_m's stationary value: the start-up mean (zero without a start-up period).
     b0: Vec3,
     rest: bool,
-    startup: Option<StartupMeans>,
+}
+
+impl Running {
+    /// The state before any sample (and during the start-up period).
+    const INITIAL: Running =
+        Running { q: Quat::IDENTITY, bias: Vec3::ZERO, g0: 0.0, b0: Vec3::ZERO, rest: false };
+
+    /// Stores `q` renormalised and `bias` (finite: only the rest branch changes it, and
+    /// checks it).
+    #[inline(always)]
+    fn commit(&mut self, q: Quat, bias: Vec3, step: Step) -> Option<Step> {
+        // exp() is unit up to rounding; renormalise so it cannot drift over long runs.
+        self.q = q.renormalized()?;
+        self.bias = bias;
+        Some(step)
+    }
 }
 
 /// The rotation `exp(ω dt)` as a unit quaternion (exact for a constant rate):
@@ -138,26 +167,24 @@ pub fn rotation_of(omega: Vec3, dt: f64) -> Quat {
 
 impl Complementary {
     pub fn new(settings: ComplementarySettings) -> Complementary {
-        Complementary {
-            settings,
-            q: Quat::IDENTITY,
-            bias: Vec3::ZERO,
-            g0: 0.0,
-            b0: Vec3::ZERO,
-            rest: false,
-            startup: Some(StartupMeans::default()),
+        Complementary { settings, phase: Phase::Starting(StartupMeans::default()) }
+    }
+
+    fn running(&self) -> Running {
+        match &self.phase {
+            Phase::Running(r) => *r,
+            Phase::Starting(_) => Running::INITIAL,
         }
     }
 
     pub fn quaternion(&self) -> Quat {
-        self.q
+        self.running().q
     }
 
     /// A known initial attitude (native frame): the start-up period is skipped; the bias
     /// starts at zero and g₀ is taken from the first accelerometer reading.
     pub fn set_quaternion(&mut self, q: Quat) {
-        self.q = q;
-        self.startup = None;
+        self.phase = Phase::Running(Running { q, ..self.running() });
     }
 
     /// After a gap: the attitude from the accelerometer (and, with `align_heading`, the
@@ -167,48 +194,67 @@ impl Complementary {
             Some(q) if self.settings.align_heading.on() => (q, true),
             _ => (r.keep, false),
         };
-        self.q = q;
-        self.rest = false;
+        if let Phase::Running(state) = &mut self.phase {
+            state.q = q;
+            state.rest = false;
+        }
         used_mag
     }
 
     /// Values an update could leave (see `filters::holds`).
     pub(crate) fn valid(&self) -> bool {
         use super::holds;
-        holds::unit(self.q)
-            && holds::rate(self.bias)
-            && holds::rate(self.b0)
-            && holds::within(self.g0, 0.0, super::MAX_ACCEL * 2.0)
-            && self.startup.as_ref().map_or(true, StartupMeans::valid)
+        match &self.phase {
+            Phase::Running(r) => {
+                holds::unit(r.q)
+                    && holds::rate(r.bias)
+                    && holds::rate(r.b0)
+                    && holds::within(r.g0, 0.0, super::MAX_ACCEL * 2.0)
+            }
+            Phase::Starting(s) => s.valid(),
+        }
     }
 
+    /// The snapshot's fields as before the phases shared their bytes: the state, then the
+    /// start-up period if one is in progress. A period in progress has the initial
+    /// state; a snapshot with another is not one an update wrote, and reads as invalid.
     pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
-        c.quat(&mut self.q);
-        c.vec3(&mut self.bias);
-        c.f64(&mut self.g0);
-        c.vec3(&mut self.b0);
-        c.bool(&mut self.rest);
-        StartupMeans::codec(&mut self.startup, c);
+        let mut r = self.running();
+        c.quat(&mut r.q);
+        c.vec3(&mut r.bias);
+        c.f64(&mut r.g0);
+        c.vec3(&mut r.b0);
+        c.bool(&mut r.rest);
+        let mut startup = match &self.phase {
+            Phase::Starting(s) => Some(s.clone()),
+            Phase::Running(_) => None,
+        };
+        StartupMeans::codec(&mut startup, c);
+        self.phase = match startup {
+            None => Phase::Running(r),
+            Some(s) if r == Running::INITIAL => Phase::Starting(s),
+            Some(_) => Phase::Starting(StartupMeans::invalid()),
+        };
     }
 
     pub fn bias(&self) -> Vec3 {
-        self.bias
+        self.running().bias
     }
 
     /// True when the last sample was classified as rest (gains active).
     pub fn at_rest(&self) -> bool {
-        self.rest
+        self.running().rest
     }
 
     pub fn initializing(&self) -> bool {
-        self.startup.is_some()
+        matches!(self.phase, Phase::Starting(_))
     }
 
     /// The attitude from the start-up means: Ê₃ up, Ê₂ from the sensor's y axis (or the
     /// field), rows of R_ES = [Ê₁; Ê₂; Ê₃].
-    fn initial_attitude(&self, s: &StartupMeans) -> Quat {
+    fn initial_attitude(settings: &ComplementarySettings, s: &StartupMeans) -> Quat {
         let accel = s.accel();
-        if self.settings.align_heading.on() {
+        if settings.align_heading.on() {
             if let Some(q) = s.mag().and_then(|m| Frame::Enu.attitude_from(accel, Some(m))) {
                 return q;
             }
@@ -231,75 +277,65 @@ impl Complementary {
     #[inline(never)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         let mut step = Step::default();
-        if let Some(mut s) = self.startup.clone() {
-            // The wrapper guarantees an accelerometer reading until initialised.
-            let a = accel?;
-            // Still: within twice the rest thresholds of the period's means.
-            let still =
-                Stillness { gyro: 2.0 * self.settings.gyro_rest, accel: 2.0 * self.settings.accel_rest };
-            if !s.add(dt, gyro, a, mag, self.settings.init_duration, still) {
-                self.startup = Some(s);
-                step.initializing = true;
+        let r = match &mut self.phase {
+            Phase::Running(r) => r,
+            Phase::Starting(s) => {
+                // The wrapper guarantees an accelerometer reading until initialised.
+                let a = accel?;
+                // Still: within twice the rest thresholds of the period's means.
+                let still =
+                    Stillness { gyro: 2.0 * self.settings.gyro_rest, accel: 2.0 * self.settings.accel_rest };
+                if !s.add(dt, gyro, a, mag, self.settings.init_duration, still) {
+                    step.initializing = true;
+                    return Some(step);
+                }
+                let bias = s.bias();
+                let q = Complementary::initial_attitude(&self.settings, s);
+                step.used_accel = true;
+                step.used_mag = self.settings.align_heading.on() && s.mag().is_some();
+                self.phase = Phase::Running(Running { q, bias, g0: s.accel_norm(), b0: bias, rest: false });
                 return Some(step);
             }
-            self.q = self.initial_attitude(&s);
-            self.bias = s.bias();
-            self.b0 = self.bias;
-            self.g0 = s.accel_norm();
-            self.startup = None;
-            step.used_accel = true;
-            step.used_mag = self.settings.align_heading.on() && s.mag().is_some();
-            return Some(step);
-        }
+        };
         let Some(a) = accel else {
             // Gyroscope only: propagate with the bias-corrected rate.
-            self.rest = false;
-            return self.commit(self.q * rotation_of(gyro - self.bias, dt), self.bias, step);
+            r.rest = false;
+            return r.commit(r.q * rotation_of(gyro - r.bias, dt), r.bias, step);
         };
         step.used_accel = true;
         // A known initial attitude skipped the start-up period: g₀ from the first reading.
         // Kept local until the step commits: a refused step changes nothing.
-        let g0 = if self.g0 == 0.0 { a.norm() } else { self.g0 };
+        let g0 = if r.g0 == 0.0 { a.norm() } else { r.g0 };
         // Rest: |ω_m| and |a_m| near their stationary values (the start-up means). It
         // depends on the readings alone, not on the estimate.
         // |ω_m − ω̄| < gyro_rest compared squared: no square root for the usual case, a
         // moving sensor, whose test ends there.
         let gyro_rest = self.settings.gyro_rest;
-        let rest = (gyro - self.b0).norm_squared() < gyro_rest * gyro_rest
+        let rest = (gyro - r.b0).norm_squared() < gyro_rest * gyro_rest
             && (a.norm() - g0).abs() < self.settings.accel_rest;
-        let omega_tilde = gyro - self.bias; // (7)
-        let q_tilde = self.q * rotation_of(omega_tilde, dt);
+        let omega_tilde = gyro - r.bias; // (7)
+        let q_tilde = r.q * rotation_of(omega_tilde, dt);
         let (q, bias) = if rest {
             let g_a = a.normalized(); // (6)
             let g_omega = q_tilde.z_axis_in_body(); // (8)
             let theta_e = g_a.cross(g_omega); // (9)
-            let bias = self.bias - theta_e * (self.settings.ki * dt); // (10)
+            let bias = r.bias - theta_e * (self.settings.ki * dt); // (10)
             if !bias.is_finite() {
                 return None;
             }
-            let q = self.q * rotation_of(gyro - bias + theta_e * self.settings.kp, dt); // (4)
+            let q = r.q * rotation_of(gyro - bias + theta_e * self.settings.kp, dt); // (4)
             (q, bias)
         } else {
             // In motion K_p = K_I = 0: (10) keeps the bias and (4) integrates ω̃, which
             // is the prediction q̃ itself; θ_e has no effect and is not computed.
-            (q_tilde, self.bias)
+            (q_tilde, r.bias)
         };
-        let committed = self.commit(q, bias, step);
+        let committed = r.commit(q, bias, step);
         if committed.is_some() {
-            self.rest = rest;
-            self.g0 = g0;
+            r.rest = rest;
+            r.g0 = g0;
         }
         committed
-    }
-
-    /// Stores `q` renormalised and `bias` (finite: only the rest branch changes it, and
-    /// checks it).
-    #[inline(always)]
-    fn commit(&mut self, q: Quat, bias: Vec3, step: Step) -> Option<Step> {
-        // exp() is unit up to rounding; renormalise so it cannot drift over long runs.
-        self.q = q.renormalized()?;
-        self.bias = bias;
-        Some(step)
     }
 }
 

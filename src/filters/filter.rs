@@ -346,6 +346,11 @@ impl Filter {
         each!(&mut self.0, r => &mut r.extras_mut().models)
     }
 
+    /// After [`Filter::models_mut`]: the runner's note of whether any model is set.
+    pub(crate) fn refresh_models(&mut self) {
+        each!(&mut self.0, r => r.refresh_models())
+    }
+
     /// Euler angles (Z-Y'-X'': yaw, pitch, roll) of [`Filter::quaternion`], radians.
     pub fn euler(&self) -> Euler {
         self.quaternion().to_euler()

@@ -510,12 +510,35 @@ impl Madgwick {
             None => (gradient_imu(q, a), self.settings.beta_imu),
         };
         let gg = gradient.norm_squared();
+        let k = beta * dt;
+        // The usual case: |∇f|² and |next|² in inv_sqrt's fast range and the expanded norm
+        // well conditioned. Then every value below is finite (|next|² < 1e300 bounds
+        // |p|² and (dt β)², so p, c ∇f, and next scaled by 1/|next| ≤ 1e150 are
+        // finite) and the result needs no test; anything else takes `correct`, the same
+        // operations with every test.
+        if gg > 1e-300 && gg < 1e300 {
+            let c = k * (gg.sqrt() * (1.0 / gg));
+            let next = p - gradient.scale(c);
+            let base = p.norm_squared() + k * k;
+            let n2 = base - 2.0 * p.dot(gradient) * c;
+            if n2 > 0.5 * base && n2 > 1e-300 && n2 < 1e300 {
+                return Some((next.scale(n2.sqrt() * (1.0 / n2)), step));
+            }
+        }
+        Some((Self::correct(p, gradient, gg, k)?, step))
+    }
+
+    /// (29)-(30), the correction of the prediction `p` by the gradient `∇f` (with
+    /// `gg = |∇f|²`, `k = dt β`): the new estimate normalised, or `None` when it is not
+    /// finite. [`Madgwick::step`] has its usual case inline.
+    #[cold]
+    #[inline(never)]
+    fn correct(p: Quat, gradient: Quat, gg: f64, k: f64) -> Option<Quat> {
         if gg.is_nan() || gg <= 0.0 {
             // A zero gradient has no direction: the prediction stands.
-            return Some((p.try_normalized()?, step));
+            return p.try_normalized();
         }
         // (29)-(30): next = p − c ∇f with c = dt β / |∇f|.
-        let k = beta * dt;
         let c = k * inv_sqrt(gg);
         let next = p - gradient.scale(c);
         // |next|² = |p|² − 2c (p·∇f) + c²|∇f|², where c²|∇f|² = k²: everything but c is
@@ -524,8 +547,11 @@ impl Madgwick {
         // unless the correction cancels most of the prediction (dt β near 1).
         let base = p.norm_squared() + k * k;
         let n2 = base - 2.0 * p.dot(gradient) * c;
-        let q = if n2 > 0.5 * base { next.normalized_with(n2) } else { next.try_normalized() };
-        Some((q?, step))
+        if n2 > 0.5 * base {
+            next.normalized_with(n2)
+        } else {
+            next.try_normalized()
+        }
     }
 }
 
@@ -729,6 +755,39 @@ mod tests {
         let direct = direct_step(q, 0.01, 50.0, gyro, a);
         assert!(f.quaternion().dot(direct) > 1.0 - 1e-15, "{:?} vs {direct:?}", f.quaternion());
         assert!((f.quaternion().norm() - 1.0).abs() < 1e-15);
+    }
+
+    /// The usual case written inline in `step` gives the bits of the general
+    /// correction, `Madgwick::correct`, with its tests.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn the_inline_correction_is_the_general_one() {
+        let mut seed = 7u64;
+        let mut r = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for i in 0..2000 {
+            let q = Quat::new(r(), r(), r(), r()).normalized();
+            let gyro = Vec3::new(r(), r(), r()) * 5.0;
+            let accel = Vec3::new(r(), r(), r()) * 10.0;
+            let mag = Vec3::new(r(), r(), r()) * 50.0;
+            let (dt, beta) = (0.01, [0.041, 2.0, 60.0][i % 3]);
+            for with_mag in [false, true] {
+                let settings = MadgwickSettings { beta_imu: beta, beta_marg: beta, ..Default::default() };
+                let mut f = Madgwick::new(settings);
+                f.set_quaternion(q);
+                f.update(dt, gyro, Some(accel), with_mag.then_some(mag)).unwrap();
+                let p = q + q.mul_pure(gyro).scale(0.5 * dt);
+                let a = accel.normalized();
+                let m = mag.normalized();
+                let (bx, bz) = reference_field(q, m);
+                let g =
+                    if with_mag && bx > 0.0 { gradient_marg(q, a, bx, bz, m) } else { gradient_imu(q, a) };
+                let expected = Madgwick::correct(p, g, g.norm_squared(), beta * dt).unwrap();
+                assert_eq!(f.quaternion(), expected, "{i} {with_mag}");
+            }
+        }
     }
 
     #[test]

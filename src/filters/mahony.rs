@@ -215,8 +215,12 @@ impl Mahony {
         // |q + h q⊗ω|² = |q|² (1 + h²|ω|²), as q⊗ω is orthogonal to q: the norm is known
         // without waiting for the new quaternion.
         let n2 = self.q.norm_squared() * (1.0 + h * h * omega.norm_squared());
-        let q = q.normalized_with(n2).filter(|_| bias.is_finite())?;
-        Some((q, bias, step))
+        // With n2 in inv_sqrt's fast range, h|ω| < 1e150 and the unit q bound every
+        // component of the new q, so it and its scaled copy are finite: only the bias
+        // is tested. Otherwise `normalized_with`, which tests the result too.
+        let q =
+            if n2 > 1e-300 && n2 < 1e300 { q.scale(n2.sqrt() * (1.0 / n2)) } else { q.normalized_with(n2)? };
+        bias.is_finite().then_some((q, bias, step))
     }
 }
 

@@ -31,6 +31,8 @@ pub(crate) struct Common {
 impl Common {
     const GYRO_SET: u8 = 1;
     const ACCEL_SET: u8 = 2;
+    /// The other bits of [`Runner::bits`]: what `from_slots` does not set.
+    const RANGE_BITS: u8 = Common::GYRO_SET | Common::ACCEL_SET;
 
     /// The common settings, and which of the ranges are set ([`Common::GYRO_SET`],
     /// [`Common::ACCEL_SET`]: a range equal to the physical bound is a saturation, not a
@@ -71,22 +73,18 @@ pub(crate) struct Runner<E: Estimator> {
     pub(crate) core: E,
     pub(crate) flags: u32,
     frame: Frame,
-    /// `last_accel` holds a reading.
-    has_accel: bool,
+    /// Which sensor ranges are set ([`Common::GYRO_SET`], [`Common::ACCEL_SET`], see
+    /// [`Common::from_slots`]), [`Runner::HAS_ACCEL`], [`Runner::RELATIVE`] and
+    /// [`Runner::IDENTITY_INIT`]: one byte, so that the head stays a few words.
+    bits: u8,
+    /// Issue 20's policies that are on ([`Runner::RECOVER`], [`Runner::SAME_INSTANT`],
+    /// [`Runner::MODELS`]): the plain update tests this byte alone.
+    policy: u8,
     pub(crate) common: Common,
-    /// Which sensor ranges are set (see [`Common::from_slots`]).
-    ranges_set: u8,
-    /// GMVDK's relative output is on: no frame rotation applies.
-    relative: bool,
     pub(crate) last_accel: Vec3,
     /// The configured initial orientation when it is [`Init::Given`] (kept for reset);
     /// boxed, since few filters have one.
     given: Option<Box<Quat>>,
-    identity_init: bool,
-    /// `saturation_recovery`: readings beyond the ranges are clipped and recovered from.
-    pub(crate) recover: bool,
-    /// `same_instant`: dt = 0 is the same instant as the next step.
-    pub(crate) same_instant: bool,
     /// The host's frames, sensor models and burst readings (issue 20), boxed and made
     /// when first set (or when `same_instant` is switched on), never in an update: a
     /// filter without them carries 8 bytes here.
@@ -118,6 +116,19 @@ pub(crate) struct Extras {
 }
 
 impl<E: Estimator> Runner<E> {
+    /// `last_accel` holds a reading.
+    const HAS_ACCEL: u8 = 4;
+    /// GMVDK's relative output is on: no frame rotation applies.
+    const RELATIVE: u8 = 8;
+    /// The configured initial orientation is [`Init::Identity`].
+    const IDENTITY_INIT: u8 = 16;
+    /// `saturation_recovery`: readings beyond the ranges are clipped and recovered from.
+    const RECOVER: u8 = 1;
+    /// `same_instant`: dt = 0 is the same instant as the next step.
+    const SAME_INSTANT: u8 = 2;
+    /// Sensor models are set (in the extras).
+    const MODELS: u8 = 4;
+
     pub(crate) fn new(config: &Config) -> Result<Runner<E>, Error> {
         debug_assert_eq!(config.kind(), E::KIND);
         // Re-check every slot: a Config can only hold valid values, but be strict.
@@ -127,22 +138,19 @@ impl<E: Estimator> Runner<E> {
         }
         let core = E::create(E::Settings::from_slots(config.slots()));
         let (common, ranges_set) = Common::from_slots(config.slots());
+        let identity = if config.init == Init::Identity { Self::IDENTITY_INIT } else { 0 };
         let mut r = Runner {
             core,
             flags: 0,
             frame: config.frame,
-            has_accel: false,
+            bits: ranges_set | identity,
+            policy: 0,
             common,
-            ranges_set,
-            relative: false,
             last_accel: Vec3::ZERO,
             given: match config.init {
                 Init::Given(q) => Some(Box::new(q)),
                 _ => None,
             },
-            identity_init: config.init == Init::Identity,
-            recover: false,
-            same_instant: false,
             extras: ExtrasBox(None),
         };
         r.set_policies(config.slots());
@@ -154,14 +162,44 @@ impl<E: Estimator> Runner<E> {
     /// The saturation and same-instant policies from the slots; the extras' box is made
     /// here for the burst readings, so that no update allocates.
     fn set_policies(&mut self, slots: &[f64; MAX_PARAMS]) {
-        self.recover = slots[id::SATURATION_RECOVERY as usize] != 0.0;
-        self.same_instant = slots[id::SAME_INSTANT as usize] != 0.0;
-        if self.same_instant {
+        let recover = if slots[id::SATURATION_RECOVERY as usize] != 0.0 { Self::RECOVER } else { 0 };
+        let same_instant = if slots[id::SAME_INSTANT as usize] != 0.0 { Self::SAME_INSTANT } else { 0 };
+        self.policy = (self.policy & Self::MODELS) | recover | same_instant;
+        if self.same_instant() {
             self.extras_mut();
         } else if let Some(x) = &mut self.extras.0 {
             // Readings held for a step that will not come.
             x.burst = (Vec3::ZERO, 0);
         }
+    }
+
+    /// `saturation_recovery` is on.
+    #[inline(always)]
+    pub(crate) fn recover(&self) -> bool {
+        self.policy & Self::RECOVER != 0
+    }
+
+    /// `same_instant` is on.
+    #[inline(always)]
+    pub(crate) fn same_instant(&self) -> bool {
+        self.policy & Self::SAME_INSTANT != 0
+    }
+
+    /// The models bit of [`Runner::policy`] after the extras' models changed (set,
+    /// loaded, or put aside for a calibrated sample's plain update).
+    pub(crate) fn refresh_models(&mut self) {
+        let any = self.extras.0.as_ref().is_some_and(|x| x.models.any());
+        self.policy = (self.policy & !Self::MODELS) | if any { Self::MODELS } else { 0 };
+    }
+
+    #[inline(always)]
+    fn has_accel(&self) -> bool {
+        self.bits & Self::HAS_ACCEL != 0
+    }
+
+    #[inline(always)]
+    fn set_has_accel(&mut self, has: bool) {
+        self.bits = (self.bits & !Self::HAS_ACCEL) | if has { Self::HAS_ACCEL } else { 0 };
     }
 
     /// The extras, made (with the frame's up direction) when first needed.
@@ -191,7 +229,7 @@ impl<E: Estimator> Runner<E> {
     }
 
     fn init(&self) -> Init {
-        match (&self.given, self.identity_init) {
+        match (&self.given, self.bits & Self::IDENTITY_INIT != 0) {
             (Some(q), _) => Init::Given(**q),
             (None, true) => Init::Identity,
             (None, false) => Init::AccMag,
@@ -199,13 +237,14 @@ impl<E: Estimator> Runner<E> {
     }
 
     fn set_frame_rotation(&mut self) {
-        self.relative = self.core.relative();
+        let relative = if self.core.relative() { Self::RELATIVE } else { 0 };
+        self.bits = (self.bits & !Self::RELATIVE) | relative;
     }
 
     /// Native frame to configured frame (a constant); none for a relative output.
     #[inline(always)]
     fn to_frame(&self) -> Option<Quat> {
-        if self.relative {
+        if self.bits & Self::RELATIVE != 0 {
             None
         } else {
             E::NATIVE.rotation_to(self.frame)
@@ -215,9 +254,9 @@ impl<E: Estimator> Runner<E> {
     /// The configuration this filter was made with, as changed by `set_param` since.
     pub(crate) fn config(&self) -> Config {
         let mut slots = [0.0; MAX_PARAMS];
-        self.common.write_slots(self.ranges_set, &mut slots);
-        slots[id::SATURATION_RECOVERY as usize] = if self.recover { 1.0 } else { 0.0 };
-        slots[id::SAME_INSTANT as usize] = if self.same_instant { 1.0 } else { 0.0 };
+        self.common.write_slots(self.bits, &mut slots);
+        slots[id::SATURATION_RECOVERY as usize] = if self.recover() { 1.0 } else { 0.0 };
+        slots[id::SAME_INSTANT as usize] = if self.same_instant() { 1.0 } else { 0.0 };
         self.core.settings().write_slots(&mut slots);
         Config::from_parts(E::KIND, self.frame, self.init(), slots)
     }
@@ -228,7 +267,7 @@ impl<E: Estimator> Runner<E> {
             x.burst = (Vec3::ZERO, 0);
         }
         self.last_accel = Vec3::ZERO;
-        self.has_accel = false;
+        self.set_has_accel(false);
         self.flags = 0;
         match self.init() {
             // From the first sample, or the core's own start-up period.
@@ -242,7 +281,9 @@ impl<E: Estimator> Runner<E> {
         let mut config = self.config();
         config.set_param(pid, value)?;
         self.core.configure(E::Settings::from_slots(config.slots()));
-        (self.common, self.ranges_set) = Common::from_slots(config.slots());
+        let (common, ranges_set) = Common::from_slots(config.slots());
+        self.common = common;
+        self.bits = (self.bits & !Common::RANGE_BITS) | ranges_set;
         self.set_policies(config.slots());
         self.set_frame_rotation();
         Ok(())
@@ -284,27 +325,28 @@ impl<E: Estimator> Runner<E> {
     }
 
     /// A conservative test that `check_exactly` would accept the sample, with one branch:
-    /// every component of the readings is under the sensor's range or physical bound
-    /// (`|x| < limit` is false for NaN and ±∞);
-    /// the accelerometer's and magnetometer's squared norms lie in [MIN_POSITIVE, MAX]
-    /// (not zero, no overflow, finite components); dt is in range; and a sample without
-    /// an accelerometer reading comes after initialisation. A sample it turns down goes
-    /// through the exact rules, which tell the reason (or accept it: a zero gyroscope
-    /// reading's components, say, or a finite vector whose squared norm overflows).
+    /// each reading's squared norm is under the square of its sensor's range or physical
+    /// bound (which bounds every component: `x² ≤ |v|²`, and rounding keeps that order;
+    /// a NaN or ±∞ component makes the norm fail the test), the accelerometer's and
+    /// magnetometer's are at least MIN_POSITIVE (not zero, no underflow); dt is in range;
+    /// and a sample without an accelerometer reading comes after initialisation. A sample
+    /// it turns down goes through the exact rules, which tell the reason (or accept it: a
+    /// reading whose components are each under the range but whose norm is not, say).
     #[inline(always)]
     pub(crate) fn plainly_valid<S: SampleView>(&self, s: &S) -> bool {
-        let under = |v: Vec3, limit: f64| (v.x.abs() < limit) & (v.y.abs() < limit) & (v.z.abs() < limit);
-        let usable = |v: Vec3| (f64::MIN_POSITIVE..=f64::MAX).contains(&v.norm_squared());
         let gyro = match s.gyro() {
-            Some(g) => under(g, self.common.gyro_limit),
+            Some(g) => g.norm_squared() < self.common.gyro_limit * self.common.gyro_limit,
             None => false,
         };
         let accel = match s.accel() {
-            Some(a) => under(a, self.common.accel_limit) & usable(a),
+            Some(a) => {
+                let n2 = a.norm_squared();
+                (n2 >= f64::MIN_POSITIVE) & (n2 < self.common.accel_limit * self.common.accel_limit)
+            }
             None => self.flags & flags::INITIALIZED != 0,
         };
         let mag = match s.mag() {
-            Some(m) => under(m, MAX_MAG) & usable(m),
+            Some(m) => (f64::MIN_POSITIVE..MAX_MAG * MAX_MAG).contains(&m.norm_squared()),
             None => true,
         };
         (s.dt() >= MIN_DT) & (s.dt() <= MAX_DT) & gyro & accel & mag
@@ -323,7 +365,7 @@ impl<E: Estimator> Runner<E> {
         if !gyro.is_finite() {
             return Err(Error::NonFinite(Field::Gyro));
         }
-        if self.common.gyro_range(self.ranges_set).is_some_and(|r| gyro.max_abs() >= r) {
+        if self.common.gyro_range(self.bits).is_some_and(|r| gyro.max_abs() >= r) {
             return Err(Error::Saturated(Field::Gyro));
         }
         if gyro.max_abs() >= MAX_GYRO {
@@ -331,7 +373,7 @@ impl<E: Estimator> Runner<E> {
         }
         if let Some(a) = s.accel {
             check_vector(a, Field::Accel)?;
-            if self.common.accel_range(self.ranges_set).is_some_and(|r| a.max_abs() >= r) {
+            if self.common.accel_range(self.bits).is_some_and(|r| a.max_abs() >= r) {
                 return Err(Error::Saturated(Field::Accel));
             }
             if a.max_abs() >= MAX_ACCEL {
@@ -353,24 +395,72 @@ impl<E: Estimator> Runner<E> {
     /// One step. On error nothing changes: the state is bit-identical to before.
     #[inline(always)]
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
-        // Issue 20's policies, each out of line: bursts, clipping, sensor models.
-        if self.same_instant && (s.dt() == 0.0 || self.burst().1 != 0) {
+        // Issue 20's policies, out of line behind one test of the byte that says which
+        // are on.
+        if self.policy != 0 {
+            return self.update_with_policies(s);
+        }
+        self.update_plain(s)
+    }
+
+    /// [`Runner::update_inline`] with a policy on: bursts, clipping, sensor models, each
+    /// out of line, or the plain update when none applies to this sample.
+    #[cold]
+    #[inline(never)]
+    fn update_with_policies<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        if self.same_instant() && (s.dt() == 0.0 || self.burst().1 != 0) {
             return self.update_same_instant(s);
         }
-        if self.recover && self.saturated(s) {
+        if self.recover() && self.saturated(s) {
             return self.update_saturated(s);
         }
-        if self.extras.0.as_ref().is_some_and(|x| x.models.any()) {
+        if self.policy & Self::MODELS != 0 {
             return self.update_calibrated(s);
         }
+        self.update_plain(s)
+    }
+
+    /// The update without the policies.
+    #[inline(always)]
+    fn update_plain<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
         self.check_view(s)?;
         // check() guarantees a gyro reading.
         let gyro = s.gyro().unwrap_or_default();
         let gap = s.dt() > self.common.gap_limit;
+        // The usual step: initialised, nothing pending, no gap.
+        if (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED) & !gap {
+            return match self.core.update(s.dt(), gyro, s.accel(), s.mag()) {
+                Some(step) => {
+                    if let Some(a) = s.accel() {
+                        self.last_accel = a;
+                        self.bits |= Self::HAS_ACCEL;
+                    }
+                    self.flags =
+                        flags::INITIALIZED | used_flags(step, s.accel().is_some(), s.mag().is_some());
+                    Ok(())
+                }
+                None => Err(Error::Numeric),
+            };
+        }
+        self.update_unusual(s.dt(), gyro, s.accel(), s.mag(), gap)
+    }
+
+    /// The plain update before initialisation, after a gap or with a re-acquisition
+    /// pending.
+    #[cold]
+    #[inline(never)]
+    fn update_unusual(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+        gap: bool,
+    ) -> Result<(), Error> {
         let pending = self.flags & flags::REACQUIRE_PENDING;
         if self.flags & flags::INITIALIZED != 0 && (gap || pending != 0) {
-            match s.accel() {
-                Some(accel) => return self.reacquire(s.dt(), gyro, accel, s.mag(), gap),
+            match accel {
+                Some(accel) => return self.reacquire(dt, gyro, accel, mag, gap),
                 None if gap => {
                     // Nothing to re-acquire from: hold the orientation until a sample
                     // with an accelerometer reading.
@@ -382,17 +472,17 @@ impl<E: Estimator> Runner<E> {
             }
         }
         if self.flags & flags::INITIALIZED == 0 {
-            return self.start(s.dt(), gyro, s.accel(), s.mag(), gap);
+            return self.start(dt, gyro, accel, mag, gap);
         }
-        let dt = if gap { self.common.gap_limit } else { s.dt() };
-        match self.core.update(dt, gyro, s.accel(), s.mag()) {
+        let dt = if gap { self.common.gap_limit } else { dt };
+        match self.core.update(dt, gyro, accel, mag) {
             Some(step) => {
-                if let Some(a) = s.accel() {
+                if let Some(a) = accel {
                     self.last_accel = a;
-                    self.has_accel = true;
+                    self.bits |= Self::HAS_ACCEL;
                 }
                 self.flags = flags::INITIALIZED
-                    | used_flags(step, s.accel().is_some(), s.mag().is_some())
+                    | used_flags(step, accel.is_some(), mag.is_some())
                     | if gap { flags::GAP } else { 0 }
                     | pending;
                 Ok(())
@@ -439,7 +529,7 @@ impl<E: Estimator> Runner<E> {
             Some(step) => {
                 if let Some(a) = accel {
                     self.last_accel = a;
-                    self.has_accel = true;
+                    self.bits |= Self::HAS_ACCEL;
                 }
                 self.flags = if step.initializing {
                     0
@@ -483,7 +573,7 @@ impl<E: Estimator> Runner<E> {
         let r = Reacquisition { keep, with_mag, dt, gyro, accel, mag };
         let used_mag = self.core.reacquire(&r);
         self.last_accel = accel;
-        self.has_accel = true;
+        self.bits |= Self::HAS_ACCEL;
         self.flags = flags::INITIALIZED
             | flags::ACCEL_USED
             | flags::REACQUIRED
@@ -501,9 +591,7 @@ impl<E: Estimator> Runner<E> {
     pub(crate) fn lane_ready(&self, s: &Sample) -> bool {
         self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED
             // Models, clipping and bursts take the single path.
-            && !self.extras.0.as_ref().is_some_and(|x| x.models.any())
-            && !self.recover
-            && !self.same_instant
+            && self.policy == 0
             && s.dt <= self.common.gap_limit
             && s.accel.is_some()
     }
@@ -512,7 +600,7 @@ impl<E: Estimator> Runner<E> {
     pub(crate) fn lane_done(&mut self, accel: Vec3, step: Step, had_mag: bool) {
         self.flags = flags::INITIALIZED | used_flags(step, true, had_mag);
         self.last_accel = accel;
-        self.has_accel = true;
+        self.bits |= Self::HAS_ACCEL;
     }
 
     pub(crate) fn diagnostic_fields(&self) -> u32 {
@@ -539,9 +627,9 @@ impl<E: Estimator> Runner<E> {
         let mut head = ConfigFields::of(&self.config());
         head.codec(c);
         c.u32(&mut self.flags);
-        let mut last = self.has_accel.then_some(self.last_accel);
+        let mut last = self.has_accel().then_some(self.last_accel);
         c.opt_vec3(&mut last);
-        self.has_accel = last.is_some();
+        self.set_has_accel(last.is_some());
         self.last_accel = last.unwrap_or(Vec3::ZERO);
         // Since format version 3: the host's frames, the sensor models, the burst readings.
         let mut x = self.extras.0.as_deref().copied().unwrap_or_default();
@@ -549,6 +637,7 @@ impl<E: Estimator> Runner<E> {
         if self.extras.0.is_some() || !x.is_plain() {
             **self.extras.0.get_or_insert_with(Box::default) = x;
         }
+        self.refresh_models();
         self.core.codec(c);
     }
 
@@ -582,7 +671,7 @@ impl<E: Estimator> Runner<E> {
         r.u32(&mut fresh.flags);
         let mut last = None;
         r.opt_vec3(&mut last);
-        fresh.has_accel = last.is_some();
+        fresh.set_has_accel(last.is_some());
         fresh.last_accel = last.unwrap_or(Vec3::ZERO);
         let mut x = Extras::default();
         extras_codec(&mut x, &mut r);
@@ -593,6 +682,7 @@ impl<E: Estimator> Runner<E> {
         if fresh.extras.0.is_some() || !x.is_plain() {
             **fresh.extras.0.get_or_insert_with(Box::default) = x;
         }
+        fresh.refresh_models();
         fresh.core.codec(&mut r);
         // Slots this kind does not use are zero in every snapshot it writes: a blob of
         // another kind relabelled (with a fresh checksum) has its own kind's slots set.
@@ -654,7 +744,7 @@ impl<E: Estimator> Runner<E> {
     }
 
     pub(crate) fn last_accel(&self) -> Option<Vec3> {
-        self.has_accel.then_some(self.last_accel)
+        self.has_accel().then_some(self.last_accel)
     }
 }
 

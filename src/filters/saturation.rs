@@ -87,7 +87,7 @@ impl<E: Estimator> Runner<E> {
     /// a gyroscope reading beyond its range clipped just under it, an accelerometer
     /// reading beyond its range left out; and whether the gyroscope, or any reading, was.
     fn clipped(&self, s: &Sample) -> (Sample, bool, bool) {
-        if !(self.recover && self.saturated(s)) {
+        if !(self.recover() && self.saturated(s)) {
             return (*s, false, false);
         }
         let gyro_saturated = beyond(s.gyro, self.common.gyro_limit, MAX_GYRO);

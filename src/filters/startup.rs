@@ -85,6 +85,12 @@ impl StartupMeans {
             && self.mag.max_abs() <= MAX_MAG * n
     }
 
+    /// A period [`StartupMeans::valid`] turns down (for a snapshot that holds an
+    /// impossible one).
+    pub fn invalid() -> StartupMeans {
+        StartupMeans { time: -1.0, ..StartupMeans::default() }
+    }
+
     pub fn gyro(&self) -> Vec3 {
         self.gyro * (1.0 / self.n as f64)
     }
