@@ -74,143 +74,49 @@ pub fn beta_from_gyro_error(gyro_error_max: f64) -> f64 {
     (0.75f64).sqrt() * gyro_error_max
 }
 
-/// The arithmetic the equations below are written in: `f64` for one filter, [`L`] for
-/// [`LANES`] filters at once. Both are IEEE operations in the same order, so one source
-/// gives [`Madgwick::update`] and [`Madgwick::update_lanes`] the same bits.
-trait Num:
-    Copy
-    + core::ops::Add<Output = Self>
-    + core::ops::Sub<Output = Self>
-    + core::ops::Mul<Output = Self>
-    + core::ops::Div<Output = Self>
-{
-    /// A constant.
-    fn k(v: f64) -> Self;
-}
-
-impl Num for f64 {
-    #[inline(always)]
-    fn k(v: f64) -> f64 {
-        v
-    }
-}
-
-/// Eq. (12), `f_g = q* ⊗ [0 0 0 1] ⊗ q − â`, over `q = [q1 q2 q3 q4]` (w, x, y, z).
-#[inline(always)]
-fn objective_g_of<N: Num>([q1, q2, q3, q4]: [N; 4], a: [N; 3]) -> [N; 3] {
-    let k = N::k;
-    [
-        k(2.0) * (q2 * q4 - q1 * q3) - a[0],
-        k(2.0) * (q1 * q2 + q3 * q4) - a[1],
-        k(2.0) * (k(0.5) - q2 * q2 - q3 * q3) - a[2],
-    ]
-}
-
-/// Eq. (13), the Jacobian of (12): rows are the components of `f_g`, columns `q1..q4`.
-#[inline(always)]
-fn jacobian_g_of<N: Num>([q1, q2, q3, q4]: [N; 4]) -> [[N; 4]; 3] {
-    let k = N::k;
-    [
-        [k(-2.0) * q3, k(2.0) * q4, k(-2.0) * q1, k(2.0) * q2],
-        [k(2.0) * q2, k(2.0) * q1, k(2.0) * q4, k(2.0) * q3],
-        [k(0.0), k(-4.0) * q2, k(-4.0) * q3, k(0.0)],
-    ]
-}
-
-/// Eq. (16) with `ᴱb̂ = [0 b_x 0 b_z]` (14).
-#[inline(always)]
-fn objective_b_of<N: Num>([q1, q2, q3, q4]: [N; 4], bx: N, bz: N, m: [N; 3]) -> [N; 3] {
-    let k = N::k;
-    [
-        k(2.0) * bx * (k(0.5) - q3 * q3 - q4 * q4) + k(2.0) * bz * (q2 * q4 - q1 * q3) - m[0],
-        k(2.0) * bx * (q2 * q3 - q1 * q4) + k(2.0) * bz * (q1 * q2 + q3 * q4) - m[1],
-        k(2.0) * bx * (q1 * q3 + q2 * q4) + k(2.0) * bz * (k(0.5) - q2 * q2 - q3 * q3) - m[2],
-    ]
-}
-
-/// Eq. (17), the Jacobian of (16).
-#[inline(always)]
-fn jacobian_b_of<N: Num>([q1, q2, q3, q4]: [N; 4], bx: N, bz: N) -> [[N; 4]; 3] {
-    let k = N::k;
-    [
-        [
-            k(-2.0) * bz * q3,
-            k(2.0) * bz * q4,
-            k(-4.0) * bx * q3 - k(2.0) * bz * q1,
-            k(-4.0) * bx * q4 + k(2.0) * bz * q2,
-        ],
-        [
-            k(-2.0) * bx * q4 + k(2.0) * bz * q2,
-            k(2.0) * bx * q3 + k(2.0) * bz * q1,
-            k(2.0) * bx * q2 + k(2.0) * bz * q4,
-            k(-2.0) * bx * q1 + k(2.0) * bz * q3,
-        ],
-        [
-            k(2.0) * bx * q3,
-            k(2.0) * bx * q4 - k(4.0) * bz * q2,
-            k(2.0) * bx * q1 - k(4.0) * bz * q3,
-            k(2.0) * bx * q2,
-        ],
-    ]
-}
-
-/// `Jᵀ f` for a 3×4 Jacobian and a 3-vector (eq. (8)).
-#[inline(always)]
-fn jt_f<N: Num>(j: &[[N; 4]; 3], f: &[N; 3]) -> [N; 4] {
-    core::array::from_fn(|c| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2])
-}
-
-/// The IMU gradient `∇f = J_gᵀ f_g`, eq. (21) first case: [`jt_f`] without the two zero
-/// entries of (13)'s last row (`0 · f` changes nothing but the sign of an exact zero).
-#[inline(always)]
-fn gradient_imu_of<N: Num>(q: [N; 4], a: [N; 3]) -> [N; 4] {
-    let (j, f) = (jacobian_g_of(q), objective_g_of(q, a));
-    let col = |c: usize| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2];
-    [j[0][0] * f[0] + j[1][0] * f[1], col(1), col(2), j[0][3] * f[0] + j[1][3] * f[1]]
-}
-
-/// The MARG gradient `∇f = J_g,bᵀ f_g,b`, eqs. (18), (19), (21) second case.
-#[inline(always)]
-fn gradient_marg_of<N: Num>(q: [N; 4], a: [N; 3], bx: N, bz: N, m: [N; 3]) -> [N; 4] {
-    let g = jt_f(&jacobian_g_of(q), &objective_g_of(q, a));
-    let b = jt_f(&jacobian_b_of(q, bx, bz), &objective_b_of(q, bx, bz, m));
-    core::array::from_fn(|c| g[c] + b[c])
-}
-
-fn quat4(q: Quat) -> [f64; 4] {
-    [q.w, q.x, q.y, q.z]
-}
-
-fn vec3(v: Vec3) -> [f64; 3] {
-    [v.x, v.y, v.z]
-}
-
-fn quat_of4(q: [f64; 4]) -> Quat {
-    Quat::new(q[0], q[1], q[2], q[3])
-}
-
 /// Objective function for gravity, eq. (12): `f_g = q* ⊗ [0 0 0 1] ⊗ q − â`.
 #[inline]
 pub fn objective_g(q: Quat, a: Vec3) -> [f64; 3] {
-    objective_g_of(quat4(q), vec3(a))
+    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    [2.0 * (q2 * q4 - q1 * q3) - a.x, 2.0 * (q1 * q2 + q3 * q4) - a.y, 2.0 * (0.5 - q2 * q2 - q3 * q3) - a.z]
 }
 
 /// Jacobian of (12), eq. (13): rows are the components of `f_g`, columns `q1..q4`.
 #[inline]
 pub fn jacobian_g(q: Quat) -> [[f64; 4]; 3] {
-    jacobian_g_of(quat4(q))
+    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    [
+        [-2.0 * q3, 2.0 * q4, -2.0 * q1, 2.0 * q2],
+        [2.0 * q2, 2.0 * q1, 2.0 * q4, 2.0 * q3],
+        [0.0, -4.0 * q2, -4.0 * q3, 0.0],
+    ]
 }
 
 /// Objective function for the magnetic field, eq. (16), with `ᴱb̂ = [0 b_x 0 b_z]` (14).
 #[inline]
 pub fn objective_b(q: Quat, bx: f64, bz: f64, m: Vec3) -> [f64; 3] {
-    objective_b_of(quat4(q), bx, bz, vec3(m))
+    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    [
+        2.0 * bx * (0.5 - q3 * q3 - q4 * q4) + 2.0 * bz * (q2 * q4 - q1 * q3) - m.x,
+        2.0 * bx * (q2 * q3 - q1 * q4) + 2.0 * bz * (q1 * q2 + q3 * q4) - m.y,
+        2.0 * bx * (q1 * q3 + q2 * q4) + 2.0 * bz * (0.5 - q2 * q2 - q3 * q3) - m.z,
+    ]
 }
 
 /// Jacobian of (16), eq. (17): rows are the components of `f_b`, columns `q1..q4`.
 #[inline]
 pub fn jacobian_b(q: Quat, bx: f64, bz: f64) -> [[f64; 4]; 3] {
-    jacobian_b_of(quat4(q), bx, bz)
+    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    [
+        [-2.0 * bz * q3, 2.0 * bz * q4, -4.0 * bx * q3 - 2.0 * bz * q1, -4.0 * bx * q4 + 2.0 * bz * q2],
+        [
+            -2.0 * bx * q4 + 2.0 * bz * q2,
+            2.0 * bx * q3 + 2.0 * bz * q1,
+            2.0 * bx * q2 + 2.0 * bz * q4,
+            -2.0 * bx * q1 + 2.0 * bz * q3,
+        ],
+        [2.0 * bx * q3, 2.0 * bx * q4 - 4.0 * bz * q2, 2.0 * bx * q1 - 4.0 * bz * q3, 2.0 * bx * q2],
+    ]
 }
 
 /// Reference direction of the field, eqs. (31)-(32): the measured field `m̂` rotated into
@@ -222,16 +128,27 @@ pub fn reference_field(q: Quat, m: Vec3) -> (f64, f64) {
     ((h.x * h.x + h.y * h.y).sqrt(), h.z)
 }
 
-/// The IMU gradient, eq. (21) first case ([`gradient_imu_of`]).
+/// `Jᵀ f` for a 3×4 Jacobian and a 3-vector, as a quaternion (eq. (8)).
 #[inline]
-pub fn gradient_imu(q: Quat, a: Vec3) -> Quat {
-    quat_of4(gradient_imu_of(quat4(q), vec3(a)))
+fn jt_f(j: &[[f64; 4]; 3], f: &[f64; 3]) -> Quat {
+    let col = |c: usize| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2];
+    Quat::new(col(0), col(1), col(2), col(3))
 }
 
-/// The MARG gradient, eqs. (18), (19), (21) second case ([`gradient_marg_of`]).
+/// The IMU gradient `∇f = J_gᵀ f_g`, eq. (21) first case: [`jt_f`] without the two
+/// zero entries of (13)'s last row (`0 · f` changes nothing but the sign of an exact
+/// zero).
+#[inline]
+pub fn gradient_imu(q: Quat, a: Vec3) -> Quat {
+    let (j, f) = (jacobian_g(q), objective_g(q, a));
+    let col = |c: usize| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2];
+    Quat::new(j[0][0] * f[0] + j[1][0] * f[1], col(1), col(2), j[0][3] * f[0] + j[1][3] * f[1])
+}
+
+/// The MARG gradient `∇f = J_g,bᵀ f_g,b`, eqs. (18), (19), (21) second case.
 #[inline]
 pub fn gradient_marg(q: Quat, a: Vec3, bx: f64, bz: f64, m: Vec3) -> Quat {
-    quat_of4(gradient_marg_of(quat4(q), vec3(a), bx, bz, vec3(m)))
+    jt_f(&jacobian_g(q), &objective_g(q, a)) + jt_f(&jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m))
 }
 
 /// The number of filters [`Madgwick::update_lanes`] steps at once.
@@ -337,11 +254,61 @@ fn lnormalized(v: [L; 3]) -> Option<[L; 3]> {
     Some([v[0] * r, v[1] * r, v[2] * r])
 }
 
-impl Num for L {
-    #[inline(always)]
-    fn k(v: f64) -> L {
-        L::splat(v)
-    }
+/// `Jᵀ f` as [`jt_f`].
+#[inline(always)]
+fn ljt_f(j: &[[L; 4]; 3], f: &[L; 3]) -> Lq {
+    core::array::from_fn(|c| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2])
+}
+
+/// [`jacobian_g`] and [`objective_g`].
+#[inline(always)]
+fn lgravity(q: Lq, a: [L; 3]) -> ([[L; 4]; 3], [L; 3]) {
+    let [q1, q2, q3, q4] = q;
+    let k = L::splat;
+    let f = [
+        k(2.0) * (q2 * q4 - q1 * q3) - a[0],
+        k(2.0) * (q1 * q2 + q3 * q4) - a[1],
+        k(2.0) * (k(0.5) - q2 * q2 - q3 * q3) - a[2],
+    ];
+    let j = [
+        [k(-2.0) * q3, k(2.0) * q4, k(-2.0) * q1, k(2.0) * q2],
+        [k(2.0) * q2, k(2.0) * q1, k(2.0) * q4, k(2.0) * q3],
+        [k(0.0), k(-4.0) * q2, k(-4.0) * q3, k(0.0)],
+    ];
+    (j, f)
+}
+
+/// [`jacobian_b`] and [`objective_b`].
+#[inline(always)]
+fn lfield(q: Lq, bx: L, bz: L, m: [L; 3]) -> ([[L; 4]; 3], [L; 3]) {
+    let [q1, q2, q3, q4] = q;
+    let k = L::splat;
+    let f = [
+        k(2.0) * bx * (k(0.5) - q3 * q3 - q4 * q4) + k(2.0) * bz * (q2 * q4 - q1 * q3) - m[0],
+        k(2.0) * bx * (q2 * q3 - q1 * q4) + k(2.0) * bz * (q1 * q2 + q3 * q4) - m[1],
+        k(2.0) * bx * (q1 * q3 + q2 * q4) + k(2.0) * bz * (k(0.5) - q2 * q2 - q3 * q3) - m[2],
+    ];
+    let j = [
+        [
+            k(-2.0) * bz * q3,
+            k(2.0) * bz * q4,
+            k(-4.0) * bx * q3 - k(2.0) * bz * q1,
+            k(-4.0) * bx * q4 + k(2.0) * bz * q2,
+        ],
+        [
+            k(-2.0) * bx * q4 + k(2.0) * bz * q2,
+            k(2.0) * bx * q3 + k(2.0) * bz * q1,
+            k(2.0) * bx * q2 + k(2.0) * bz * q4,
+            k(-2.0) * bx * q1 + k(2.0) * bz * q3,
+        ],
+        [
+            k(2.0) * bx * q3,
+            k(2.0) * bx * q4 - k(4.0) * bz * q2,
+            k(2.0) * bx * q1 - k(4.0) * bz * q3,
+            k(2.0) * bx * q2,
+        ],
+    ];
+    (j, f)
 }
 
 /// Madgwick's filter. Its state is the orientation alone, in its native North-West-Up frame.
@@ -429,8 +396,9 @@ impl Madgwick {
         let qdo = lmul(q, [zero, g[0], g[1], g[2]]).map(|c| c * half);
         let p: Lq = core::array::from_fn(|c| q[c] + qdo[c] * dt);
         let a = lnormalized([lane(&|i| accel[i].x), lane(&|i| accel[i].y), lane(&|i| accel[i].z)])?;
-        // The same equations as the scalar step ((21), (31)-(32)), on lanes.
-        let (gradient, beta) = match mag {
+        let (jg, fg) = lgravity(q, a);
+        let mut gradient = ljt_f(&jg, &fg);
+        let beta = match mag {
             Some(mag) => {
                 let m = lnormalized([lane(&|i| mag[i].x), lane(&|i| mag[i].y), lane(&|i| mag[i].z)])?;
                 let h = lrotate(q, m);
@@ -438,9 +406,12 @@ impl Madgwick {
                 if !bx.all(|v| v > 0.0) {
                     return None;
                 }
-                (gradient_marg_of(q, a, bx, h[2], m), lane(&|i| fs[i].settings.beta_marg))
+                let (jb, fb) = lfield(q, bx, h[2], m);
+                let gb = ljt_f(&jb, &fb);
+                gradient = core::array::from_fn(|c| gradient[c] + gb[c]);
+                lane(&|i| fs[i].settings.beta_marg)
             }
-            None => (gradient_imu_of(q, a), lane(&|i| fs[i].settings.beta_imu)),
+            None => lane(&|i| fs[i].settings.beta_imu),
         };
         let gg = ldot(gradient, gradient);
         let k = beta * dt;
