@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Instructions per update of every kind through the Rust API (or, with `c`, the C ABI), counted by callgrind:
+# Instructions per update of every kind through the Rust API (or, with `c`, the C ABI), and
+# of the anchors (ahrs-rs Madgwick and Mahony f64, vqf-rs) in the same loop, each update
+# followed by one orientation read, counted by callgrind:
 # (count for 1000 + N updates - count for 1000 updates) / N, so start-up, reading the
 # recording and printing cancel out. Unlike times, these do not move with machine load,
 # so a change in them is a change in the code. Needs valgrind (scripts/setup-debian.sh).
@@ -16,11 +18,27 @@ count() {
   ORIENT_ISA=baseline valgrind --tool=callgrind --callgrind-out-file=/dev/null "$bin" --count "$1" "$2" "$3" $via 2>&1 \
     | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
 }
-printf '%-14s %-5s %12s\n' kind mode instr/update
+per_update() {
+  local a b
+  a=$(count "$1" "$2" 1000)
+  b=$(count "$1" "$2" $((1000 + N)))
+  echo "($b - $a) / $N" | bc -l
+}
+printf '%-14s %-5s %12s   %s\n' kind mode instr/update 'anchor (instr/update, orient / anchor)'
 for kind in madgwick mahony complementary ekf gmvdk robust; do
+  case $kind in
+    madgwick) anchor=ahrs-madgwick ;;
+    mahony) anchor=ahrs-mahony ;;
+    robust) anchor=vqf ;;
+    *) anchor= ;;
+  esac
   for mode in imu marg; do
-    a=$(count "$kind" "$mode" 1000)
-    b=$(count "$kind" "$mode" $((1000 + N)))
-    printf '%-14s %-5s %12.1f\n' "$kind" "$mode" "$(echo "($b - $a) / $N" | bc -l)"
+    o=$(per_update "$kind" "$mode")
+    line=$(printf '%-14s %-5s %12.1f' "$kind" "$mode" "$o")
+    if [ -n "$anchor" ] && [ -z "$via" ]; then
+      x=$(per_update "$anchor" "$mode")
+      line="$line   $(printf '%s %.1f, %.2f' "$anchor" "$x" "$(echo "$o / $x" | bc -l)")"
+    fi
+    echo "$line"
   done
 done

@@ -10,18 +10,23 @@
 //! medians over interleaved rounds and ratios measured in the same run.
 //!
 //!     cargo run --release --bin bench [-- --rounds N]
-//!     bench --count KIND imu|marg N [c] (N updates only, through the Rust API or with `c`
-//!                                        the C ABI: for instruction counts under callgrind,
-//!                                        see scripts/callgrind-counts.sh)
+//!     bench --count KIND imu|marg N [c] (N updates and orientation reads only, through the
+//!                                        Rust API or with `c` the C ABI; KIND may also be an
+//!                                        anchor, ahrs-madgwick, ahrs-mahony or vqf: for
+//!                                        instruction counts under callgrind, see
+//!                                        scripts/callgrind-counts.sh)
 //!
 //! Input: the real recording in examples/data (13,500 samples, cycled).
 
 use orient::ffi::{
-    orient_config_default, orient_filter_free, orient_filter_new, orient_filter_update,
-    orient_filter_update_batch, orient_filters_update, OrientConfig, OrientFilter, OrientQuaternion,
-    OrientSample, OrientStatus, OrientVec3, ORIENT_SAMPLE_ACCEL, ORIENT_SAMPLE_GYRO, ORIENT_SAMPLE_MAG,
+    orient_config_default, orient_filter_free, orient_filter_new, orient_filter_quaternion,
+    orient_filter_update, orient_filter_update_batch, orient_filters_update, OrientConfig, OrientFilter,
+    OrientQuaternion, OrientSample, OrientStatus, OrientVec3, ORIENT_SAMPLE_ACCEL, ORIENT_SAMPLE_GYRO,
+    ORIENT_SAMPLE_MAG,
 };
-use orient::filters::madgwick::{gradient_imu, gradient_marg, reference_field, Madgwick, MadgwickSettings};
+use orient::filters::madgwick::{
+    gradient_imu, gradient_marg, reference_field, Madgwick, MadgwickSettings,
+};
 use orient::filters::mahony::{Mahony, MahonySettings};
 use orient::math::inv_sqrt;
 use orient::{Config, Filter, Kind, Quat, Sample, Vec3};
@@ -238,6 +243,70 @@ mod floor {
     }
 }
 
+/// `f` on `n` items: whole passes over `items`, then a part of one.
+#[inline(always)]
+fn run<T>(items: &[T], n: usize, mut f: impl FnMut(&T)) {
+    for _ in 0..n / items.len() {
+        items.iter().for_each(&mut f);
+    }
+    items[..n % items.len()].iter().for_each(f);
+}
+
+/// [`count`] for one of the `ahrs` crate's filters (f64); its update returns the orientation.
+fn ahrs_count<F: ahrs::Ahrs<f64>>(mut f: F, samples: &[Sample], mag: bool, n: usize) {
+    run(samples, n, |s| {
+        let (g, a) = (na(s.gyro.unwrap()), na(s.accel.unwrap()));
+        let r = if mag { f.update(&g, &a, &na(s.mag.unwrap())) } else { f.update_imu(&g, &a) };
+        let _ = black_box(r.map(|q| *q));
+    });
+}
+
+/// `n` updates of one contender, each followed by one orientation read, for instruction
+/// counts under callgrind (`scripts/callgrind-counts.sh`). Every contender runs the same
+/// loop (whole passes over the recording, then a part of one), so that the loop's
+/// instructions, a few per update, are the same in each count. `who` is an orient kind
+/// (through the Rust API, or the C ABI with `c`), or an anchor: `ahrs-madgwick`,
+/// `ahrs-mahony` (the `ahrs` crate, f64) or `vqf` (`vqf-rs`).
+fn count(who: &str, mag: bool, n: usize, samples: &[Sample], c: bool) {
+    let dt = samples[0].dt;
+    match who {
+        "ahrs-madgwick" => ahrs_count(ahrs::Madgwick::new(dt, 0.041), samples, mag, n),
+        "ahrs-mahony" => ahrs_count(ahrs::Mahony::new(dt, 0.5, 0.0), samples, mag, n),
+        "vqf" => {
+            let mut f = vqf_rs::VQF::new(dt, None, None, None);
+            run(samples, n, |s| {
+                let v = |v: Vec3| [v.x, v.y, v.z];
+                f.update(v(s.gyro.unwrap()), v(s.accel.unwrap()), s.mag.map(v));
+                black_box(if mag { f.quat_9d() } else { f.quat_6d() });
+            });
+        }
+        _ if c => {
+            // The same through the C ABI, called through a pointer as a host calls it.
+            let kind = Kind::from_name(who).expect("--count KIND|ANCHOR imu|marg N [c]");
+            let cs: Vec<OrientSample> = samples.iter().map(c_sample).collect();
+            let h = new_c_filter(kind);
+            let update: unsafe extern "C" fn(*mut OrientFilter, *const OrientSample) -> OrientStatus =
+                black_box(orient_filter_update);
+            let read: unsafe extern "C" fn(*const OrientFilter, *mut OrientQuaternion) -> OrientStatus =
+                black_box(orient_filter_quaternion);
+            run(&cs, n, |s| {
+                let mut q = OrientQuaternion::default();
+                black_box(unsafe { update(h, s) });
+                black_box(unsafe { read(h, &mut q) });
+            });
+            unsafe { orient_filter_free(h) };
+        }
+        _ => {
+            let kind = Kind::from_name(who).expect("--count KIND|ANCHOR imu|marg N [c]");
+            let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
+            run(samples, n, |s| {
+                let _ = black_box(f.update(s));
+                black_box(f.quaternion());
+            });
+        }
+    }
+}
+
 fn main() {
     let mut rounds = 21;
     let args: Vec<String> = std::env::args().collect();
@@ -247,30 +316,13 @@ fn main() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/data/broad_01_excerpt.csv");
     let marg_rec = Recording::read(path.as_ref(), true).expect("demo recording");
     if let Some(i) = args.iter().position(|a| a == "--count") {
-        let kind = Kind::from_name(&args[i + 1]).expect("--count KIND imu|marg N");
         let with_mag = args[i + 2] == "marg";
         let n: usize = args[i + 3].parse().expect("N");
         let mut samples = marg_rec.samples();
         if !with_mag {
             samples.iter_mut().for_each(|s| s.mag = None);
         }
-        if args.get(i + 4).is_some_and(|a| a == "c") {
-            // The same through the C ABI.
-            let c: Vec<OrientSample> = samples.iter().map(c_sample).collect();
-            let h = new_c_filter(kind);
-            let update: unsafe extern "C" fn(*mut OrientFilter, *const OrientSample) -> OrientStatus =
-                black_box(orient_filter_update);
-            for j in 0..n {
-                black_box(unsafe { update(h, &c[j % c.len()]) });
-            }
-            unsafe { orient_filter_free(h) };
-            return;
-        }
-        let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
-        for j in 0..n {
-            let _ = black_box(f.update(black_box(&samples[j % samples.len()])));
-        }
-        println!("{:?}", f.quaternion());
+        count(&args[i + 1], with_mag, n, &samples, args.get(i + 4).is_some_and(|a| a == "c"));
         return;
     }
     println!(
