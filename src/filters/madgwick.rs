@@ -130,25 +130,46 @@ pub fn reference_field(q: Quat, m: Vec3) -> (f64, f64) {
 
 /// `Jᵀ f` for a 3×4 Jacobian and a 3-vector, as a quaternion (eq. (8)).
 #[inline]
-fn jt_f(j: &[[f64; 4]; 3], f: &[f64; 3]) -> Quat {
+pub fn jt_f(j: &[[f64; 4]; 3], f: &[f64; 3]) -> Quat {
     let col = |c: usize| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2];
     Quat::new(col(0), col(1), col(2), col(3))
 }
 
-/// The IMU gradient `∇f = J_gᵀ f_g`, eq. (21) first case: [`jt_f`] without the two
-/// zero entries of (13)'s last row (`0 · f` changes nothing but the sign of an exact
-/// zero).
+/// `½ ∇f` for the IMU, eq. (21) first case: `½ J_gᵀ f_g` with (13) halved, whose rows
+/// are `[−q3 q4 −q1 q2]`, `[q2 q1 q4 q3]`, `[0 −2q2 −2q3 0]`.
+///
+/// Why half: (30) uses `∇f` only through its direction `∇f / ‖∇f‖`, and a power of two
+/// scales every product and sum without rounding, so `½ ∇f` gives the update the same
+/// bits while the 2s and 4s of (13) need no multiplications (a test checks it bit for bit
+/// against [`jt_f`] of [`jacobian_g`] and [`objective_g`]).
 #[inline]
-pub fn gradient_imu(q: Quat, a: Vec3) -> Quat {
-    let (j, f) = (jacobian_g(q), objective_g(q, a));
-    let col = |c: usize| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2];
-    Quat::new(j[0][0] * f[0] + j[1][0] * f[1], col(1), col(2), j[0][3] * f[0] + j[1][3] * f[1])
+pub fn half_gradient_imu(q: Quat, a: Vec3) -> Quat {
+    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    let [f1, f2, f3] = objective_g(q, a);
+    Quat::new(
+        q2 * f2 - q3 * f1,
+        (q4 * f1 + q1 * f2) - 2.0 * q2 * f3,
+        (q4 * f2 - q1 * f1) - 2.0 * q3 * f3,
+        q2 * f1 + q3 * f2,
+    )
 }
 
-/// The MARG gradient `∇f = J_g,bᵀ f_g,b`, eqs. (18), (19), (21) second case.
+/// (17) halved: `½ J_b` (see [`half_gradient_imu`] for why half).
 #[inline]
-pub fn gradient_marg(q: Quat, a: Vec3, bx: f64, bz: f64, m: Vec3) -> Quat {
-    jt_f(&jacobian_g(q), &objective_g(q, a)) + jt_f(&jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m))
+pub fn half_jacobian_b(q: Quat, bx: f64, bz: f64) -> [[f64; 4]; 3] {
+    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    [
+        [-bz * q3, bz * q4, -2.0 * bx * q3 - bz * q1, -2.0 * bx * q4 + bz * q2],
+        [-bx * q4 + bz * q2, bx * q3 + bz * q1, bx * q2 + bz * q4, -bx * q1 + bz * q3],
+        [bx * q3, bx * q4 - 2.0 * bz * q2, bx * q1 - 2.0 * bz * q3, bx * q2],
+    ]
+}
+
+/// `½ ∇f` for MARG, eqs. (18), (19), (21) second case: `½ J_g,bᵀ f_g,b`, the gravity part
+/// as [`half_gradient_imu`] and the field part `½ J_bᵀ f_b`.
+#[inline]
+pub fn half_gradient_marg(q: Quat, a: Vec3, bx: f64, bz: f64, m: Vec3) -> Quat {
+    half_gradient_imu(q, a) + jt_f(&half_jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m))
 }
 
 /// The number of filters [`Madgwick::update_lanes`] steps at once.
@@ -497,7 +518,7 @@ impl Madgwick {
                 let m = mag.normalized();
                 let (bx, bz) = reference_field(q, m);
                 if bx > 0.0 {
-                    Some(gradient_marg(q, a, bx, bz, m))
+                    Some(half_gradient_marg(q, a, bx, bz, m))
                 } else {
                     None
                 }
@@ -507,7 +528,7 @@ impl Madgwick {
         step.used_mag = marg.is_some();
         let (gradient, beta) = match marg {
             Some(g) => (g, self.settings.beta_marg),
-            None => (gradient_imu(q, a), self.settings.beta_imu),
+            None => (half_gradient_imu(q, a), self.settings.beta_imu),
         };
         let gg = gradient.norm_squared();
         let k = beta * dt;
@@ -562,6 +583,15 @@ mod tests {
 
     fn sample_q() -> Quat {
         Quat::new(0.7, -0.2, 0.5, 0.3).normalized()
+    }
+
+    /// `∇f` as (21) writes it: `J_gᵀ f_g`, plus `J_bᵀ f_b` with a field `(b_x, b_z, m̂)`.
+    fn gradient(q: Quat, a: Vec3, field: Option<(f64, f64, Vec3)>) -> Quat {
+        let g = jt_f(&jacobian_g(q), &objective_g(q, a));
+        match field {
+            Some((bx, bz, m)) => g + jt_f(&jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m)),
+            None => g,
+        }
     }
 
     /// The objective (6) computed directly with quaternion products.
@@ -638,6 +668,33 @@ mod tests {
         }
     }
 
+    /// The halved forms the update uses are half of (21) written as `Jᵀ f`, to the bit.
+    #[test]
+    fn half_gradients_are_half_of_eq21_bit_for_bit() {
+        let mut seed = 11u64;
+        let mut r = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let bits = |q: Quat| [q.w, q.x, q.y, q.z].map(f64::to_bits);
+        for _ in 0..1000 {
+            let q = Quat::new(r(), r(), r(), r()).normalized();
+            let a = Vec3::new(r(), r(), r()).normalized();
+            let m = Vec3::new(r(), r(), r()).normalized();
+            let (bx, bz) = reference_field(q, m);
+            // IMU: (13)'s two zeros dropped, as the readable form adds them.
+            let g = jt_f(&jacobian_g(q), &objective_g(q, a));
+            assert_eq!(bits(half_gradient_imu(q, a).scale(2.0)), bits(g));
+            // MARG: the field part through half of (17), then the sum.
+            let jb = jt_f(&jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m));
+            assert_eq!(
+                bits(jt_f(&half_jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m)).scale(2.0)),
+                bits(jb)
+            );
+            assert_eq!(bits(half_gradient_marg(q, a, bx, bz, m).scale(2.0)), bits(g + jb));
+        }
+    }
+
     #[test]
     fn gradient_is_the_gradient_of_half_the_squared_objective() {
         // ∇(½‖f‖²) = Jᵀ f, eq. (8); check with a finite difference of the scalar objective.
@@ -650,7 +707,7 @@ mod tests {
             let b = objective_b(q, bx, bz, m);
             0.5 * (g.iter().chain(b.iter()).map(|v| v * v).sum::<f64>())
         };
-        let grad = gradient_marg(q, a, bx, bz, m);
+        let grad = gradient(q, a, Some((bx, bz, m)));
         let h = 1e-6;
         let num = |d: Quat| (cost(q + d.scale(h)) - cost(q + d.scale(-h))) / (2.0 * h);
         let numeric = Quat::new(
@@ -668,7 +725,7 @@ mod tests {
         let m_true = truth.rotate_inverse(Vec3::new(0.6, 0.0, -0.8));
         let (bx, bz) = reference_field(truth, m_true);
         assert!((bx - 0.6).abs() < 1e-12 && (bz + 0.8).abs() < 1e-12);
-        assert!(gradient_marg(truth, a_true, bx, bz, m_true).norm() < 1e-12);
+        assert!(gradient(truth, a_true, Some((bx, bz, m_true))).norm() < 1e-12);
     }
 
     #[test]
@@ -719,7 +776,7 @@ mod tests {
 
     /// Eqs. (29)-(30) as the paper writes them: integrate, then divide by the norm.
     fn direct_step(q: Quat, dt: f64, beta: f64, gyro: Vec3, a: Vec3) -> Quat {
-        let g = gradient_imu(q, a.normalized());
+        let g = gradient(q, a.normalized(), None);
         let q_dot = (q * Quat::pure(gyro)).scale(0.5);
         let s = beta / g.norm();
         let next = Quat::new(
@@ -747,7 +804,7 @@ mod tests {
         // of |p|² + (dt β)², so the update takes the direct norm instead.
         let q = Quat::new(0.0, 1.0, 0.0, 0.0);
         let a = Vec3::new(0.0, 0.0, 9.81);
-        let g = gradient_imu(q, a.normalized());
+        let g = gradient(q, a.normalized(), None);
         assert_eq!((g.w, g.x, g.y, g.z), (0.0, 8.0, 0.0, 0.0));
         let mut f = Madgwick::new(MadgwickSettings { beta_imu: 50.0, ..Default::default() });
         f.set_quaternion(q);
@@ -782,8 +839,11 @@ mod tests {
                 let a = accel.normalized();
                 let m = mag.normalized();
                 let (bx, bz) = reference_field(q, m);
-                let g =
-                    if with_mag && bx > 0.0 { gradient_marg(q, a, bx, bz, m) } else { gradient_imu(q, a) };
+                let g = if with_mag && bx > 0.0 {
+                    half_gradient_marg(q, a, bx, bz, m)
+                } else {
+                    half_gradient_imu(q, a)
+                };
                 let expected = Madgwick::correct(p, g, g.norm_squared(), beta * dt).unwrap();
                 assert_eq!(f.quaternion(), expected, "{i} {with_mag}");
             }

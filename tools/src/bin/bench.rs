@@ -25,7 +25,7 @@ use orient::ffi::{
     ORIENT_SAMPLE_MAG,
 };
 use orient::filters::madgwick::{
-    gradient_imu, gradient_marg, reference_field, Madgwick, MadgwickSettings,
+    half_gradient_imu, half_gradient_marg, reference_field, Madgwick, MadgwickSettings,
 };
 use orient::filters::mahony::{Mahony, MahonySettings};
 use orient::math::inv_sqrt;
@@ -181,9 +181,9 @@ mod floor {
         let (gradient, beta) = if marg {
             let m = s.mag.unwrap_or_default().normalized();
             let (bx, bz) = reference_field(q, m);
-            (gradient_marg(q, a, bx, bz, m), MadgwickSettings::default().beta_marg)
+            (half_gradient_marg(q, a, bx, bz, m), MadgwickSettings::default().beta_marg)
         } else {
-            (gradient_imu(q, a), MadgwickSettings::default().beta_imu)
+            (half_gradient_imu(q, a), MadgwickSettings::default().beta_imu)
         };
         let k = beta * dt;
         let c = k * inv_sqrt(gradient.norm_squared());
