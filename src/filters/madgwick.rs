@@ -28,7 +28,7 @@
 use super::params::settings;
 use super::rest::RestBias;
 use super::Step;
-use crate::math::{inv_sqrt, Quat, Vec3};
+use crate::math::{inv_sqrt, inv_sqrt_fast, Quat, Vec3};
 use wide::f64x4;
 
 settings! {
@@ -438,13 +438,7 @@ impl Madgwick {
         let k = beta * dt;
         let c = k * linv_sqrt(gg)?;
         let next: Lq = core::array::from_fn(|i| p[i] - gradient[i] * c);
-        let base = ldot(p, p) + k * k;
-        let n2 = base - L::splat(2.0) * ldot(p, gradient) * c;
-        let (n2s, bases) = (n2.lanes(), base.lanes());
-        if !(0..LANES).all(|i| n2s[i] > 0.5 * bases[i]) {
-            return None;
-        }
-        let r = linv_sqrt(n2)?;
+        let r = linv_sqrt(ldot(next, next))?;
         let out: Lq = next.map(|c| c * r);
         if !out.iter().all(|c| c.all(f64::is_finite)) {
             return None;
@@ -532,25 +526,22 @@ impl Madgwick {
         };
         let gg = gradient.norm_squared();
         let k = beta * dt;
-        // The usual case: |∇f|² and |next|² in inv_sqrt's fast range and the expanded norm
-        // well conditioned. Then every value below is finite (|next|² < 1e300 bounds
-        // |p|² and (dt β)², so p, c ∇f, and next scaled by 1/|next| ≤ 1e150 are
-        // finite) and the result needs no test; anything else takes `correct`, the same
-        // operations with every test.
-        if gg > 1e-300 && gg < 1e300 {
-            let c = k * (gg.sqrt() * (1.0 / gg));
-            let next = p - gradient.scale(c);
-            let base = p.norm_squared() + k * k;
-            let n2 = base - 2.0 * p.dot(gradient) * c;
-            if n2 > 0.5 * base && n2 > 1e-300 && n2 < 1e300 {
-                return Some((next.scale(n2.sqrt() * (1.0 / n2)), step));
+        // (30) and (29): the prediction less dt β ∇f/‖∇f‖, normalised. The usual case:
+        // ‖∇f‖² and the result's squared norm in inv_sqrt's fast range. Then every value is
+        // finite (a squared norm under 1e300 bounds each component, and the scale is at
+        // most 1e150), so the result needs no test; anything else takes `correct`, the
+        // same operations with every test.
+        if let Some(r) = inv_sqrt_fast(gg) {
+            let next = p - gradient.scale(k * r);
+            if let Some(s) = inv_sqrt_fast(next.norm_squared()) {
+                return Some((next.scale(s), step));
             }
         }
         Some((Self::correct(p, gradient, gg, k)?, step))
     }
 
     /// (29)-(30), the correction of the prediction `p` by the gradient `∇f` (with
-    /// `gg = |∇f|²`, `k = dt β`): the new estimate normalised, or `None` when it is not
+    /// `gg = ‖∇f‖²`, `k = dt β`): the new estimate normalised, or `None` when it is not
     /// finite. [`Madgwick::step`] has its usual case inline.
     #[cold]
     #[inline(never)]
@@ -559,20 +550,7 @@ impl Madgwick {
             // A zero gradient has no direction: the prediction stands.
             return p.try_normalized();
         }
-        // (29)-(30): next = p − c ∇f with c = dt β / |∇f|.
-        let c = k * inv_sqrt(gg);
-        let next = p - gradient.scale(c);
-        // |next|² = |p|² − 2c (p·∇f) + c²|∇f|², where c²|∇f|² = k²: everything but c is
-        // known while |∇f| is still being computed, so the normalisation does not wait
-        // for `next` and a dot product of it. Used when it is well conditioned, that is
-        // unless the correction cancels most of the prediction (dt β near 1).
-        let base = p.norm_squared() + k * k;
-        let n2 = base - 2.0 * p.dot(gradient) * c;
-        if n2 > 0.5 * base {
-            next.normalized_with(n2)
-        } else {
-            next.try_normalized()
-        }
+        (p - gradient.scale(k * inv_sqrt(gg))).try_normalized()
     }
 }
 
@@ -789,9 +767,9 @@ mod tests {
     }
 
     #[test]
-    fn the_expanded_norm_gives_the_direct_normalisation() {
+    fn the_update_is_eqs_29_and_30() {
         let gyro = Vec3::new(0.3, -0.2, 0.4);
-        // An ordinary step: the norm from |p|² − 2c p·∇f + (dt β)².
+        // An ordinary step.
         let q = sample_q();
         let a = Vec3::new(0.2, -0.4, 9.7);
         let mut f = Madgwick::new(MadgwickSettings { beta_imu: 0.041, ..Default::default() });
@@ -800,8 +778,7 @@ mod tests {
         assert!(f.quaternion().dot(direct_step(q, 0.01, 0.041, gyro, a)) > 1.0 - 1e-15);
         // Estimate upside down (half a turn about x) while the sensor is level: the
         // gradient of (12)-(13) is then 8q, parallel to the estimate, and with dt β = 0.5
-        // the correction removes half of the prediction: |next|² ≈ (1 − dt β)², below half
-        // of |p|² + (dt β)², so the update takes the direct norm instead.
+        // the correction removes half of the prediction before the normalisation.
         let q = Quat::new(0.0, 1.0, 0.0, 0.0);
         let a = Vec3::new(0.0, 0.0, 9.81);
         let g = gradient(q, a.normalized(), None);

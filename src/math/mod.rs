@@ -46,7 +46,7 @@ pub(crate) fn try_inv_sqrt(x: f64) -> Option<f64> {
 
 /// `√x · (1/x)` when `x` lies in `[1e-300, 1e300]`, the range where it is used.
 #[inline(always)]
-fn inv_sqrt_fast(x: f64) -> Option<f64> {
+pub(crate) fn inv_sqrt_fast(x: f64) -> Option<f64> {
     if x > 1e-300 && x < 1e300 {
         Some(x.sqrt() * (1.0 / x))
     } else {

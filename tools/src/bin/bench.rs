@@ -185,10 +185,8 @@ mod floor {
         } else {
             (half_gradient_imu(q, a), MadgwickSettings::default().beta_imu)
         };
-        let k = beta * dt;
-        let c = k * inv_sqrt(gradient.norm_squared());
-        let n2 = (p.norm_squared() + k * k) - 2.0 * p.dot(gradient) * c;
-        (p - gradient.scale(c)).scale(inv_sqrt(n2))
+        let next = p - gradient.scale(beta * dt * inv_sqrt(gradient.norm_squared()));
+        next.scale(inv_sqrt(next.norm_squared()))
     }
 
     /// Mahony's update with its default gains (`k_i = 0`, so the bias stays zero).
@@ -257,7 +255,7 @@ fn ahrs_count<F: ahrs::Ahrs<f64>>(mut f: F, samples: &[Sample], mag: bool, n: us
     run(samples, n, |s| {
         let (g, a) = (na(s.gyro.unwrap()), na(s.accel.unwrap()));
         let r = if mag { f.update(&g, &a, &na(s.mag.unwrap())) } else { f.update_imu(&g, &a) };
-        let _ = black_box(r.map(|q| *q));
+        let _ = black_box(r.copied());
     });
 }
 
