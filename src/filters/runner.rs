@@ -733,9 +733,10 @@ impl<E: Estimator> Runner<E> {
             return Quat::IDENTITY;
         }
         let q = self.core.quaternion();
-        match self.to_frame() {
-            Some(c) => c * q,
-            None => q,
+        if self.bits & Self::RELATIVE != 0 {
+            q
+        } else {
+            E::NATIVE.express(self.frame, q)
         }
     }
 
