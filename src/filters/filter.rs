@@ -154,7 +154,7 @@ impl Filter {
     /// pass the host's struct and the update reads it in place (see [`SampleView`]).
     #[inline(always)]
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
-        each!(&mut self.0, r => r.update_inline(s))
+        each!(&mut self.0, r => r.update_outline(s))
     }
 
     /// Updates `N` distinct filters, `filters[i]` with `samples[i]`, in order: the result

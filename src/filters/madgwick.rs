@@ -454,6 +454,7 @@ impl Madgwick {
     ///
     /// The state changes only when the new estimate is finite; otherwise it stays as it
     /// was and `None` is returned.
+    #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         if self.settings.rest_bias_tau > 0.0 {
             return self.update_with_rest_bias(dt, gyro, accel, mag);

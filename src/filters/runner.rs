@@ -392,6 +392,12 @@ impl<E: Estimator> Runner<E> {
         Ok(())
     }
 
+    /// [`Runner::update_inline`] in a function of its own per kind and sample type.
+    #[inline(never)]
+    pub(crate) fn update_outline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        self.update_inline(s)
+    }
+
     /// One step. On error nothing changes: the state is bit-identical to before.
     #[inline(always)]
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
@@ -420,29 +426,51 @@ impl<E: Estimator> Runner<E> {
         self.update_plain(s)
     }
 
-    /// The update without the policies.
+    /// The update without the policies: the quick check, then the step; a sample the quick
+    /// check turns down goes through the exact rules out of line.
     #[inline(always)]
     fn update_plain<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
-        self.check_view(s)?;
-        // check() guarantees a gyro reading.
-        let gyro = s.gyro().unwrap_or_default();
-        let gap = s.dt() > self.common.gap_limit;
+        match (self.plainly_valid(s), s.gyro()) {
+            (true, Some(gyro)) => self.update_checked(s.dt(), gyro, s.accel(), s.mag()),
+            _ => self.update_plain_slowly(s),
+        }
+    }
+
+    /// [`Runner::update_plain`] for a sample the quick check turned down: the exact rules,
+    /// then the same step.
+    #[cold]
+    #[inline(never)]
+    fn update_plain_slowly<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        self.check_exactly(&s.to_sample())?;
+        // check_exactly guarantees a gyro reading.
+        self.update_checked(s.dt(), s.gyro().unwrap_or_default(), s.accel(), s.mag())
+    }
+
+    /// The step of a sample that passed the checks.
+    #[inline(always)]
+    fn update_checked(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+    ) -> Result<(), Error> {
+        let gap = dt > self.common.gap_limit;
         // The usual step: initialised, nothing pending, no gap.
         if (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED) & !gap {
-            return match self.core.update(s.dt(), gyro, s.accel(), s.mag()) {
+            return match self.core.update(dt, gyro, accel, mag) {
                 Some(step) => {
-                    if let Some(a) = s.accel() {
+                    if let Some(a) = accel {
                         self.last_accel = a;
                         self.bits |= Self::HAS_ACCEL;
                     }
-                    self.flags =
-                        flags::INITIALIZED | used_flags(step, s.accel().is_some(), s.mag().is_some());
+                    self.flags = flags::INITIALIZED | used_flags(step, accel.is_some(), mag.is_some());
                     Ok(())
                 }
                 None => Err(Error::Numeric),
             };
         }
-        self.update_unusual(s.dt(), gyro, s.accel(), s.mag(), gap)
+        self.update_unusual(dt, gyro, accel, mag, gap)
     }
 
     /// The plain update before initialisation, after a gap or with a re-acquisition
