@@ -136,6 +136,7 @@ impl Mahony {
         (e, used_mag)
     }
 
+    #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         if self.settings.rest_bias_tau > 0.0 {
             return self.update_with_rest_bias(dt, gyro, accel, mag);
@@ -152,20 +153,23 @@ impl Mahony {
     /// its step and correction inlined and its own register allocation. One shared copy
     /// kept both cases' values live at once, and spilled the quaternion to the stack and
     /// read it back on the update's critical path.
-    #[inline(never)]
+    #[inline(always)]
     fn update_with<const MAG: bool>(&mut self, dt: f64, gyro: Vec3, accel: Vec3, mag: Vec3) -> Option<Step> {
         let (q, bias, step) = self.step(self.bias, dt, gyro, Some(accel), MAG.then_some(mag))?;
         self.q = q;
-        self.bias = bias;
+        // Without the integral term (k_I = 0, the default) the bias stays as it was.
+        if self.settings.ki > 0.0 {
+            self.bias = bias;
+        }
         Some(step)
     }
 
-    /// The update without the rest-bias option and without an accelerometer reading.
+    /// The update without the rest-bias option and without an accelerometer reading (the
+    /// bias does not change).
     #[inline(never)]
     fn update_gyro_only(&mut self, dt: f64, gyro: Vec3, mag: Option<Vec3>) -> Option<Step> {
-        let (q, bias, step) = self.step(self.bias, dt, gyro, None, mag)?;
+        let (q, _, step) = self.step(self.bias, dt, gyro, None, mag)?;
         self.q = q;
-        self.bias = bias;
         Some(step)
     }
 
@@ -180,6 +184,9 @@ impl Mahony {
         mag: Option<Vec3>,
     ) -> Option<Step> {
         let (detector, bias) = self.rest.update(dt, gyro, accel, self.settings.rest_bias_tau, self.bias);
+        if !bias.is_finite() {
+            return None;
+        }
         let (q, bias, step) = self.step(bias, dt, gyro, accel, mag)?;
         self.q = q;
         self.bias = bias;
@@ -206,6 +213,9 @@ impl Mahony {
             step.used_mag = used_mag;
             if self.settings.ki > 0.0 {
                 bias = bias - e * (self.settings.ki * dt);
+                if !bias.is_finite() {
+                    return None;
+                }
                 omega = gyro - bias;
             }
             omega = omega + e * self.settings.kp;
@@ -216,11 +226,11 @@ impl Mahony {
         // without waiting for the new quaternion.
         let n2 = self.q.norm_squared() * (1.0 + h * h * omega.norm_squared());
         // With n2 in inv_sqrt's fast range, h|ω| < 1e150 and the unit q bound every
-        // component of the new q, so it and its scaled copy are finite: only the bias
-        // is tested. Otherwise `normalized_with`, which tests the result too.
+        // component of the new q, so it and its scaled copy are finite (the bias was
+        // tested where it changed). Otherwise `normalized_with`, which tests the result.
         let q =
             if n2 > 1e-300 && n2 < 1e300 { q.scale(n2.sqrt() * (1.0 / n2)) } else { q.normalized_with(n2)? };
-        bias.is_finite().then_some((q, bias, step))
+        Some((q, bias, step))
     }
 }
 
