@@ -543,9 +543,9 @@ impl Madgwick {
 
     /// (29)-(30), the correction of the prediction `p` by the gradient `∇f` (with
     /// `gg = ‖∇f‖²`, `k = dt β`): the new estimate normalised, or `None` when it is not
-    /// finite. [`Madgwick::step`] has its usual case inline.
-    #[cold]
-    #[inline(never)]
+    /// finite. [`Madgwick::step`] has its usual case inline, and this after it: out of
+    /// line, its quaternion arguments were stored to the stack on every update.
+    #[inline(always)]
     fn correct(p: Quat, gradient: Quat, gg: f64, k: f64) -> Option<Quat> {
         if gg.is_nan() || gg <= 0.0 {
             // A zero gradient has no direction: the prediction stands.
