@@ -150,17 +150,40 @@ impl Running {
 }
 
 /// The rotation `exp(ω dt)` as a unit quaternion (exact for a constant rate):
-/// `[cos(θ/2), ω sin(θ/2)/|ω|]` with `θ = |ω| dt`, one root, one division and one
-/// shared range reduction for the sine and cosine.
+/// `[cos(θ/2), ω sin(θ/2)/|ω|]` with `θ = |ω| dt`.
+///
+/// The readable form is [`rotation_of_by_sincos`]: one root, one division and one shared
+/// range reduction for the sine and cosine. For the usual step, `θ/2 < 1/16` (|ω| up to
+/// 12.5 rad/s at 100 Hz), `cos(θ/2)` and `sin(θ/2)/(θ/2)` are their Taylor series to
+/// the 8th power, in `(θ/2)² = |ω|² dt²/4` alone: no root, no division and no range
+/// reduction. The series' remainders are below 2.6e-19 there; a test checks every
+/// component against the readable form to 3 ulp (2.1 measured).
+#[inline]
 pub fn rotation_of(omega: Vec3, dt: f64) -> Quat {
-    let n = omega.norm();
-    let angle = n * dt;
-    if angle < 1e-12 {
-        // Second-order series; exact to rounding at this size.
-        let h = omega * (0.5 * dt);
-        return Quat::new(1.0 - 0.5 * h.norm_squared(), h.x, h.y, h.z).normalized();
+    let h = 0.5 * dt;
+    let x2 = omega.norm_squared() * (h * h);
+    if x2 < 1.0 / 256.0 {
+        // cos x = 1 − x²/2! + x⁴/4! − x⁶/6! + x⁸/8!; sin x / x = 1 − x²/3! + x⁴/5! − x⁶/7! + x⁸/9!
+        let c = 1.0 + x2 * (-1.0 / 2.0 + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0 + x2 * (1.0 / 40320.0))));
+        let sinc =
+            1.0 + x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0 + x2 * (1.0 / 362880.0))));
+        // sin(θ/2)/|ω| = (sin x / x) · dt/2.
+        let k = sinc * h;
+        return Quat::new(c, omega.x * k, omega.y * k, omega.z * k);
     }
-    let (s, c) = libm::sincos(0.5 * angle);
+    rotation_of_by_sincos(omega, dt)
+}
+
+/// [`rotation_of`] with the sine and cosine themselves (`θ/2 ≥ 1/16`, and the readable
+/// form the series is tested against).
+#[cold]
+#[inline(never)]
+pub fn rotation_of_by_sincos(omega: Vec3, dt: f64) -> Quat {
+    let n = omega.norm();
+    let (s, c) = libm::sincos(0.5 * (n * dt));
+    if n == 0.0 {
+        return Quat::IDENTITY;
+    }
     let k = s / n;
     Quat::new(c, omega.x * k, omega.y * k, omega.z * k)
 }
@@ -386,6 +409,34 @@ mod tests {
         g.update(0.01, w, Some(accel * 1.5), None).unwrap();
         assert!(!g.at_rest());
         assert!(g.quaternion().angle_to(q0 * rotation_of(w, 0.01)) < 1e-15);
+    }
+
+    /// The series of [`rotation_of`] against the sine and cosine, over the range where it
+    /// is used: every component within 3 ulp (relative), the result unit to 4 ulp.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn the_series_is_the_sine_and_cosine() {
+        let mut seed = 3u64;
+        let mut r = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let (mut series, mut worst) = (0, 0.0f64);
+        for i in 0..20000 {
+            // Rates from 1e-9 to about 30 rad/s, steps from 1 ms to 20 ms.
+            let w = Vec3::new(r(), r(), r()) * 10f64.powf(-9.0 + 10.5 * (r() * 0.5 + 0.5));
+            let dt = [0.001, 0.005, 0.01, 0.02][i % 4];
+            let (a, b) = (rotation_of(w, dt), rotation_of_by_sincos(w, dt));
+            series += usize::from(w.norm_squared() * (0.25 * dt * dt) < 1.0 / 256.0);
+            for (x, y) in [(a.w, b.w), (a.x, b.x), (a.y, b.y), (a.z, b.z)] {
+                worst = worst.max((x - y).abs() / (f64::EPSILON * y.abs().max(f64::MIN_POSITIVE)));
+            }
+            assert!((a.norm_squared() - 1.0).abs() <= 4.0 * f64::EPSILON, "{a:?}");
+        }
+        assert!(series > 10000 && series < 20000, "both forms covered: {series}");
+        // The readable form rounds in its root, product and division too: 2.11 measured.
+        assert!(worst <= 3.0, "{worst} ulp");
+        assert_eq!(rotation_of(Vec3::ZERO, 0.01), Quat::IDENTITY);
     }
 
     #[test]
