@@ -50,7 +50,9 @@ fn motion_after_rest(seed: u64, still: usize, n: usize, flags: impl Fn(usize) ->
         } else {
             Vec3::new(0.8 * (0.7 * t).sin(), 0.5 * (1.1 * t).cos(), 0.9 * (0.3 * t + 1.0).sin())
         };
-        truth = (truth * orient::filters::complementary::rotation_of(w, dt)).normalized();
+        // The readable exp map (root, sincos, division), so that the inputs do not move
+        // with the faster form the filters use.
+        truth = (truth * orient::filters::complementary::rotation_of_by_sincos(w, dt)).normalized();
         let lin = if i < still {
             Vec3::ZERO
         } else {
