@@ -2,7 +2,8 @@
 # Guest instructions per update of every kind on the board targets (aarch64, armv7),
 # counted under qemu-user by a TCG plugin (scripts/qemu/insn_count.c, built here with
 # the host's cc): (count for B + N updates - count for B updates) / N, through the Rust
-# API (tools/src/bin/bench.rs --count), so start-up, reading the recording and printing
+# API (tools/src/bin/bench.rs --count, each update followed by one orientation read, as
+# for the anchors counted beside the kinds), so start-up, reading the recording and printing
 # cancel out. The plugin's totals equal qemu's single-step log (one line per executed
 # instruction, scripts/instruction-counts.sh's method) to the instruction. Counts, not
 # times: emulation says nothing about a board's clock, but on in-order cores
@@ -26,7 +27,8 @@ for spec in "aarch64-unknown-linux-gnu:qemu-aarch64:/usr/aarch64-linux-gnu" \
     "$qemu" -L "$sysroot" -plugin "$work/insn_count.so" "$bin" --count "$1" "$2" "$3" 2>&1 >/dev/null \
       | sed -n 's/^guest instructions: //p'
   }
-  for kind in madgwick mahony complementary ekf gmvdk robust; do
+  # The kinds, then the anchors in the same loop (ahrs-rs Madgwick and Mahony f64, vqf-rs).
+  for kind in madgwick mahony complementary ekf gmvdk robust ahrs-madgwick ahrs-mahony vqf; do
     for mode in imu marg; do
       a=$(count "$kind" "$mode" "$base")
       b=$(count "$kind" "$mode" $((base + n)))
