@@ -42,7 +42,7 @@
 use super::params::{settings, Switch};
 use super::startup::{StartupMeans, Stillness};
 use super::Step;
-use crate::math::{Frame, Quat, Vec3};
+use crate::math::{cos_and_sinc, Frame, Quat, Vec3};
 
 settings! {
     /// The complementary filter's settings.
@@ -156,17 +156,14 @@ impl Running {
 /// range reduction for the sine and cosine. For the usual step, `θ/2 < 1/16` (|ω| up to
 /// 12.5 rad/s at 100 Hz), `cos(θ/2)` and `sin(θ/2)/(θ/2)` are their Taylor series to
 /// the 8th power, in `(θ/2)² = |ω|² dt²/4` alone: no root, no division and no range
-/// reduction. The series' remainders are below 2.6e-19 there; a test checks every
-/// component against the readable form to 3 ulp (2.1 measured).
+/// reduction ([`cos_and_sinc`]). A test checks every component against the readable
+/// form to 3 ulp (2.1 measured).
 #[inline]
 pub fn rotation_of(omega: Vec3, dt: f64) -> Quat {
     let h = 0.5 * dt;
     let x2 = omega.norm_squared() * (h * h);
     if x2 < 1.0 / 256.0 {
-        // cos x = 1 − x²/2! + x⁴/4! − x⁶/6! + x⁸/8!; sin x / x = 1 − x²/3! + x⁴/5! − x⁶/7! + x⁸/9!
-        let c = 1.0 + x2 * (-1.0 / 2.0 + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0 + x2 * (1.0 / 40320.0))));
-        let sinc =
-            1.0 + x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0 + x2 * (1.0 / 362880.0))));
+        let (c, sinc) = cos_and_sinc(x2);
         // sin(θ/2)/|ω| = (sin x / x) · dt/2.
         let k = sinc * h;
         return Quat::new(c, omega.x * k, omega.y * k, omega.z * k);
