@@ -612,7 +612,7 @@ pub fn exp_and_jacobian(omega: Vec3, h: f64) -> (Quat, Matrix4x3<f64>) {
         j.fixed_view_mut::<3, 3>(1, 0).copy_from(&(Matrix3::identity() * h));
         return (e.normalized(), j);
     }
-    let (s, c) = (libm::sin(theta), libm::cos(theta));
+    let (s, c) = libm::sincos(theta); // sin's and cos's bits (a test in `math` checks it)
     let u = w / n;
     let uut = u * u.transpose();
     j.fixed_view_mut::<1, 3>(0, 0).copy_from(&(-s * h * u.transpose()));

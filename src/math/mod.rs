@@ -98,6 +98,21 @@ fn inv_sqrt_outside(x: f64) -> f64 {
 mod tests {
     use super::inv_sqrt;
 
+    /// `libm::sincos` gives `libm::sin`'s and `libm::cos`'s bits (the robust kind and the
+    /// EKF rely on it), over arguments of every size and sign.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn sincos_is_sin_and_cos_to_the_bit() {
+        let mut seed = 13u64;
+        for i in 0..100_000 {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            let u = (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+            let x = u * [1e-9, 0.1, 1.0, 4.0, 40.0, 1e6][i % 6];
+            let (s, c) = libm::sincos(x);
+            assert_eq!((s.to_bits(), c.to_bits()), (libm::sin(x).to_bits(), libm::cos(x).to_bits()), "{x}");
+        }
+    }
+
     #[test]
     fn inv_sqrt_is_within_two_ulp_inside_and_exact_outside_its_range() {
         for x in [1e-299, 3e-150, 1e-9, 0.37, 1.0, 1.0 + 2e-16, 2.0, 9.80665f64.powi(2), 6.2e17, 9e299] {
