@@ -413,11 +413,7 @@ mod tests {
     #[test]
     #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn the_series_is_the_sine_and_cosine() {
-        let mut seed = 3u64;
-        let mut r = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut r = crate::math::test_uniform(3);
         let (mut series, mut worst) = (0, 0.0f64);
         for i in 0..20000 {
             // Rates from 1e-9 to about 30 rad/s, steps from 1 ms to 20 ms.

@@ -640,11 +640,8 @@ mod tests {
     #[test]
     #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn slerp_series_is_the_acos_form() {
-        let mut seed = 9u64;
-        let mut r = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut u = crate::math::test_uniform(9);
+        let mut r = || 0.5 * (u() + 1.0);
         let (mut series, mut worst) = (0, 0.0f64);
         for _ in 0..20000 {
             let q1 = Quat::new(r() - 0.5, r() - 0.5, r() - 0.5, r() - 0.5).normalized();

@@ -650,11 +650,7 @@ mod tests {
     /// The halved forms the update uses are half of (21) written as `Jᵀ f`, to the bit.
     #[test]
     fn half_gradients_are_half_of_eq21_bit_for_bit() {
-        let mut seed = 11u64;
-        let mut r = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut r = crate::math::test_uniform(11);
         let bits = |q: Quat| [q.w, q.x, q.y, q.z].map(f64::to_bits);
         for _ in 0..1000 {
             let q = Quat::new(r(), r(), r(), r()).normalized();
@@ -797,11 +793,7 @@ mod tests {
     #[test]
     #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn the_inline_correction_is_the_general_one() {
-        let mut seed = 7u64;
-        let mut r = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut r = crate::math::test_uniform(7);
         for i in 0..2000 {
             let q = Quat::new(r(), r(), r(), r()).normalized();
             let gyro = Vec3::new(r(), r(), r()) * 5.0;

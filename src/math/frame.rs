@@ -141,11 +141,7 @@ mod tests {
     /// and equal (up to the sign of a zero) for the signed permutations.
     #[test]
     fn express_is_the_product_with_the_rotation() {
-        let mut seed = 5u64;
-        let mut r = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut r = crate::math::test_uniform(5);
         for i in 0..2000 {
             let q = if i == 0 {
                 Quat::new(0.5, 0.0, -0.0, 0.5)

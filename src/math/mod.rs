@@ -94,6 +94,16 @@ fn inv_sqrt_outside(x: f64) -> f64 {
     1.0 / x.sqrt()
 }
 
+/// A small deterministic generator for the unit tests (a 64-bit LCG): uniform in [−1, 1).
+#[cfg(test)]
+pub(crate) fn test_uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::inv_sqrt;
@@ -103,11 +113,9 @@ mod tests {
     #[test]
     #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn sincos_is_sin_and_cos_to_the_bit() {
-        let mut seed = 13u64;
+        let mut r = super::test_uniform(13);
         for i in 0..100_000 {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            let u = (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
-            let x = u * [1e-9, 0.1, 1.0, 4.0, 40.0, 1e6][i % 6];
+            let x = r() * [1e-9, 0.1, 1.0, 4.0, 40.0, 1e6][i % 6];
             let (s, c) = libm::sincos(x);
             assert_eq!((s.to_bits(), c.to_bits()), (libm::sin(x).to_bits(), libm::cos(x).to_bits()), "{x}");
         }
