@@ -649,6 +649,7 @@ mod tests {
 
     /// The halved forms the update uses are half of (21) written as `Jᵀ f`, to the bit.
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn half_gradients_are_half_of_eq21_bit_for_bit() {
         let mut r = crate::math::test_uniform(11);
         let bits = |q: Quat| [q.w, q.x, q.y, q.z].map(f64::to_bits);

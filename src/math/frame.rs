@@ -140,6 +140,7 @@ mod tests {
     /// `express` is the product with `rotation_to`'s constant: each component within 2⁻⁵²,
     /// and equal (up to the sign of a zero) for the signed permutations.
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn express_is_the_product_with_the_rotation() {
         let mut r = crate::math::test_uniform(5);
         for i in 0..2000 {
