@@ -150,8 +150,9 @@ impl Filter {
         self.update_inline(s)
     }
 
-    /// [`Filter::update`] for any [`SampleView`], inlined into its caller: the C calls
-    /// pass the host's struct and the update reads it in place (see [`SampleView`]).
+    /// [`Filter::update`] for any [`SampleView`]: the kind's dispatch, inlined into its
+    /// caller, then one update function per kind and sample type; the C calls pass the
+    /// host's struct and the update reads it in place (see [`SampleView`]).
     #[inline(always)]
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
         each!(&mut self.0, r => r.update_outline(s))

@@ -149,10 +149,9 @@ impl Mahony {
     }
 
     /// The update without the rest-bias option, with an accelerometer reading and with
-    /// (`MAG`) or without a magnetometer reading: one out-of-line copy per case, each with
-    /// its step and correction inlined and its own register allocation. One shared copy
-    /// kept both cases' values live at once, and spilled the quaternion to the stack and
-    /// read it back on the update's critical path.
+    /// (`MAG`) or without a magnetometer reading: one copy per case, each with its step
+    /// and correction inlined, inlined in turn into the kind's update function
+    /// (`Runner::update_outline`).
     #[inline(always)]
     fn update_with<const MAG: bool>(&mut self, dt: f64, gyro: Vec3, accel: Vec3, mag: Vec3) -> Option<Step> {
         let (q, bias, step) = self.step(self.bias, dt, gyro, Some(accel), MAG.then_some(mag))?;
