@@ -314,7 +314,7 @@ impl Filter {
     /// The orientation in the configured frame (identity before initialisation): the
     /// segment's when a mounting is set, with the heading offset and declination applied
     /// (see [`Filter::set_mounting`], [`Filter::set_heading`], [`Filter::set_declination`]).
-    #[inline]
+    #[inline(always)]
     pub fn quaternion(&self) -> Quat {
         each!(&self.0, r => r.output())
     }
