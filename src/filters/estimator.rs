@@ -2,6 +2,7 @@
 //! exchange with the common lifecycle ([`super::Runner`]).
 
 use super::params::Settings;
+use super::sample::Usual;
 use super::state::Codec;
 use super::{Diagnostics, Kind, Uncertainty};
 use crate::math::{Frame, Quat, Vec3};
@@ -33,6 +34,16 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     }
     /// One update in the native frame; `None` (and no change) on numerical failure.
     fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step>;
+    /// True for kinds with an [`Estimator::update_usual`] of their own; the others'
+    /// updates call functions anyway, and the lifecycle calls their `update` directly.
+    const USUAL: bool = false;
+    /// [`Estimator::update`]'s usual case, which calls no function: the same result, or
+    /// `None` with nothing changed when the case is not the usual one (the caller then
+    /// takes [`Estimator::update`]).
+    #[inline(always)]
+    fn update_usual(&mut self, s: &Usual) -> Option<Step> {
+        self.update(s.dt, s.gyro, s.accel.map(|a| a.v), s.mag.map(|m| m.v))
+    }
     /// The output orientation (native frame, or relative for GMVDK's relative output).
     fn quaternion(&self) -> Quat;
     /// The orientation in the native earth frame (GMVDK's, not its relative output).

@@ -27,6 +27,7 @@
 
 use super::params::settings;
 use super::rest::RestBias;
+use super::sample::{Checked, Usual};
 use super::Step;
 use crate::math::{inv_sqrt, inv_sqrt_fast, Quat, Vec3};
 use wide::f64x4;
@@ -461,7 +462,22 @@ impl Madgwick {
         if self.settings.rest_bias_tau > 0.0 {
             return self.update_with_rest_bias(dt, gyro, accel, mag);
         }
-        let (q, step) = self.step(self.bias, dt, gyro, accel, mag)?;
+        let (q, step) =
+            self.step::<false>(self.bias, dt, gyro, accel.map(Vec3::normalized), mag.map(Vec3::normalized))?;
+        self.q = q;
+        Some(step)
+    }
+
+    /// [`Madgwick::update`]'s usual case, which calls no function: the rest-bias option
+    /// off, every squared norm in [`inv_sqrt`]'s fast range. The same result, or `None`
+    /// with nothing changed otherwise.
+    #[inline(always)]
+    pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<Step> {
+        if self.settings.rest_bias_tau > 0.0 {
+            return None;
+        }
+        let (a, m) = (s.accel.map(Checked::unit), s.mag.map(Checked::unit));
+        let (q, step) = self.step::<true>(self.bias, s.dt, s.gyro, a, m)?;
         self.q = q;
         Some(step)
     }
@@ -478,23 +494,26 @@ impl Madgwick {
         mag: Option<Vec3>,
     ) -> Option<Step> {
         let (detector, bias) = self.rest.update(dt, gyro, accel, self.settings.rest_bias_tau, self.bias);
-        let (q, step) = self.step(bias, dt, gyro, accel, mag)?;
+        let (q, step) =
+            self.step::<false>(bias, dt, gyro, accel.map(Vec3::normalized), mag.map(Vec3::normalized))?;
         self.q = q;
         self.bias = bias;
         self.rest.commit(detector);
         Some(step)
     }
 
-    /// Eqs. (29)-(30) from the current estimate with gyro bias `bias`: the new estimate,
-    /// or `None` when it is not finite.
+    /// Eqs. (29)-(30) from the current estimate with gyro bias `bias` and the normalised
+    /// readings `â` and `m̂`: the new estimate, or `None` when it is not finite. `USUAL`:
+    /// only the usual case, which calls no function (every squared norm in [`inv_sqrt`]'s
+    /// fast range), `None` otherwise.
     #[inline(always)]
-    fn step(
+    fn step<const USUAL: bool>(
         &self,
         bias: Vec3,
         dt: f64,
         gyro: Vec3,
-        accel: Option<Vec3>,
-        mag: Option<Vec3>,
+        a: Option<Vec3>,
+        m: Option<Vec3>,
     ) -> Option<(Quat, Step)> {
         let q = self.q;
         let gyro = gyro - bias;
@@ -503,16 +522,15 @@ impl Madgwick {
         // into dt (both products exact but for rounding once: the same bits).
         let mut step = Step::default();
         let p = q + q.mul_pure(gyro).scale(0.5 * dt);
-        let Some(accel) = accel else {
-            return Some((p.try_normalized()?, step));
+        let Some(a) = a else {
+            let p = if USUAL { p.try_normalized_usual() } else { p.try_normalized() };
+            return Some((p?, step));
         };
         step.used_accel = true;
-        let a = accel.normalized();
         // A match, not a closure: LLVM left the closure out of line, and the call spilled
         // eight registers.
-        let marg = match mag {
-            Some(mag) => {
-                let m = mag.normalized();
+        let marg = match m {
+            Some(m) => {
                 let (bx, bz) = reference_field(q, m);
                 if bx > 0.0 {
                     Some(half_gradient_marg(q, a, bx, bz, m))
@@ -539,6 +557,9 @@ impl Madgwick {
             if let Some(s) = inv_sqrt_fast(next.norm_squared()) {
                 return Some((next.scale(s), step));
             }
+        }
+        if USUAL {
+            return None;
         }
         Some((Self::correct(p, gradient, gg, k)?, step))
     }
@@ -869,6 +890,13 @@ mod estimator_impl {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Madgwick::update(self, dt, gyro, accel, mag)
+        }
+
+        const USUAL: bool = true;
+
+        #[inline(always)]
+        fn update_usual(&mut self, s: &crate::filters::sample::Usual) -> Option<Step> {
+            Madgwick::update_usual(self, s)
         }
 
         fn fields(&self) -> u32 {

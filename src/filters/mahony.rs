@@ -20,6 +20,7 @@
 
 use super::params::settings;
 use super::rest::RestBias;
+use super::sample::Usual;
 use super::Step;
 use crate::math::{Quat, Vec3};
 
@@ -113,15 +114,18 @@ impl Mahony {
 
     /// The correction term `ω_mes = â × v̂ (+ m̂ × ŵ)` in the sensor frame, and whether
     /// the magnetometer contributed.
-    #[inline(always)]
     pub fn correction(q: Quat, accel: Vec3, mag: Option<Vec3>) -> (Vec3, bool) {
-        let a = accel.normalized();
+        Mahony::correction_of_units(q, accel.normalized(), mag.map(Vec3::normalized))
+    }
+
+    /// [`Mahony::correction`] from the normalised readings `â` and `m̂`.
+    #[inline(always)]
+    fn correction_of_units(q: Quat, a: Vec3, m: Option<Vec3>) -> (Vec3, bool) {
         // The rows of R(q): v̂ is the third, the earth's z axis in the sensor frame.
         let [r0, r1, up] = q.rows();
         let mut e = a.cross(up);
         let mut used_mag = false;
-        if let Some(mag) = mag {
-            let m = mag.normalized();
+        if let Some(m) = m {
             // h = q ⊗ m̂ ⊗ q* = R m̂; b = [√(h_x² + h_y²), 0, h_z] keeps the field's dip
             // and drops its heading; ŵ = q* ⊗ b ⊗ q = Rᵀ b = b_x r0 + b_z r2.
             let h = Vec3::new(r0.dot(m), r1.dot(m), up.dot(m));
@@ -142,19 +146,41 @@ impl Mahony {
             return self.update_with_rest_bias(dt, gyro, accel, mag);
         }
         match (accel, mag) {
-            (Some(a), None) => self.update_with::<false>(dt, gyro, a, Vec3::ZERO),
-            (Some(a), Some(m)) => self.update_with::<true>(dt, gyro, a, m),
+            (Some(a), None) => self.update_with::<false, false>(dt, gyro, a.normalized(), Vec3::ZERO),
+            (Some(a), Some(m)) => self.update_with::<true, false>(dt, gyro, a.normalized(), m.normalized()),
             (None, _) => self.update_gyro_only(dt, gyro, mag),
         }
     }
 
-    /// The update without the rest-bias option, with an accelerometer reading and with
-    /// (`MAG`) or without a magnetometer reading: one copy per case, each with its step
-    /// and correction inlined, inlined in turn into the kind's update function
-    /// (`Runner::update_outline`).
+    /// [`Mahony::update`]'s usual case, which calls no function: the rest-bias option
+    /// off, an accelerometer reading, the new estimate's squared norm in
+    /// [`crate::math::inv_sqrt`]'s fast range. The same result, or `None` with nothing
+    /// changed otherwise.
     #[inline(always)]
-    fn update_with<const MAG: bool>(&mut self, dt: f64, gyro: Vec3, accel: Vec3, mag: Vec3) -> Option<Step> {
-        let (q, bias, step) = self.step(self.bias, dt, gyro, Some(accel), MAG.then_some(mag))?;
+    pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<Step> {
+        if self.settings.rest_bias_tau > 0.0 {
+            return None;
+        }
+        match (s.accel, s.mag) {
+            (Some(a), None) => self.update_with::<false, true>(s.dt, s.gyro, a.unit(), Vec3::ZERO),
+            (Some(a), Some(m)) => self.update_with::<true, true>(s.dt, s.gyro, a.unit(), m.unit()),
+            (None, _) => None,
+        }
+    }
+
+    /// The update without the rest-bias option, with the normalised accelerometer reading
+    /// `â` and with (`MAG`) or without a magnetometer reading `m̂`: one copy per case,
+    /// each with its step and correction inlined, inlined in turn into the kind's update
+    /// function (`Runner::update_outline`). `USUAL`: see [`Mahony::step`].
+    #[inline(always)]
+    fn update_with<const MAG: bool, const USUAL: bool>(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        a: Vec3,
+        m: Vec3,
+    ) -> Option<Step> {
+        let (q, bias, step) = self.step::<USUAL>(self.bias, dt, gyro, Some(a), MAG.then_some(m))?;
         self.q = q;
         // Without the integral term (k_I = 0, the default) the bias stays as it was.
         if self.settings.ki > 0.0 {
@@ -167,7 +193,7 @@ impl Mahony {
     /// bias does not change).
     #[inline(never)]
     fn update_gyro_only(&mut self, dt: f64, gyro: Vec3, mag: Option<Vec3>) -> Option<Step> {
-        let (q, _, step) = self.step(self.bias, dt, gyro, None, mag)?;
+        let (q, _, step) = self.step::<false>(self.bias, dt, gyro, None, mag.map(Vec3::normalized))?;
         self.q = q;
         Some(step)
     }
@@ -186,28 +212,31 @@ impl Mahony {
         if !bias.is_finite() {
             return None;
         }
-        let (q, bias, step) = self.step(bias, dt, gyro, accel, mag)?;
+        let (a, m) = (accel.map(Vec3::normalized), mag.map(Vec3::normalized));
+        let (q, bias, step) = self.step::<false>(bias, dt, gyro, a, m)?;
         self.q = q;
         self.bias = bias;
         self.rest.commit(detector);
         Some(step)
     }
 
-    /// One step from the current estimate with gyro bias `bias`: the new estimate and
-    /// bias, or `None` when either is not finite.
+    /// One step from the current estimate with gyro bias `bias` and the normalised
+    /// readings `â` and `m̂`: the new estimate and bias, or `None` when either is not
+    /// finite. `USUAL`: only the usual case, which calls no function (the new estimate's
+    /// squared norm in [`crate::math::inv_sqrt`]'s fast range), `None` otherwise.
     #[inline(always)]
-    fn step(
+    fn step<const USUAL: bool>(
         &self,
         mut bias: Vec3,
         dt: f64,
         gyro: Vec3,
-        accel: Option<Vec3>,
-        mag: Option<Vec3>,
+        a: Option<Vec3>,
+        m: Option<Vec3>,
     ) -> Option<(Quat, Vec3, Step)> {
         let mut step = Step::default();
         let mut omega = gyro - bias;
-        if let Some(accel) = accel {
-            let (e, used_mag) = Mahony::correction(self.q, accel, mag);
+        if let Some(a) = a {
+            let (e, used_mag) = Mahony::correction_of_units(self.q, a, m);
             step.used_accel = true;
             step.used_mag = used_mag;
             if self.settings.ki > 0.0 {
@@ -227,8 +256,13 @@ impl Mahony {
         // With n2 in inv_sqrt's fast range, h|ω| < 1e150 and the unit q bound every
         // component of the new q, so it and its scaled copy are finite (the bias was
         // tested where it changed). Otherwise `normalized_with`, which tests the result.
-        let q =
-            if n2 > 1e-300 && n2 < 1e300 { q.scale(n2.sqrt() * (1.0 / n2)) } else { q.normalized_with(n2)? };
+        let q = if n2 > 1e-300 && n2 < 1e300 {
+            q.scale(n2.sqrt() * (1.0 / n2))
+        } else if USUAL {
+            return None;
+        } else {
+            q.normalized_with(n2)?
+        };
         Some((q, bias, step))
     }
 }
@@ -295,6 +329,13 @@ mod estimator_impl {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Mahony::update(self, dt, gyro, accel, mag)
+        }
+
+        const USUAL: bool = true;
+
+        #[inline(always)]
+        fn update_usual(&mut self, s: &crate::filters::sample::Usual) -> Option<Step> {
+            Mahony::update_usual(self, s)
         }
 
         fn fields(&self) -> u32 {

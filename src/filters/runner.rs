@@ -8,7 +8,7 @@ use super::calibration::{self, Models};
 use super::estimator::{twist_about, Estimator, Reacquisition, Step};
 use super::host::Host;
 use super::params::{id, Settings, MAX_PARAMS};
-use super::sample::{check_quaternion, check_vector, SampleView};
+use super::sample::{check_quaternion, check_vector, Checked, SampleView, Usual};
 use super::state::{self, Codec, Reader, StateError, Writer};
 use super::{flags, holds, Config, Diagnostics, Error, Field, Init, Kind, Sample};
 use super::{MAX_ACCEL, MAX_DT, MAX_GYRO, MAX_MAG, MIN_DT};
@@ -324,32 +324,43 @@ impl<E: Estimator> Runner<E> {
         }
     }
 
-    /// A conservative test that `check_exactly` would accept the sample, with one branch:
-    /// each reading's squared norm is under the square of its sensor's range or physical
-    /// bound (which bounds every component: `x² ≤ |v|²`, and rounding keeps that order;
-    /// a NaN or ±∞ component makes the norm fail the test), the accelerometer's and
-    /// magnetometer's are at least MIN_POSITIVE (not zero, no underflow); dt is in range;
-    /// and a sample without an accelerometer reading comes after initialisation. A sample
-    /// it turns down goes through the exact rules, which tell the reason (or accept it: a
-    /// reading whose components are each under the range but whose norm is not, say).
+    /// A conservative test that `check_exactly` would accept the sample: see
+    /// [`Runner::usual`].
     #[inline(always)]
     pub(crate) fn plainly_valid<S: SampleView>(&self, s: &S) -> bool {
-        let gyro = match s.gyro() {
-            Some(g) => g.norm_squared() < self.common.gyro_limit * self.common.gyro_limit,
-            None => false,
-        };
+        self.usual(s).is_some()
+    }
+
+    /// The sample, when a conservative test finds that `check_exactly` would accept it,
+    /// with one branch: each reading's squared norm is under the square of its sensor's
+    /// range or physical bound (which bounds every component: `x² ≤ |v|²`, and rounding
+    /// keeps that order; a NaN or ±∞ component makes the norm fail the test), the
+    /// accelerometer's and magnetometer's are above 1e-300 (not zero, no underflow, and in
+    /// `inv_sqrt`'s fast range, so that the usual update normalises them without a test);
+    /// dt is in range; and a sample without an accelerometer reading comes after
+    /// initialisation. A sample it turns down goes through the exact rules, which tell the
+    /// reason (or accept it: a reading whose components are each under the range but
+    /// whose norm is not, say).
+    #[inline(always)]
+    pub(crate) fn usual<S: SampleView>(&self, s: &S) -> Option<Usual> {
+        let (dt, gyro) = (s.dt(), s.gyro()?);
+        let gyro_limit = self.common.gyro_limit;
+        if !((MIN_DT..=MAX_DT).contains(&dt) && gyro.norm_squared() < gyro_limit * gyro_limit) {
+            return None;
+        }
         let accel = match s.accel() {
-            Some(a) => {
-                let n2 = a.norm_squared();
-                (n2 >= f64::MIN_POSITIVE) & (n2 < self.common.accel_limit * self.common.accel_limit)
-            }
-            None => self.flags & flags::INITIALIZED != 0,
+            Some(a) => Some(
+                Some(Checked::of(a))
+                    .filter(|a| a.within(self.common.accel_limit * self.common.accel_limit))?,
+            ),
+            None if self.flags & flags::INITIALIZED != 0 => None,
+            None => return None,
         };
         let mag = match s.mag() {
-            Some(m) => (f64::MIN_POSITIVE..MAX_MAG * MAX_MAG).contains(&m.norm_squared()),
-            None => true,
+            Some(m) => Some(Some(Checked::of(m)).filter(|m| m.within(MAX_MAG * MAX_MAG))?),
+            None => None,
         };
-        (s.dt() >= MIN_DT) & (s.dt() <= MAX_DT) & gyro & accel & mag
+        Some(Usual { dt, gyro, accel, mag })
     }
 
     /// The rules one by one, in the order that picks the reported error.
@@ -392,10 +403,45 @@ impl<E: Estimator> Runner<E> {
         Ok(())
     }
 
-    /// [`Runner::update_inline`] in a function of its own per kind and sample type.
+    /// One step, in a function of its own per kind and sample type. For a kind with a
+    /// usual step of its own ([`Estimator::USUAL`]) the function's usual path calls
+    /// nothing, so that it saves and restores no registers: initialised, no policy,
+    /// nothing pending, a sample the quick check passes with no gap, and a step
+    /// [`Estimator::update_usual`] takes. Anything else goes, with nothing changed yet, to
+    /// [`Runner::update_general`] (a tail call), which gives the same result.
     #[inline(never)]
     pub(crate) fn update_outline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
+        if !E::USUAL {
+            return self.update_inline(s);
+        }
+        let usual = (self.policy == 0)
+            & (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED);
+        if let Some(u) = if usual { self.usual(s) } else { None } {
+            if u.dt <= self.common.gap_limit {
+                if let Some(step) = self.core.update_usual(&u) {
+                    self.stepped(step, u.accel.map(|a| a.v), u.mag.map(|m| m.v));
+                    return Ok(());
+                }
+            }
+        }
+        self.update_general(s)
+    }
+
+    /// [`Runner::update_inline`] out of line: every case [`Runner::update_outline`] leaves.
+    #[cold]
+    #[inline(never)]
+    fn update_general<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
         self.update_inline(s)
+    }
+
+    /// What a usual step leaves besides the core's state.
+    #[inline(always)]
+    fn stepped(&mut self, step: Step, accel: Option<Vec3>, mag: Option<Vec3>) {
+        if let Some(a) = accel {
+            self.last_accel = a;
+            self.bits |= Self::HAS_ACCEL;
+        }
+        self.flags = flags::INITIALIZED | used_flags(step, accel.is_some(), mag.is_some());
     }
 
     /// One step. On error nothing changes: the state is bit-identical to before.
@@ -460,11 +506,7 @@ impl<E: Estimator> Runner<E> {
         if (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED) & !gap {
             return match self.core.update(dt, gyro, accel, mag) {
                 Some(step) => {
-                    if let Some(a) = accel {
-                        self.last_accel = a;
-                        self.bits |= Self::HAS_ACCEL;
-                    }
-                    self.flags = flags::INITIALIZED | used_flags(step, accel.is_some(), mag.is_some());
+                    self.stepped(step, accel, mag);
                     Ok(())
                 }
                 None => Err(Error::Numeric),

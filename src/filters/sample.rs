@@ -13,6 +13,44 @@ pub struct Sample {
     pub mag: Option<Vec3>,
 }
 
+/// A reading the usual update's quick check passed, with its squared norm, which the
+/// check found in `(1e-300, 1e300)` ([`crate::math::inv_sqrt`]'s fast range).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Checked {
+    pub v: Vec3,
+    n2: f64,
+}
+
+impl Checked {
+    #[inline(always)]
+    pub(crate) fn of(v: Vec3) -> Checked {
+        Checked { v, n2: v.norm_squared() }
+    }
+
+    /// The squared norm is in `(1e-300, bound)`, `bound ≤ 1e300`.
+    #[inline(always)]
+    pub(crate) fn within(&self, bound: f64) -> bool {
+        self.n2 > 1e-300 && self.n2 < bound
+    }
+
+    /// `v / |v|`: the bits of [`Vec3::normalized`], without its range test (the check
+    /// made it).
+    #[inline(always)]
+    pub(crate) fn unit(self) -> Vec3 {
+        self.v * crate::math::inv_sqrt_in_range(self.n2)
+    }
+}
+
+/// A sample the usual update's quick check passed (see `Runner::usual`): a gyroscope
+/// reading, and the other readings [`Checked`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Usual {
+    pub dt: f64,
+    pub gyro: Vec3,
+    pub accel: Option<Checked>,
+    pub mag: Option<Checked>,
+}
+
 /// Read access to a sample where it lies: a [`Sample`], or a host's own struct (the C
 /// API's), so that an update reads the host's memory in place rather than a copy just
 /// written, which the processor reads back only after a stall (store-to-load

@@ -434,3 +434,70 @@ fn linear_accel_is_zero_for_a_pure_gravity_reading() {
     assert!(g.linear_accel().unwrap().norm() < 1e-6);
     assert!(f.linear_accel().is_none());
 }
+
+/// Each kind's usual step ([`Estimator::update_usual`]) gives what its update gives, bit
+/// for bit, and changes nothing when it declines (the lifecycle then takes the update):
+/// random estimates and readings, with and without each reading, with each kind's
+/// options, and readings that make the step decline.
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn the_usual_step_is_the_update() {
+    let (mut taken, mut declined) = (0, 0);
+    for kind in Kind::ALL {
+        let (t, d) = with_kind!(kind, E => usual_is_update::<E>());
+        taken += t;
+        declined += d;
+    }
+    // Not vacuous: both the usual steps and their declines are exercised.
+    assert!(taken > 10_000 && declined > 1_000, "{taken} {declined}");
+}
+
+fn usual_is_update<E: Estimator>() -> (usize, usize) {
+    use super::sample::{Checked, Usual};
+    if !E::USUAL {
+        return (0, 0);
+    }
+    let mut u = crate::math::test_uniform(5);
+    let (mut taken, mut declined) = (0, 0);
+    for options in [&[][..], &[("ki", 0.3)][..], &[("rest_bias_tau", 2.0)][..]] {
+        let mut config = Config::new(E::KIND).unwrap();
+        for (name, value) in options {
+            if let Some(r) = config.set(name, *value) {
+                r.unwrap();
+            }
+        }
+        let mut core = E::create(E::Settings::from_slots(config.slots()));
+        for i in 0..6000 {
+            if i % 50 == 0 {
+                let q = Quat::new(u(), u(), u(), u()).normalized();
+                core.set_quaternion(if i % 100 == 0 { Quat::IDENTITY } else { q });
+            }
+            let mut v = |scale: f64| Vec3::new(u(), u(), u()) * scale;
+            let gyro = v(3.0);
+            // Level and still against an identity estimate: a zero gradient.
+            let accel = if i % 100 == 0 { Vec3::new(0.0, 0.0, 9.81) } else { v(12.0) };
+            let (accel, mag) = ((i % 7 != 3).then_some(accel), (i % 3 != 0).then(|| v(50.0)));
+            let s = Usual {
+                dt: 0.01 * (1.0 + u()),
+                gyro,
+                accel: accel.map(Checked::of),
+                mag: mag.map(Checked::of),
+            };
+            let mut usual = core.clone();
+            let mut general = core.clone();
+            match usual.update_usual(&s) {
+                Some(step) => {
+                    assert_eq!(general.update(s.dt, gyro, accel, mag), Some(step), "{i}");
+                    assert_eq!(usual, general, "{i}");
+                    taken += 1;
+                }
+                None => {
+                    assert_eq!(usual, core, "{i}");
+                    declined += 1;
+                }
+            }
+            core.update(s.dt, gyro, accel, mag);
+        }
+    }
+    (taken, declined)
+}

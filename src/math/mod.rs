@@ -74,10 +74,17 @@ pub(crate) fn try_inv_sqrt(x: f64) -> Option<f64> {
 #[inline(always)]
 pub(crate) fn inv_sqrt_fast(x: f64) -> Option<f64> {
     if x > 1e-300 && x < 1e300 {
-        Some(x.sqrt() * (1.0 / x))
+        Some(inv_sqrt_in_range(x))
     } else {
         None
     }
+}
+
+/// [`inv_sqrt`] for an `x` the caller has already found in `(1e-300, 1e300)`: the same
+/// bits, without the test.
+#[inline(always)]
+pub(crate) fn inv_sqrt_in_range(x: f64) -> f64 {
+    x.sqrt() * (1.0 / x)
 }
 
 #[cold]

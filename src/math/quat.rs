@@ -103,6 +103,14 @@ impl Quat {
         self.normalized_with(n2)
     }
 
+    /// [`Quat::try_normalized`] in [`super::inv_sqrt`]'s fast range: the same result
+    /// there, and `None` outside it (where `try_normalized` may still have one). For an
+    /// update's usual path, which calls no function and leaves the rest to its general path.
+    #[inline(always)]
+    pub(crate) fn try_normalized_usual(self) -> Option<Quat> {
+        Some(self.scale(super::inv_sqrt_fast(self.norm_squared())?)).filter(|q| q.is_finite())
+    }
+
     /// [`Quat::try_normalized`] with the squared norm `n2` computed by the caller, for an
     /// update that knows it before the quaternion's last components are ready.
     ///
