@@ -37,9 +37,16 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     /// True for kinds with an [`Estimator::update_usual`] of their own; the others'
     /// updates call functions anyway, and the lifecycle calls their `update` directly.
     const USUAL: bool = false;
+    /// True when the settings let [`Estimator::update_usual`] stand for the update (an
+    /// option with a path of its own, such as a rest-bias learner, makes it false). The
+    /// lifecycle asks whenever the settings change, and does not take the usual step
+    /// while it is false.
+    fn usual_settings(&self) -> bool {
+        true
+    }
     /// [`Estimator::update`]'s usual case, which calls no function: the same result, or
     /// `None` with nothing changed when the case is not the usual one (the caller then
-    /// takes [`Estimator::update`]).
+    /// takes [`Estimator::update`]). Called only while [`Estimator::usual_settings`].
     #[inline(always)]
     fn update_usual(&mut self, s: &Usual) -> Option<Step> {
         self.update(s.dt, s.gyro, s.accel.map(|a| a.v), s.mag.map(|m| m.v))

@@ -468,14 +468,17 @@ impl Madgwick {
         Some(step)
     }
 
-    /// [`Madgwick::update`]'s usual case, which calls no function: the rest-bias option
-    /// off, every squared norm in [`inv_sqrt`]'s fast range. The same result, or `None`
+    /// The rest-bias option off: the settings [`Madgwick::update_usual`] is for.
+    pub(crate) fn usual_settings(&self) -> bool {
+        self.settings.rest_bias_tau == 0.0
+    }
+
+    /// [`Madgwick::update`]'s usual case, which calls no function, for the
+    /// [`Madgwick::usual_settings`]: every squared norm in [`inv_sqrt`]'s fast range. The same result, or `None`
     /// with nothing changed otherwise.
     #[inline(always)]
     pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<Step> {
-        if self.settings.rest_bias_tau > 0.0 {
-            return None;
-        }
+        debug_assert!(self.usual_settings());
         let (a, m) = (s.accel.map(Checked::unit), s.mag.map(Checked::unit));
         let (q, step) = self.step::<true>(self.bias, s.dt, s.gyro, a, m)?;
         self.q = q;
@@ -893,6 +896,10 @@ mod estimator_impl {
         }
 
         const USUAL: bool = true;
+
+        fn usual_settings(&self) -> bool {
+            Madgwick::usual_settings(self)
+        }
 
         #[inline(always)]
         fn update_usual(&mut self, s: &crate::filters::sample::Usual) -> Option<Step> {

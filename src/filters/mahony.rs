@@ -152,15 +152,18 @@ impl Mahony {
         }
     }
 
-    /// [`Mahony::update`]'s usual case, which calls no function: the rest-bias option
-    /// off, an accelerometer reading, the new estimate's squared norm in
+    /// The rest-bias option off: the settings [`Mahony::update_usual`] is for.
+    pub(crate) fn usual_settings(&self) -> bool {
+        self.settings.rest_bias_tau == 0.0
+    }
+
+    /// [`Mahony::update`]'s usual case, which calls no function, for the
+    /// [`Mahony::usual_settings`]: an accelerometer reading, the new estimate's squared norm in
     /// [`crate::math::inv_sqrt`]'s fast range. The same result, or `None` with nothing
     /// changed otherwise.
     #[inline(always)]
     pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<Step> {
-        if self.settings.rest_bias_tau > 0.0 {
-            return None;
-        }
+        debug_assert!(self.usual_settings());
         match (s.accel, s.mag) {
             (Some(a), None) => self.update_with::<false, true>(s.dt, s.gyro, a.unit(), Vec3::ZERO),
             (Some(a), Some(m)) => self.update_with::<true, true>(s.dt, s.gyro, a.unit(), m.unit()),
@@ -332,6 +335,10 @@ mod estimator_impl {
         }
 
         const USUAL: bool = true;
+
+        fn usual_settings(&self) -> bool {
+            Mahony::usual_settings(self)
+        }
 
         #[inline(always)]
         fn update_usual(&mut self, s: &crate::filters::sample::Usual) -> Option<Step> {

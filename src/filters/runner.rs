@@ -24,15 +24,18 @@ pub(crate) struct Common {
     pub gyro_limit: f64,
     /// Accelerometer full-scale range, or [`MAX_ACCEL`] when none is set (m/s²).
     pub accel_limit: f64,
-    /// dt above which a step is a gap, or `+∞` when the policy is off (s).
+    /// dt above which a step is a gap, or [`MAX_DT`] when the policy is off (s): no
+    /// accepted dt is larger, so that the quick check's one bound covers both.
     pub gap_limit: f64,
 }
 
 impl Common {
     const GYRO_SET: u8 = 1;
     const ACCEL_SET: u8 = 2;
-    /// The other bits of [`Runner::bits`]: what `from_slots` does not set.
-    const RANGE_BITS: u8 = Common::GYRO_SET | Common::ACCEL_SET;
+    /// `gap_dt` is set (not 0).
+    const GAP_SET: u8 = 32;
+    /// The bits of [`Runner::bits`] that `from_slots` sets.
+    const RANGE_BITS: u8 = Common::GYRO_SET | Common::ACCEL_SET | Common::GAP_SET;
 
     /// The common settings, and which of the ranges are set ([`Common::GYRO_SET`],
     /// [`Common::ACCEL_SET`]: a range equal to the physical bound is a saturation, not a
@@ -44,10 +47,11 @@ impl Common {
             gravity: s[id::GRAVITY as usize],
             gyro_limit: if gyro > 0.0 { gyro.min(MAX_GYRO) } else { MAX_GYRO },
             accel_limit: if accel > 0.0 { accel.min(MAX_ACCEL) } else { MAX_ACCEL },
-            gap_limit: if gap > 0.0 { gap } else { f64::INFINITY },
+            gap_limit: if gap > 0.0 { gap.min(MAX_DT) } else { MAX_DT },
         };
-        let set =
-            if gyro > 0.0 { Common::GYRO_SET } else { 0 } | if accel > 0.0 { Common::ACCEL_SET } else { 0 };
+        let set = if gyro > 0.0 { Common::GYRO_SET } else { 0 }
+            | if accel > 0.0 { Common::ACCEL_SET } else { 0 }
+            | if gap > 0.0 { Common::GAP_SET } else { 0 };
         (common, set)
     }
 
@@ -55,7 +59,7 @@ impl Common {
         s[id::GRAVITY as usize] = self.gravity;
         s[id::GYRO_RANGE as usize] = if set & Common::GYRO_SET != 0 { self.gyro_limit } else { 0.0 };
         s[id::ACCEL_RANGE as usize] = if set & Common::ACCEL_SET != 0 { self.accel_limit } else { 0.0 };
-        s[id::GAP_DT as usize] = if self.gap_limit.is_finite() { self.gap_limit } else { 0.0 };
+        s[id::GAP_DT as usize] = if set & Common::GAP_SET != 0 { self.gap_limit } else { 0.0 };
     }
 
     fn gyro_range(&self, set: u8) -> Option<f64> {
@@ -73,8 +77,8 @@ pub(crate) struct Runner<E: Estimator> {
     pub(crate) core: E,
     pub(crate) flags: u32,
     frame: Frame,
-    /// Which sensor ranges are set ([`Common::GYRO_SET`], [`Common::ACCEL_SET`], see
-    /// [`Common::from_slots`]), [`Runner::HAS_ACCEL`], [`Runner::RELATIVE`] and
+    /// Which sensor ranges and gap dt are set ([`Common::GYRO_SET`],
+    /// [`Common::ACCEL_SET`], [`Common::GAP_SET`], see [`Common::from_slots`]), [`Runner::HAS_ACCEL`], [`Runner::RELATIVE`] and
     /// [`Runner::IDENTITY_INIT`]: one byte, so that the head stays a few words.
     bits: u8,
     /// Issue 20's policies that are on ([`Runner::RECOVER`], [`Runner::SAME_INSTANT`],
@@ -128,6 +132,8 @@ impl<E: Estimator> Runner<E> {
     const SAME_INSTANT: u8 = 2;
     /// Sensor models are set (in the extras).
     const MODELS: u8 = 4;
+    /// The kind's settings keep it from its usual step ([`Estimator::usual_settings`]).
+    const KIND_OPTION: u8 = 8;
 
     pub(crate) fn new(config: &Config) -> Result<Runner<E>, Error> {
         debug_assert_eq!(config.kind(), E::KIND);
@@ -164,7 +170,8 @@ impl<E: Estimator> Runner<E> {
     fn set_policies(&mut self, slots: &[f64; MAX_PARAMS]) {
         let recover = if slots[id::SATURATION_RECOVERY as usize] != 0.0 { Self::RECOVER } else { 0 };
         let same_instant = if slots[id::SAME_INSTANT as usize] != 0.0 { Self::SAME_INSTANT } else { 0 };
-        self.policy = (self.policy & Self::MODELS) | recover | same_instant;
+        let option = if self.core.usual_settings() { 0 } else { Self::KIND_OPTION };
+        self.policy = (self.policy & Self::MODELS) | recover | same_instant | option;
         if self.same_instant() {
             self.extras_mut();
         } else if let Some(x) = &mut self.extras.0 {
@@ -324,28 +331,30 @@ impl<E: Estimator> Runner<E> {
         }
     }
 
-    /// A conservative test that `check_exactly` would accept the sample: see
-    /// [`Runner::usual`].
+    /// A conservative test that `check_exactly` would accept the sample (a gap fails it
+    /// too): see [`Runner::usual`].
     #[inline(always)]
     pub(crate) fn plainly_valid<S: SampleView>(&self, s: &S) -> bool {
         self.usual(s).is_some()
     }
 
-    /// The sample, when a conservative test finds that `check_exactly` would accept it,
-    /// with one branch: each reading's squared norm is under the square of its sensor's
+    /// The sample, when a conservative test finds that `check_exactly` would accept it and
+    /// that it is no gap: each reading's squared norm is under the square of its sensor's
     /// range or physical bound (which bounds every component: `x² ≤ |v|²`, and rounding
     /// keeps that order; a NaN or ±∞ component makes the norm fail the test), the
     /// accelerometer's and magnetometer's are above 1e-300 (not zero, no underflow, and in
     /// `inv_sqrt`'s fast range, so that the usual update normalises them without a test);
-    /// dt is in range; and a sample without an accelerometer reading comes after
+    /// dt is in range and at most `gap_dt`; and a sample without an accelerometer reading comes after
     /// initialisation. A sample it turns down goes through the exact rules, which tell the
     /// reason (or accept it: a reading whose components are each under the range but
-    /// whose norm is not, say).
+    /// whose norm is not, say), and tell a gap.
     #[inline(always)]
     pub(crate) fn usual<S: SampleView>(&self, s: &S) -> Option<Usual> {
         let (dt, gyro) = (s.dt(), s.gyro()?);
         let gyro_limit = self.common.gyro_limit;
-        if !((MIN_DT..=MAX_DT).contains(&dt) && gyro.norm_squared() < gyro_limit * gyro_limit) {
+        // gap_dt ≤ MAX_DT, and MAX_DT when off: a gap fails here too.
+        if !((MIN_DT..=self.common.gap_limit).contains(&dt) && gyro.norm_squared() < gyro_limit * gyro_limit)
+        {
             return None;
         }
         let accel = match s.accel() {
@@ -417,11 +426,9 @@ impl<E: Estimator> Runner<E> {
         let usual = (self.policy == 0)
             & (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED);
         if let Some(u) = if usual { self.usual(s) } else { None } {
-            if u.dt <= self.common.gap_limit {
-                if let Some(step) = self.core.update_usual(&u) {
-                    self.stepped(step, u.accel.map(|a| a.v), u.mag.map(|m| m.v));
-                    return Ok(());
-                }
+            if let Some(step) = self.core.update_usual(&u) {
+                self.stepped(step, u.accel.map(|a| a.v), u.mag.map(|m| m.v));
+                return Ok(());
             }
         }
         self.update_general(s)

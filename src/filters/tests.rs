@@ -438,7 +438,8 @@ fn linear_accel_is_zero_for_a_pure_gravity_reading() {
 /// Each kind's usual step ([`Estimator::update_usual`]) gives what its update gives, bit
 /// for bit, and changes nothing when it declines (the lifecycle then takes the update):
 /// random estimates and readings, with and without each reading, with each kind's
-/// options, and readings that make the step decline.
+/// options (those that keep it from its usual step too), and readings that make the step
+/// decline.
 #[test]
 #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
 fn the_usual_step_is_the_update() {
@@ -485,7 +486,9 @@ fn usual_is_update<E: Estimator>() -> (usize, usize) {
             };
             let mut usual = core.clone();
             let mut general = core.clone();
-            match usual.update_usual(&s) {
+            // The lifecycle takes the usual step only with the settings it is for.
+            let result = if core.usual_settings() { usual.update_usual(&s) } else { None };
+            match result {
                 Some(step) => {
                     assert_eq!(general.update(s.dt, gyro, accel, mag), Some(step), "{i}");
                     assert_eq!(usual, general, "{i}");
@@ -500,4 +503,45 @@ fn usual_is_update<E: Estimator>() -> (usize, usize) {
         }
     }
     (taken, declined)
+}
+
+/// An option that keeps a kind from its usual step (the rest-bias learner) takes effect
+/// however it is set: in the `Config`, by `set_param` on a running filter, or in a
+/// loaded snapshot. All three learn the bias at rest.
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn options_that_keep_a_kind_from_its_usual_step_take_effect_however_set() {
+    for (kind, slot) in [(Kind::Madgwick, id::MADGWICK_REST_BIAS_TAU), (Kind::Mahony, id::MAHONY_REST_BIAS_TAU)] {
+        let still = Sample {
+            dt: 0.01,
+            gyro: Some(Vec3::new(0.001, -0.002, 0.01)),
+            accel: Some(Vec3::new(0.0, 0.0, 9.81)),
+            mag: None,
+        };
+        let mut config = Config::new(kind).unwrap();
+        config.set_param(slot, 2.0).unwrap();
+        let mut by_config = Filter::new(&config).unwrap();
+        let mut by_param = Filter::new(&Config::new(kind).unwrap()).unwrap();
+        for f in [&mut by_config, &mut by_param] {
+            f.update(&still).unwrap();
+        }
+        by_param.set_param(slot, 2.0).unwrap();
+        let mut blob = vec![0; by_param.state_size()];
+        by_param.save(&mut blob).unwrap();
+        let mut by_load = Filter::new(&Config::new(kind).unwrap()).unwrap();
+        by_load.load(&blob).unwrap();
+        for _ in 0..600 {
+            for f in [&mut by_config, &mut by_param, &mut by_load] {
+                f.update(&still).unwrap();
+            }
+        }
+        for f in [&by_config, &by_param, &by_load] {
+            let bias = f.diagnostics().gyro_bias;
+            assert!(bias.z > 0.008 && f.flags() & flags::REST != 0, "{kind:?}: {bias:?}");
+        }
+        // The loaded filter goes on exactly as the one it was saved from (by_config's
+        // detector started a sample earlier).
+        assert_eq!(by_load.diagnostics().gyro_bias, by_param.diagnostics().gyro_bias, "{kind:?}");
+        assert_eq!(by_load.quaternion(), by_param.quaternion(), "{kind:?}");
+    }
 }
