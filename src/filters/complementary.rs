@@ -40,6 +40,7 @@
 //!   defines north instead, aligning the output with the configured earth frame.
 
 use super::params::{settings, Switch};
+use super::sample::Usual;
 use super::startup::{StartupMeans, Stillness};
 use super::Step;
 use crate::math::{cos_and_sinc, Frame, Quat, Vec3};
@@ -139,11 +140,12 @@ impl Running {
         Running { q: Quat::IDENTITY, bias: Vec3::ZERO, g0: 0.0, b0: Vec3::ZERO, rest: false };
 
     /// Stores `q` renormalised and `bias` (finite: only the rest branch changes it, and
-    /// checks it).
+    /// checks it). `USUAL`: only when `q` is unit to 1e-8 (`None`, nothing stored,
+    /// otherwise).
     #[inline(always)]
-    fn commit(&mut self, q: Quat, bias: Vec3, step: Step) -> Option<Step> {
+    fn commit<const USUAL: bool>(&mut self, q: Quat, bias: Vec3, step: Step) -> Option<Step> {
         // exp() is unit up to rounding; renormalise so it cannot drift over long runs.
-        self.q = q.renormalized()?;
+        self.q = if USUAL { q.renormalized_usual()? } else { q.renormalized()? };
         self.bias = bias;
         Some(step)
     }
@@ -160,15 +162,24 @@ impl Running {
 /// form to 3 ulp (2.1 measured).
 #[inline]
 pub fn rotation_of(omega: Vec3, dt: f64) -> Quat {
+    match rotation_of_series(omega, dt) {
+        Some(q) => q,
+        None => rotation_of_by_sincos(omega, dt),
+    }
+}
+
+/// [`rotation_of`] by the series, for `θ/2 < 1/16`; `None` beyond.
+#[inline(always)]
+pub(crate) fn rotation_of_series(omega: Vec3, dt: f64) -> Option<Quat> {
     let h = 0.5 * dt;
     let x2 = omega.norm_squared() * (h * h);
     if x2 < 1.0 / 256.0 {
         let (c, sinc) = cos_and_sinc(x2);
         // sin(θ/2)/|ω| = (sin x / x) · dt/2.
         let k = sinc * h;
-        return Quat::new(c, omega.x * k, omega.y * k, omega.z * k);
+        return Some(Quat::new(c, omega.x * k, omega.y * k, omega.z * k));
     }
-    rotation_of_by_sincos(omega, dt)
+    None
 }
 
 /// [`rotation_of`] with the sine and cosine themselves (`θ/2 ≥ 1/16`, and the readable
@@ -320,37 +331,66 @@ impl Complementary {
         let Some(a) = accel else {
             // Gyroscope only: propagate with the bias-corrected rate.
             r.rest = false;
-            return r.commit(r.q * rotation_of(gyro - r.bias, dt), r.bias, step);
+            return r.commit::<false>(r.q * rotation_of(gyro - r.bias, dt), r.bias, step);
         };
-        step.used_accel = true;
+        Complementary::step::<false>(r, &self.settings, dt, gyro, || a.norm(), || a.normalized())
+    }
+
+    /// [`Complementary::update`]'s usual case, which calls no function: past the start-up
+    /// period, an accelerometer reading, rotations within [`rotation_of_series`]'s range
+    /// and an estimate unit to 1e-8 before its renormalisation. The same result, or `None`
+    /// with nothing changed otherwise.
+    #[inline(always)]
+    pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<Step> {
+        let (Phase::Running(r), Some(a)) = (&mut self.phase, s.accel) else {
+            return None;
+        };
+        Complementary::step::<true>(r, &self.settings, s.dt, s.gyro, || a.norm(), || a.unit())
+    }
+
+    /// Eqs. (4)-(10) from the running state with an accelerometer reading, given as its
+    /// norm `|a_m|` and direction `ĝ_a` (computed only where used). `USUAL`: see
+    /// [`Complementary::update_usual`].
+    #[inline(always)]
+    fn step<const USUAL: bool>(
+        r: &mut Running,
+        settings: &ComplementarySettings,
+        dt: f64,
+        gyro: Vec3,
+        a_norm: impl Fn() -> f64,
+        g_a: impl FnOnce() -> Vec3,
+    ) -> Option<Step> {
+        let step = Step { used_accel: true, ..Step::default() };
+        let rotation =
+            |omega: Vec3| if USUAL { rotation_of_series(omega, dt) } else { Some(rotation_of(omega, dt)) };
         // A known initial attitude skipped the start-up period: g₀ from the first reading.
         // Kept local until the step commits: a refused step changes nothing.
-        let g0 = if r.g0 == 0.0 { a.norm() } else { r.g0 };
+        let g0 = if r.g0 == 0.0 { a_norm() } else { r.g0 };
         // Rest: |ω_m| and |a_m| near their stationary values (the start-up means). It
         // depends on the readings alone, not on the estimate.
         // |ω_m − ω̄| < gyro_rest compared squared: no square root for the usual case, a
         // moving sensor, whose test ends there.
-        let gyro_rest = self.settings.gyro_rest;
+        let gyro_rest = settings.gyro_rest;
         let rest = (gyro - r.b0).norm_squared() < gyro_rest * gyro_rest
-            && (a.norm() - g0).abs() < self.settings.accel_rest;
+            && (a_norm() - g0).abs() < settings.accel_rest;
         let omega_tilde = gyro - r.bias; // (7)
-        let q_tilde = r.q * rotation_of(omega_tilde, dt);
+        let q_tilde = r.q * rotation(omega_tilde)?;
         let (q, bias) = if rest {
-            let g_a = a.normalized(); // (6)
+            let g_a = g_a(); // (6)
             let g_omega = q_tilde.z_axis_in_body(); // (8)
             let theta_e = g_a.cross(g_omega); // (9)
-            let bias = r.bias - theta_e * (self.settings.ki * dt); // (10)
+            let bias = r.bias - theta_e * (settings.ki * dt); // (10)
             if !bias.is_finite() {
                 return None;
             }
-            let q = r.q * rotation_of(gyro - bias + theta_e * self.settings.kp, dt); // (4)
+            let q = r.q * rotation(gyro - bias + theta_e * settings.kp)?; // (4)
             (q, bias)
         } else {
             // In motion K_p = K_I = 0: (10) keeps the bias and (4) integrates ω̃, which
             // is the prediction q̃ itself; θ_e has no effect and is not computed.
             (q_tilde, r.bias)
         };
-        let committed = r.commit(q, bias, step);
+        let committed = r.commit::<USUAL>(q, bias, step);
         if committed.is_some() {
             r.rest = rest;
             r.g0 = g0;
@@ -452,6 +492,13 @@ mod estimator_impl {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Complementary::update(self, dt, gyro, accel, mag)
+        }
+
+        const USUAL: bool = true;
+
+        #[inline(always)]
+        fn update_usual(&mut self, s: &crate::filters::sample::Usual) -> Option<Step> {
+            Complementary::update_usual(self, s)
         }
 
         fn diagnose(&self, d: &mut Diagnostics) {

@@ -33,6 +33,12 @@ impl Checked {
         self.n2 > 1e-300 && self.n2 < bound
     }
 
+    /// `|v|`: the bits of [`Vec3::norm`].
+    #[inline(always)]
+    pub(crate) fn norm(self) -> f64 {
+        self.n2.sqrt()
+    }
+
     /// `v / |v|`: the bits of [`Vec3::normalized`], without its range test (the check
     /// made it).
     #[inline(always)]

@@ -443,23 +443,24 @@ fn linear_accel_is_zero_for_a_pure_gravity_reading() {
 #[test]
 #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
 fn the_usual_step_is_the_update() {
-    let (mut taken, mut declined) = (0, 0);
+    let (mut taken, mut declined, mut rests) = (0, 0, 0);
     for kind in Kind::ALL {
-        let (t, d) = with_kind!(kind, E => usual_is_update::<E>());
+        let (t, d, r) = with_kind!(kind, E => usual_is_update::<E>());
         taken += t;
         declined += d;
+        rests += r;
     }
-    // Not vacuous: both the usual steps and their declines are exercised.
-    assert!(taken > 10_000 && declined > 1_000, "{taken} {declined}");
+    // Not vacuous: the usual steps, their declines and steps at rest are exercised.
+    assert!(taken > 10_000 && declined > 1_000 && rests > 100, "{taken} {declined} {rests}");
 }
 
-fn usual_is_update<E: Estimator>() -> (usize, usize) {
+fn usual_is_update<E: Estimator>() -> (usize, usize, usize) {
     use super::sample::{Checked, Usual};
     if !E::USUAL {
-        return (0, 0);
+        return (0, 0, 0);
     }
     let mut u = crate::math::test_uniform(5);
-    let (mut taken, mut declined) = (0, 0);
+    let (mut taken, mut declined, mut rests) = (0, 0, 0);
     for options in [&[][..], &[("ki", 0.3)][..], &[("rest_bias_tau", 2.0)][..]] {
         let mut config = Config::new(E::KIND).unwrap();
         for (name, value) in options {
@@ -474,9 +475,15 @@ fn usual_is_update<E: Estimator>() -> (usize, usize) {
                 core.set_quaternion(if i % 100 == 0 { Quat::IDENTITY } else { q });
             }
             let mut v = |scale: f64| Vec3::new(u(), u(), u()) * scale;
-            let gyro = v(3.0);
-            // Level and still against an identity estimate: a zero gradient.
-            let accel = if i % 100 == 0 { Vec3::new(0.0, 0.0, 9.81) } else { v(12.0) };
+            // Slow turns, for the kinds' rest tests, and fast ones.
+            let gyro = if i % 4 == 0 { v(0.01) } else { v(3.0) };
+            // Level and still against an identity estimate: a zero gradient. Gravity's
+            // norm half the time, for the rest tests.
+            let accel = match i {
+                _ if i % 100 == 0 => Vec3::new(0.0, 0.0, 9.81),
+                _ if i % 2 == 0 => v(1.0).normalized() * 9.81,
+                _ => v(12.0),
+            };
             let (accel, mag) = ((i % 7 != 3).then_some(accel), (i % 3 != 0).then(|| v(50.0)));
             let s = Usual {
                 dt: 0.01 * (1.0 + u()),
@@ -493,6 +500,7 @@ fn usual_is_update<E: Estimator>() -> (usize, usize) {
                     assert_eq!(general.update(s.dt, gyro, accel, mag), Some(step), "{i}");
                     assert_eq!(usual, general, "{i}");
                     taken += 1;
+                    rests += usual.at_rest() as usize;
                 }
                 None => {
                     assert_eq!(usual, core, "{i}");
@@ -502,7 +510,7 @@ fn usual_is_update<E: Estimator>() -> (usize, usize) {
             core.update(s.dt, gyro, accel, mag);
         }
     }
-    (taken, declined)
+    (taken, declined, rests)
 }
 
 /// An option that keeps a kind from its usual step (the rest-bias learner) takes effect
@@ -511,7 +519,9 @@ fn usual_is_update<E: Estimator>() -> (usize, usize) {
 #[test]
 #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
 fn options_that_keep_a_kind_from_its_usual_step_take_effect_however_set() {
-    for (kind, slot) in [(Kind::Madgwick, id::MADGWICK_REST_BIAS_TAU), (Kind::Mahony, id::MAHONY_REST_BIAS_TAU)] {
+    for (kind, slot) in
+        [(Kind::Madgwick, id::MADGWICK_REST_BIAS_TAU), (Kind::Mahony, id::MAHONY_REST_BIAS_TAU)]
+    {
         let still = Sample {
             dt: 0.01,
             gyro: Some(Vec3::new(0.001, -0.002, 0.01)),

@@ -111,6 +111,15 @@ impl Quat {
         Some(self.scale(super::inv_sqrt_fast(self.norm_squared())?)).filter(|q| q.is_finite())
     }
 
+    /// [`Quat::renormalized`]'s usual case, `|q|² = 1 + ε` with `|ε| < 1e-8`: the same
+    /// result there, `None` otherwise. For an update's usual path, which calls no function
+    /// and leaves the rest to its general path.
+    #[inline(always)]
+    pub(crate) fn renormalized_usual(self) -> Option<Quat> {
+        let n2 = self.norm_squared();
+        ((n2 - 1.0).abs() < 1e-8).then(|| self.scale(0.5 * (3.0 - n2)))
+    }
+
     /// [`Quat::try_normalized`] with the squared norm `n2` computed by the caller, for an
     /// update that knows it before the quaternion's last components are ready.
     ///
