@@ -748,8 +748,9 @@ impl Robust {
         }
         let half = 0.5 * self.delta;
         // One shared range reduction: libm's sincos gives sin's and cos's bits (a test in
-        // `math` checks it).
-        let (s_half, c_half) = libm::sincos(half);
+        // `math` checks it). No heading offset (every update without a magnetometer):
+        // sin ±0 = ±0 and cos ±0 = 1 exactly, without the call.
+        let (s_half, c_half) = if half == 0.0 { (half, 1.0) } else { libm::sincos(half) };
         let q_delta = Quat::new(c_half, 0.0, 0.0, s_half);
         self.q = (q_delta * self.q_inc * self.q_gyr).normalized();
         step

@@ -126,6 +126,11 @@ mod tests {
             let (s, c) = libm::sincos(x);
             assert_eq!((s.to_bits(), c.to_bits()), (libm::sin(x).to_bits(), libm::cos(x).to_bits()), "{x}");
         }
+        // The robust kind skips the call for a zero angle: (±0, 1) are its bits.
+        for x in [0.0, -0.0f64] {
+            let (s, c) = libm::sincos(x);
+            assert_eq!((s.to_bits(), c.to_bits()), (x.to_bits(), 1.0f64.to_bits()), "{x}");
+        }
     }
 
     #[test]
