@@ -146,6 +146,7 @@ impl Filter {
     }
 
     /// One step. On error nothing changes: the state is bit-identical to before.
+    #[inline]
     pub fn update(&mut self, s: &Sample) -> Result<(), Error> {
         self.update_inline(s)
     }
