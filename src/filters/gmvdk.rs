@@ -155,6 +155,7 @@ settings! {
 /// ([`asin_over`]), `sin(hω)/sin ω = h · asin(s)/s · sin(hω)/(hω)` and `cos(hω)`
 /// ([`cos_and_sinc`]), with no arccosine, sine, root or division. Larger angles take
 /// [`slerp_by_acos`], the readable form, which a test compares the series with.
+#[inline(always)]
 pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
     let mut cos = q1.dot(q2);
     let mut q2 = q2;

@@ -228,6 +228,7 @@ impl Quat {
     /// The shortest rotation that takes the direction `from` onto the direction `to`
     /// (neither needs to be unit; neither may be zero). For opposite directions the
     /// rotation is half a turn about an axis perpendicular to `from`.
+    #[inline(always)]
     pub fn from_two_vectors(from: Vec3, to: Vec3) -> Quat {
         let (f, t) = (from.normalized(), to.normalized());
         let c = f.dot(t);
