@@ -479,8 +479,14 @@ impl Madgwick {
     #[inline(always)]
     pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<Step> {
         debug_assert!(self.usual_settings());
-        let (a, m) = (s.accel.map(Checked::unit), s.mag.map(Checked::unit));
-        let (q, step) = self.step::<true>(self.bias, s.dt, s.gyro, a, m)?;
+        // One copy of the step per case, so that each knows which readings it has (and
+        // the flags it leaves are constants).
+        let (bias, dt, gyro) = (self.bias, s.dt, s.gyro);
+        let (q, step) = match (s.accel, s.mag) {
+            (Some(a), None) => self.step::<true>(bias, dt, gyro, Some(a.unit()), None),
+            (Some(a), Some(m)) => self.step::<true>(bias, dt, gyro, Some(a.unit()), Some(m.unit())),
+            (None, m) => self.step::<true>(bias, dt, gyro, None, m.map(Checked::unit)),
+        }?;
         self.q = q;
         Some(step)
     }
