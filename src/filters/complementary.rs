@@ -329,9 +329,12 @@ impl Complementary {
             }
         };
         let Some(a) = accel else {
-            // Gyroscope only: propagate with the bias-corrected rate.
-            r.rest = false;
-            return r.commit::<false>(r.q * rotation_of(gyro - r.bias, dt), r.bias, step);
+            // Gyroscope only: propagate with the bias-corrected rate (no rest test).
+            let committed = r.commit::<false>(r.q * rotation_of(gyro - r.bias, dt), r.bias, step);
+            if committed.is_some() {
+                r.rest = false;
+            }
+            return committed;
         };
         Complementary::step::<false>(r, &self.settings, dt, gyro, || a.norm(), || a.normalized())
     }

@@ -174,7 +174,8 @@ impl Mahony {
     /// The update without the rest-bias option, with the normalised accelerometer reading
     /// `â` and with (`MAG`) or without a magnetometer reading `m̂`: one copy per case,
     /// each with its step and correction inlined, inlined in turn into the kind's update
-    /// function (`Runner::update_outline`). `USUAL`: see [`Mahony::step`].
+    /// function (`Runner::update_outline`, the `USUAL` copies; the others into
+    /// `Runner::update_general`). `USUAL`: see [`Mahony::step`].
     #[inline(always)]
     fn update_with<const MAG: bool, const USUAL: bool>(
         &mut self,

@@ -6,7 +6,7 @@
 
 use super::estimator::Estimator;
 use super::runner::Runner;
-use super::{flags, Error, Sample, SampleView, MAX_ACCEL, MAX_GYRO};
+use super::{flags, Error, Sample, SampleView, MAX_ACCEL, MAX_GYRO, MIN_DT};
 use crate::math::Vec3;
 
 /// The largest value under `range` (> 0).
@@ -47,7 +47,8 @@ impl<E: Estimator> Runner<E> {
         let (sum, n) = self.burst();
         // Every sample of a burst meets the rules a lone sample would: under the
         // clipping policy its clipped form is checked, else the reading as it is.
-        let probe = Sample { dt: if s.dt() == 0.0 { 1.0 } else { s.dt() }, ..s.to_sample() };
+        // (The smallest valid dt stands in for 0: never a gap, so the quick check can pass.)
+        let probe = Sample { dt: if s.dt() == 0.0 { MIN_DT } else { s.dt() }, ..s.to_sample() };
         let (checked, gyro_clipped, clipped) = self.clipped(&probe);
         self.check_view(&checked)?;
         if s.dt() == 0.0 {
