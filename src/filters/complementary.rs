@@ -339,6 +339,12 @@ impl Complementary {
         Complementary::step::<false>(r, &self.settings, dt, gyro, || a.norm(), || a.normalized())
     }
 
+    /// Every setting lets the usual step stand for the update: no option has a path of
+    /// its own.
+    pub(crate) fn usual_settings(&self) -> bool {
+        true
+    }
+
     /// [`Complementary::update`]'s usual case, which calls no function: past the start-up
     /// period, an accelerometer reading, rotations within [`rotation_of_series`]'s range
     /// and an estimate unit to 1e-8 before its renormalisation. The same result, or `None`
@@ -491,17 +497,10 @@ mod estimator_impl {
     use crate::filters::estimator::estimator;
     use crate::filters::Diagnostics;
 
-    estimator!(impl for Complementary { settings: ComplementarySettings, native: Enu, own_startup: true } {
+    estimator!(impl for Complementary { settings: ComplementarySettings, native: Enu, own_startup: true, usual: true } {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Complementary::update(self, dt, gyro, accel, mag)
-        }
-
-        const USUAL: bool = true;
-
-        #[inline(always)]
-        fn update_usual(&mut self, s: &crate::filters::sample::Usual) -> Option<Step> {
-            Complementary::update_usual(self, s)
         }
 
         fn diagnose(&self, d: &mut Diagnostics) {

@@ -140,9 +140,28 @@ pub struct Step {
 
 /// An [`Estimator`] impl: the kind's identity and the items every kind writes the same
 /// way (construction, settings, and the forwards to its inherent `quaternion`,
-/// `set_quaternion`, `reacquire`, `codec` and `valid`), then the kind's own items in
-/// braces (`update`, `diagnose`, and whatever it overrides).
+/// `set_quaternion`, `reacquire`, `codec` and `valid`; with `usual: true`, also
+/// `update_usual` and `usual_settings`), then the kind's own items in braces (`update`,
+/// `diagnose`, and whatever it overrides).
 macro_rules! estimator {
+    // A kind with a usual step: also the forwards to its inherent `update_usual` and
+    // `usual_settings`.
+    (impl for $T:ident { settings: $S:ty, native: $frame:ident, own_startup: $own:expr, usual: true $(,)? } { $($item:tt)* }) => {
+        $crate::filters::estimator::estimator!(impl for $T { settings: $S, native: $frame, own_startup: $own } {
+            const USUAL: bool = true;
+
+            fn usual_settings(&self) -> bool {
+                $T::usual_settings(self)
+            }
+
+            #[inline(always)]
+            fn update_usual(&mut self, s: &$crate::filters::sample::Usual) -> Option<$crate::filters::Step> {
+                $T::update_usual(self, s)
+            }
+
+            $($item)*
+        });
+    };
     (impl for $T:ident { settings: $S:ty, native: $frame:ident, own_startup: $own:expr $(,)? } { $($item:tt)* }) => {
         impl $crate::filters::estimator::Estimator for $T {
             type Settings = $S;

@@ -881,7 +881,7 @@ mod estimator_impl {
     use crate::filters::estimator::estimator;
     use crate::filters::Diagnostics;
 
-    estimator!(impl for Madgwick { settings: MadgwickSettings, native: Nwu, own_startup: false } {
+    estimator!(impl for Madgwick { settings: MadgwickSettings, native: Nwu, own_startup: false, usual: true } {
         fn configure(&mut self, settings: MadgwickSettings) {
             self.settings = settings;
             self.rest.prepare(settings.rest_bias_tau > 0.0);
@@ -899,17 +899,6 @@ mod estimator_impl {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Madgwick::update(self, dt, gyro, accel, mag)
-        }
-
-        const USUAL: bool = true;
-
-        fn usual_settings(&self) -> bool {
-            Madgwick::usual_settings(self)
-        }
-
-        #[inline(always)]
-        fn update_usual(&mut self, s: &crate::filters::sample::Usual) -> Option<Step> {
-            Madgwick::update_usual(self, s)
         }
 
         fn fields(&self) -> u32 {

@@ -315,7 +315,7 @@ mod estimator_impl {
     use crate::filters::estimator::estimator;
     use crate::filters::Diagnostics;
 
-    estimator!(impl for Mahony { settings: MahonySettings, native: Nwu, own_startup: false } {
+    estimator!(impl for Mahony { settings: MahonySettings, native: Nwu, own_startup: false, usual: true } {
         fn configure(&mut self, settings: MahonySettings) {
             self.settings = settings;
             self.rest.prepare(settings.rest_bias_tau > 0.0);
@@ -333,17 +333,6 @@ mod estimator_impl {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Mahony::update(self, dt, gyro, accel, mag)
-        }
-
-        const USUAL: bool = true;
-
-        fn usual_settings(&self) -> bool {
-            Mahony::usual_settings(self)
-        }
-
-        #[inline(always)]
-        fn update_usual(&mut self, s: &crate::filters::sample::Usual) -> Option<Step> {
-            Mahony::update_usual(self, s)
         }
 
         fn fields(&self) -> u32 {
