@@ -474,8 +474,8 @@ impl Madgwick {
     }
 
     /// [`Madgwick::update`]'s usual case, which calls no function, for the
-    /// [`Madgwick::usual_settings`]: every squared norm in [`inv_sqrt`]'s fast range. The same result, or `None`
-    /// with nothing changed otherwise.
+    /// [`Madgwick::usual_settings`]: every squared norm in [`inv_sqrt`]'s fast range. The
+    /// same result, or `None` with nothing changed otherwise.
     #[inline(always)]
     pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<Step> {
         debug_assert!(self.usual_settings());

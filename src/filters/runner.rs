@@ -78,8 +78,9 @@ pub(crate) struct Runner<E: Estimator> {
     pub(crate) flags: u32,
     frame: Frame,
     /// Which sensor ranges and gap dt are set ([`Common::GYRO_SET`],
-    /// [`Common::ACCEL_SET`], [`Common::GAP_SET`], see [`Common::from_slots`]), [`Runner::HAS_ACCEL`], [`Runner::RELATIVE`] and
-    /// [`Runner::IDENTITY_INIT`]: one byte, so that the head stays a few words.
+    /// [`Common::ACCEL_SET`], [`Common::GAP_SET`], see [`Common::from_slots`]),
+    /// [`Runner::HAS_ACCEL`], [`Runner::RELATIVE`] and [`Runner::IDENTITY_INIT`]: one
+    /// byte, so that the head stays a few words.
     bits: u8,
     /// Issue 20's policies that are on ([`Runner::RECOVER`], [`Runner::SAME_INSTANT`],
     /// [`Runner::MODELS`]) and [`Runner::KIND_OPTION`] (the kind's settings keep it from
@@ -346,10 +347,10 @@ impl<E: Estimator> Runner<E> {
     /// keeps that order; a NaN or ±∞ component makes the norm fail the test), the
     /// accelerometer's and magnetometer's are above 1e-300 (not zero, no underflow, and in
     /// `inv_sqrt`'s fast range, so that the usual update normalises them without a test);
-    /// dt is in range and at most `gap_dt`; and a sample without an accelerometer reading comes after
-    /// initialisation. A sample it turns down goes through the exact rules, which tell the
-    /// reason (or accept it: a reading whose components are each under the range but
-    /// whose norm is not, say), and tell a gap.
+    /// dt is in range and at most `gap_dt`; and a sample without an accelerometer reading
+    /// comes after initialisation. A sample it turns down goes through the exact rules,
+    /// which tell the reason (or accept it: a reading whose components are each under the
+    /// range but whose norm is not, say), and tell a gap.
     #[inline(always)]
     pub(crate) fn usual<S: SampleView>(&self, s: &S) -> Option<Usual> {
         let (dt, gyro) = (s.dt(), s.gyro()?);
