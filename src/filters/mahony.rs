@@ -22,7 +22,7 @@ use super::params::settings;
 use super::rest::RestBias;
 use super::sample::Usual;
 use super::Step;
-use crate::math::{Quat, Vec3};
+use crate::math::{inv_sqrt_fast, Quat, Vec3};
 
 settings! {
     /// Mahony's settings.
@@ -260,12 +260,10 @@ impl Mahony {
         // With n2 in inv_sqrt's fast range, h|ω| < 1e150 and the unit q bound every
         // component of the new q, so it and its scaled copy are finite (the bias was
         // tested where it changed). Otherwise `normalized_with`, which tests the result.
-        let q = if n2 > 1e-300 && n2 < 1e300 {
-            q.scale(n2.sqrt() * (1.0 / n2))
-        } else if USUAL {
-            return None;
-        } else {
-            q.normalized_with(n2)?
+        let q = match inv_sqrt_fast(n2) {
+            Some(r) => q.scale(r),
+            None if USUAL => return None,
+            None => q.normalized_with(n2)?,
         };
         Some((q, bias, step))
     }

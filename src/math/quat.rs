@@ -96,11 +96,10 @@ impl Quat {
     /// root or a division on the update's chain; otherwise `try_normalized`.
     #[inline]
     pub fn renormalized(self) -> Option<Quat> {
-        let n2 = self.norm_squared();
-        if (n2 - 1.0).abs() < 1e-8 {
-            return Some(self.scale(0.5 * (3.0 - n2)));
+        match self.renormalized_usual() {
+            Some(q) => Some(q),
+            None => self.normalized_with(self.norm_squared()),
         }
-        self.normalized_with(n2)
     }
 
     /// [`Quat::try_normalized`] in [`super::inv_sqrt`]'s fast range: the same result
@@ -111,8 +110,8 @@ impl Quat {
         Some(self.scale(super::inv_sqrt_fast(self.norm_squared())?)).filter(|q| q.is_finite())
     }
 
-    /// [`Quat::renormalized`]'s usual case, `|q|² = 1 + ε` with `|ε| < 1e-8`: the same
-    /// result there, `None` otherwise. For an update's usual path, which calls no function
+    /// [`Quat::renormalized`]'s usual case, `|q|² = 1 + ε` with `|ε| < 1e-8`: its Newton
+    /// step there, `None` otherwise. For an update's usual path, which calls no function
     /// and leaves the rest to its general path.
     #[inline(always)]
     pub(crate) fn renormalized_usual(self) -> Option<Quat> {
