@@ -37,7 +37,7 @@
 //!    while turning, else 20 s, as VQF's new-field acceptance); an attached magnet's
 //!    field changes norm and dip as the sensor turns, so it never qualifies.
 //!
-//! Structure: `q = q_δ ⊗ q_inc ⊗ q_gyr` with `q_gyr` the bias-corrected strapdown (sensor
+//! Structure: `q = q_δ ⊗ (q_inc ⊗ q_gyr)` with `q_gyr` the bias-corrected strapdown (sensor
 //! to I), `q_inc` the inclination correction (I to E′) and `q_δ` a rotation by δ about
 //! the vertical (E′ to E, heading from the magnetometer). Native frame: ENU.
 //!
@@ -288,6 +288,44 @@ fn dip(f: Vec3) -> f64 {
     libm::asin((-f.z / f.norm()).clamp(-1.0, 1.0))
 }
 
+/// `(E C, E S)` with `E = exp(−x)`, `C = cos x`, `S = sin x`: the readable form, with libm
+/// (beyond the series' range, and what the series is tested against).
+#[cold]
+#[inline(never)]
+fn exp_turn(x: f64) -> (f64, f64) {
+    let e = libm::exp(-x);
+    let (s, c) = libm::sincos(x);
+    (e * c, e * s)
+}
+
+/// [`exp_turn`] for `0 ≤ x < 1/32` by the series of `exp((−1 + i) x) = Σ (−1 + i)ⁿ xⁿ / n!`
+/// (real part `E C`, imaginary part `E S`) through x⁹: the first term left out is below
+/// 2⁻⁶⁰ of the sum there. `None` beyond. dt jitters on every host, so the coefficients
+/// are recomputed at nearly every step; the series costs about a third of libm's `exp`
+/// and `sincos` (docs/PERFORMANCE.md).
+#[inline(always)]
+fn exp_turn_series(x: f64) -> Option<(f64, f64)> {
+    if x.is_nan() || x >= 1.0 / 32.0 {
+        return None;
+    }
+    // Real parts of (−1 + i)ⁿ / n!: 1, −1, 0, 1/3, −1/6, 1/30, 0, −1/630, 1/2520, −1/22680.
+    let ec = 1.0
+        + x * (-1.0
+            + x * x
+                * (1.0 / 3.0
+                    + x * (-1.0 / 6.0
+                        + x * (1.0 / 30.0
+                            + x * x * (-1.0 / 630.0 + x * (1.0 / 2520.0 + x * (-1.0 / 22680.0)))))));
+    // Imaginary parts: 0, 1, −1, 1/3, 0, −1/30, 1/90, −1/630, 0, 1/22680.
+    let es = x
+        * (1.0
+            + x * (-1.0
+                + x * (1.0 / 3.0
+                    + x * x
+                        * (-1.0 / 30.0 + x * (1.0 / 90.0 + x * (-1.0 / 630.0 + x * x * (1.0 / 22680.0)))))));
+    Some((ec, es))
+}
+
 /// A second-order Butterworth low-pass of a vector, `ÿ = ω² (x − y) − 2ζω ẏ` with
 /// ζ = 1/√2 and ω = √2/τ (cutoff `√2 / (2π τ)` for time constant τ), stepped exactly
 /// for an input held over each step (x is the sample that ends it). With the deviation
@@ -334,12 +372,12 @@ impl Butterworth {
         if dt == self.dt && tau == self.tau {
             return;
         }
-        let e = libm::exp(-dt / tau);
-        let (s, c) = libm::sincos(dt / tau);
-        self.ee = e * (c + s);
-        self.ev = e * s * tau;
-        self.ve = -2.0 * e * s / tau;
-        self.vv = e * (c - s);
+        // E C and E S, the real and imaginary parts of exp((−1 + i) x) with x = dt/τ.
+        let (ec, es) = exp_turn_series(dt / tau).unwrap_or_else(|| exp_turn(dt / tau));
+        self.ee = ec + es;
+        self.ev = es * tau;
+        self.ve = -2.0 * es / tau;
+        self.vv = ec - es;
         self.dt = dt;
         self.tau = tau;
     }
@@ -351,7 +389,15 @@ impl Butterworth {
             [self.ee, self.ev, self.ve, self.vv] == [0.0; 4]
         } else {
             fresh.coefficients(self.dt, self.tau);
-            self.dt > 0.0 && self.tau > 0.0 && fresh == *self
+            // Within 1e-14, not bit for bit: snapshots written before the series
+            // (`exp_turn_series`) hold libm's coefficients, a few units of 2⁻⁵² away.
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-14 * b.abs();
+            self.dt > 0.0
+                && self.tau > 0.0
+                && close(self.ee, fresh.ee)
+                && close(self.ev, fresh.ev)
+                && close(self.ve, fresh.ve)
+                && close(self.vv, fresh.vv)
         };
         coefficients && super::holds::accel(self.y) && self.v.max_abs() < 1e12 && self.mean_t >= 0.0
     }
@@ -743,16 +789,23 @@ impl Robust {
             step.used_accel = true;
             self.correct_inclination(dt, a);
         }
+        // E′: the sensor to the inclination-corrected frame, for the heading correction
+        // and the output.
+        let q_e = self.q_inc * self.q_gyr;
         if let Some(m) = mag {
-            step.used_mag = self.correct_heading(dt, m);
+            step.used_mag = self.correct_heading(dt, m, q_e);
         }
-        let half = 0.5 * self.delta;
-        // One shared range reduction: libm's sincos gives sin's and cos's bits (a test in
-        // `math` checks it). No heading offset (every update without a magnetometer):
-        // sin ±0 = ±0 and cos ±0 = 1 exactly, without the call.
-        let (s_half, c_half) = if half == 0.0 { (half, 1.0) } else { libm::sincos(half) };
-        let q_delta = Quat::new(c_half, 0.0, 0.0, s_half);
-        self.q = (q_delta * self.q_inc * self.q_gyr).normalized();
+        // q = q_δ ⊗ q_e. Without a heading offset (every update without a magnetometer)
+        // q_δ is the identity, and no product is needed.
+        let q = if self.delta == 0.0 {
+            q_e
+        } else {
+            // One shared range reduction: libm's sincos gives sin's and cos's bits (a test
+            // in `math` checks it).
+            let (s_half, c_half) = libm::sincos(0.5 * self.delta);
+            Quat::new(c_half, 0.0, 0.0, s_half) * q_e
+        };
+        self.q = q.normalized();
         step
     }
 
@@ -787,9 +840,8 @@ impl Robust {
     }
 
     /// Corrects heading from one magnetometer reading; true when it was used.
-    fn correct_heading(&mut self, dt: f64, m: Vec3) -> bool {
+    fn correct_heading(&mut self, dt: f64, m: Vec3, q_e: Quat) -> bool {
         let s = self.settings;
-        let q_e = self.q_inc * self.q_gyr;
         // The raw reading in E′, its norm and dip: computed once for the reference, the
         // tests, the new-field candidate and the correction.
         let raw = q_e.rotate(m);
@@ -810,7 +862,7 @@ impl Robust {
             Some(m)
         } else {
             self.hard_iron_on = false;
-            self.estimate_hard_iron(dt, m);
+            self.estimate_hard_iron(dt, m, q_e);
             None
         };
         self.mag_disturbed = field.is_none();
@@ -897,7 +949,7 @@ impl Robust {
 
     /// One step of the hard-iron estimate: the reading minus the reference field seen at
     /// the current orientation. Switches compensation on once consistent long enough.
-    fn estimate_hard_iron(&mut self, dt: f64, m: Vec3) {
+    fn estimate_hard_iron(&mut self, dt: f64, m: Vec3, q_e: Quat) {
         let s = self.settings;
         if s.hard_iron_time <= 0.0 {
             return;
@@ -914,7 +966,6 @@ impl Robust {
         self.hi_lp = self.hi_lp + (inst - self.hi_lp) * k;
         self.hi_spread += ((inst - self.hi_lp).norm_squared() - self.hi_spread) * k;
         let tol = 0.5 * s.mag_norm_th * self.ref_norm;
-        let q_e = self.q_inc * self.q_gyr;
         if self.hi_spread.sqrt() < tol && self.accepts(q_e.rotate(m - self.hi_lp)) {
             self.hi_clock += dt;
             if self.hi_clock >= s.hard_iron_time {
@@ -970,6 +1021,57 @@ mod tests {
         let a = est.rotate_inverse(up);
         let b = truth.rotate_inverse(up);
         libm::atan2(a.cross(b).norm(), a.dot(b))
+    }
+
+    /// The series for `exp(−x) (cos x, sin x)` against libm's `exp` and `sincos`, term
+    /// for term of the readable form, over its range (x from 1e-9 to 1/32, log-uniform,
+    /// and the ends): each within 2⁻⁵¹ (relative for `E S`); past the range it declines.
+    /// Against 200-bit arithmetic (mpmath, same x) the series is the closer of the two:
+    /// at most 0.27 and 0.73 units of 2⁻⁵² relative, the libm form 0.73 and 1.13, so the
+    /// bound is their two errors.
+    #[test]
+    #[cfg_attr(miri, ignore = "long loops: too slow under Miri")]
+    fn the_low_pass_coefficient_series_is_the_libm_form() {
+        let mut u = crate::math::test_uniform(31);
+        let (mut worst_c, mut worst_s) = (0.0f64, 0.0f64);
+        for i in 0..20000 {
+            let x = match i {
+                0 => f64::MIN_POSITIVE,
+                1 => 1.0 / 32.0 - f64::EPSILON / 32.0,
+                _ => 10f64.powf(-9.0 + (9.0 - 32f64.log10()) * 0.5 * (u() + 1.0)),
+            };
+            let (sc, ss) = exp_turn_series(x).expect("within the series' range");
+            let (lc, ls) = exp_turn(x);
+            worst_c = worst_c.max((sc - lc).abs());
+            worst_s = worst_s.max((ss - ls).abs() / ls);
+        }
+        assert!(
+            worst_c <= 2.0 * f64::EPSILON && worst_s <= 2.0 * f64::EPSILON,
+            "E C {worst_c:e}, E S {worst_s:e}"
+        );
+        assert_eq!(exp_turn_series(1.0 / 32.0), None);
+        assert_eq!(exp_turn_series(f64::NAN), None);
+    }
+
+    /// A state holding libm's coefficients for its dt and τ (a snapshot written before
+    /// the series) is valid; coefficients 1e-12 away from their dt and τ's are not.
+    #[test]
+    fn coefficients_from_before_the_series_stay_valid() {
+        let mut f = Butterworth::default();
+        f.settle(Vec3::new(0.1, -0.2, 9.8));
+        let mut differ = 0;
+        for (dt, tau) in [(0.0035, 3.0), (0.01, 0.5), (0.004, 0.13), (0.0071, 1.7), (0.02, 0.9)] {
+            f.coefficients(dt, tau);
+            assert!(f.valid());
+            let (ec, es) = exp_turn(dt / tau);
+            let old =
+                Butterworth { ee: ec + es, ev: es * tau, ve: -2.0 * es / tau, vv: ec - es, ..f.clone() };
+            assert!(old.valid(), "dt {dt}, tau {tau}");
+            differ += usize::from(old != f);
+            assert!(!Butterworth { ev: f.ev * (1.0 + 1e-12), ..f.clone() }.valid());
+            assert!(!Butterworth { vv: f.vv * (1.0 - 1e-12), ..f.clone() }.valid());
+        }
+        assert!(differ > 0, "libm's coefficients were the series' in every case");
     }
 
     /// One step is the flow of `ÿ = ω² (x − y) − 2ζω ẏ` (ζ = 1/√2, ω = √2/τ) over dt with
