@@ -166,6 +166,30 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
     if cos > 1.0 - 1e-12 {
         return (q1.scale(1.0 - h) + q2.scale(h)).normalized();
     }
+    let (w1, w2) = slerp_weights(cos, h);
+    (q1.scale(w1) + q2.scale(w2)).normalized()
+}
+
+/// `SLERP(1, r, h)`: [`slerp`] from the identity, whose dot product with `r` is `r.w`
+/// and whose terms are the weight alone. SLERP is left-invariant
+/// (`SLERP(q ⊗ a, q ⊗ b, h) = q ⊗ SLERP(a, b, h)` for a unit `q`: both arcs' angle is
+/// `a·b`), so `SLERP(q_g, q_g ⊗ Δq, h) = q_g ⊗ SLERP(1, Δq, h)`; a test compares the
+/// two sides.
+#[inline(always)]
+pub fn slerp_from_identity(r: Quat, h: f64) -> Quat {
+    let r = if r.w < 0.0 { r.scale(-1.0) } else { r };
+    let cos = r.w;
+    if cos > 1.0 - 1e-12 {
+        return Quat::new((1.0 - h) + h * r.w, h * r.x, h * r.y, h * r.z).normalized();
+    }
+    let (w1, w2) = slerp_weights(cos, h);
+    Quat::new(w1 + w2 * r.w, w2 * r.x, w2 * r.y, w2 * r.z).normalized()
+}
+
+/// [`slerp`]'s weights `(sin((1 − h)ω)/sin ω, sin(hω)/sin ω)` for `cos ω` in
+/// `[0, 1 − 1e-12]`: the series, or [`slerp_weights_by_acos`].
+#[inline(always)]
+fn slerp_weights(cos: f64, h: f64) -> (f64, f64) {
     let s2 = (1.0 - cos) * (1.0 + cos);
     if s2 < 1.0 / 400.0 {
         let a = asin_over(s2); // ω / sin ω
@@ -173,17 +197,17 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
         if x2 < 1.0 / 256.0 {
             let (c_h, sinc_h) = cos_and_sinc(x2);
             let w2 = h * a * sinc_h;
-            return (q1.scale(c_h - cos * w2) + q2.scale(w2)).normalized();
+            return (c_h - cos * w2, w2);
         }
     }
-    slerp_by_acos(q1, q2, cos, h)
+    slerp_weights_by_acos(cos, h)
 }
 
 /// [`slerp`]'s weights from `ω = acos(q1·q2)` and one `sincos`, for `q2` on the shorter
 /// arc and `cos = q1·q2` under `1 − 1e-12`.
 #[cold]
 #[inline(never)]
-fn slerp_by_acos(q1: Quat, q2: Quat, cos: f64, h: f64) -> Quat {
+fn slerp_weights_by_acos(cos: f64, h: f64) -> (f64, f64) {
     let omega = libm::acos(cos);
     // sin ω from cos ω (ω in [0, π/2] after the flip): one square root instead of a
     // sine, and accurate near ω = 0 where it is formed as (1 − cos)(1 + cos).
@@ -193,7 +217,15 @@ fn slerp_by_acos(q1: Quat, q2: Quat, cos: f64, h: f64) -> Quat {
     // cancellation but absolutely, where its q1 term is that small anyway.
     let (s_h, c_h) = libm::sincos(h * omega);
     let w2 = s_h * r;
-    (q1.scale(c_h - cos * w2) + q2.scale(w2)).normalized()
+    (c_h - cos * w2, w2)
+}
+
+/// [`slerp`] by [`slerp_weights_by_acos`] whatever the angle: the readable form the
+/// series is tested against.
+#[cfg(test)]
+fn slerp_by_acos(q1: Quat, q2: Quat, cos: f64, h: f64) -> Quat {
+    let (w1, w2) = slerp_weights_by_acos(cos, h);
+    (q1.scale(w1) + q2.scale(w2)).normalized()
 }
 
 /// `SLERP(q1, q2, ½)`: the normalised sum along the shorter arc. Equal to [`slerp`] with
@@ -541,7 +573,7 @@ impl Gmvdk {
         let q_g = (self.q + self.q.mul_pure(omega_b).scale(0.5 * dt)).try_normalized()?;
 
         // α from stillness (Appendix B.1).
-        let c = 1.0 - libm::exp(-dt / st.activity_tau);
+        let c = crate::math::one_minus_exp_neg(dt / st.activity_tau);
         let ms_gyro = self.ms_gyro + c * (omega_b.norm_squared() - self.ms_gyro);
         let mut g0 = self.g0;
         let mut ms_accel = self.ms_accel;
@@ -562,18 +594,20 @@ impl Gmvdk {
 
         // [3]-[6]: accelerometer pipeline.
         let mut a_init = self.a_init;
-        // (14), q_sa = SLERP(q_g, q_ga, α), is formed below with (17).
-        let q_ga = accel.map(|a0| {
+        // (10)-(13): q_ga = q_g ⊗ Δq_a. Kept as Δq_a: (14), q_sa = SLERP(q_g, q_ga, α), is
+        // q_g ⊗ SLERP(1, Δq_a, α) ([`slerp_from_identity`]), formed below with (17).
+        let dq_a = accel.map(|a0| {
             step.used_accel = true;
             let a_ref = *a_init.get_or_insert(Vec3::new(0.0, 0.0, a0.norm()));
             let a_pred = q_g.rotate_inverse(a_ref); // (9)
-            q_g * Quat::from_two_vectors(a0, a_pred) // (10)-(13)
+            Quat::from_two_vectors(a0, a_pred) // (10)-(13)
         });
 
         // [3']-[6']: magnetometer pipeline with μ_K (Appendix B.2).
         let mut m_init = self.m_init;
         let mut mu1 = None;
-        let q_sm = match mag {
+        // SLERP(1, Δq_m, μ_K), with q_sm = q_g ⊗ it.
+        let sm = match mag {
             Some(m0) if step.used_accel => {
                 step.used_mag = true;
                 let m_ref = *m_init.get_or_insert(self.q.rotate(m0));
@@ -588,18 +622,20 @@ impl Gmvdk {
                 trust = Trust { alpha, mu_ka, mu_km, mu_k };
                 mu1 = Some(m1);
                 let m_pred = q_g.rotate_inverse(m_ref);
-                let q_gm = q_g * Quat::from_two_vectors(m0, m_pred);
-                Some(slerp(q_g, q_gm, mu_k))
+                let dq_m = Quat::from_two_vectors(m0, m_pred); // q_gm = q_g ⊗ Δq_m
+                Some(slerp_from_identity(dq_m, mu_k))
             }
             _ => None,
         };
 
-        // [7]: second-tier SLERP (17), q_out = SLERP(q_sm, q_sa, ½).
-        let q_out = match (q_ga, q_sm) {
-            (Some(q_ga), Some(q_sm)) => slerp_half(q_sm, slerp(q_g, q_ga, alpha)),
+        // [7]: second-tier SLERP (17), q_out = SLERP(q_sm, q_sa, ½)
+        //   = q_g ⊗ SLERP(SLERP(1, Δq_m, μ_K), SLERP(1, Δq_a, α), ½) (left invariance):
+        // one product with q_g instead of one per pipeline.
+        let q_out = match (dq_a, sm) {
+            (Some(dq_a), Some(sm)) => q_g * slerp_half(sm, slerp_from_identity(dq_a, alpha)),
             // No magnetometer: q_sm = q_g, so q_sa and q_out lie on one arc from q_g and
             // SLERP(q_g, SLERP(q_g, q_ga, α), ½) = SLERP(q_g, q_ga, α/2): one SLERP.
-            (Some(q_ga), None) => slerp(q_g, q_ga, 0.5 * alpha),
+            (Some(dq_a), None) => q_g * slerp_from_identity(dq_a, 0.5 * alpha),
             // No accelerometer: q_sa = q_sm = q_g.
             (None, _) => q_g,
         };
@@ -677,6 +713,39 @@ mod tests {
             }
         }
         assert!(worst <= 4e-16, "{worst}");
+    }
+
+    /// Left invariance as the update uses it: `SLERP(q_g, q_g ⊗ Δq, h)` (the paper's
+    /// (14)) against `q_g ⊗ SLERP(1, Δq, h)`, and (17)'s half SLERP of two such, over
+    /// random q_g and Δq from 1e-9 rad to a half turn (both sides of the series' range,
+    /// the linear end and the flip of a negative Δq.w), h in [0, 1]: each component
+    /// within 1e-15.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn slerp_from_identity_is_slerp_from_q_g() {
+        let mut u = crate::math::test_uniform(17);
+        let mut unit = || Quat::new(u(), u(), u(), u()).normalized();
+        let mut v = crate::math::test_uniform(18);
+        let (mut worst, mut worst_half) = (0.0f64, 0.0f64);
+        for i in 0..20000 {
+            let q_g = unit();
+            let angle = 10f64.powf(-9.0 + 9.5 * 0.5 * (v() + 1.0)).min(core::f64::consts::PI);
+            let mut dq = Quat::from_axis_angle(Vec3::new(v(), v(), v()), angle);
+            if i % 3 == 0 {
+                dq = dq.scale(-1.0);
+            }
+            let h = 0.5 * (v() + 1.0);
+            let (paper, ours) = (slerp(q_g, q_g * dq, h), q_g * slerp_from_identity(dq, h));
+            let dm = Quat::from_axis_angle(Vec3::new(v(), v(), v()), 0.3 * angle);
+            let half_paper = slerp_half(slerp(q_g, q_g * dm, 1.0 - h), paper);
+            let half_ours = q_g * slerp_half(slerp_from_identity(dm, 1.0 - h), slerp_from_identity(dq, h));
+            for (a, b, w) in [(paper, ours, &mut worst), (half_paper, half_ours, &mut worst_half)] {
+                for (x, y) in [(a.w, b.w), (a.x, b.x), (a.y, b.y), (a.z, b.z)] {
+                    *w = w.max((x - y).abs());
+                }
+            }
+        }
+        assert!(worst <= 1e-15 && worst_half <= 1e-15, "{worst:e} {worst_half:e}");
     }
 
     #[test]
