@@ -77,7 +77,7 @@ impl Quat {
     }
 
     /// The quaternion divided by its norm. The caller makes sure the norm is not zero.
-    #[inline]
+    #[inline(always)]
     pub fn normalized(self) -> Quat {
         self.scale(super::inv_sqrt(self.norm_squared()))
     }
