@@ -596,12 +596,15 @@ impl Gmvdk {
         let mut a_init = self.a_init;
         // (10)-(13): q_ga = q_g ⊗ Δq_a. Kept as Δq_a: (14), q_sa = SLERP(q_g, q_ga, α), is
         // q_g ⊗ SLERP(1, Δq_a, α) ([`slerp_from_identity`]), formed below with (17).
-        let dq_a = accel.map(|a0| {
-            step.used_accel = true;
-            let a_ref = *a_init.get_or_insert(Vec3::new(0.0, 0.0, a0.norm()));
-            let a_pred = q_g.rotate_inverse(a_ref); // (9)
-            Quat::from_two_vectors(a0, a_pred) // (10)-(13)
-        });
+        let dq_a = match accel {
+            Some(a0) => {
+                step.used_accel = true;
+                let a_ref = *a_init.get_or_insert(Vec3::new(0.0, 0.0, a0.norm()));
+                let a_pred = q_g.rotate_inverse(a_ref); // (9)
+                Some(Quat::from_two_vectors(a0, a_pred)) // (10)-(13)
+            }
+            None => None,
+        };
 
         // [3']-[6']: magnetometer pipeline with μ_K (Appendix B.2).
         let mut m_init = self.m_init;
