@@ -64,6 +64,7 @@ impl RestDetector {
     /// gyroscope must be below `th.gyro` itself *or* within `th.gyro` of `bias`, so a bias
     /// larger than the threshold that the filter tracks (a drifting one) still lets rest
     /// be found. With a zero bias this is `update`, bit for bit.
+    #[inline(always)]
     pub fn update_with_bias(
         &mut self,
         dt: f64,
