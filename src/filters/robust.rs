@@ -448,6 +448,19 @@ impl Butterworth {
 
 const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
 
+/// `Quat::from_two_vectors(a, UP)` with the terms that multiply UP's zeros left out:
+/// with `f = a/|a|`, `cos = f·UP = f_z` and `f × UP = (f_y, −f_x, 0)`. The same bits
+/// except for the sign of a zero component (a test checks). Half a turn (a pointing down)
+/// goes to the general function.
+#[inline(always)]
+fn to_up(a: Vec3) -> Quat {
+    let f = a.normalized();
+    if f.z < -1.0 + 1e-12 {
+        return Quat::from_two_vectors(a, UP);
+    }
+    Quat::new(1.0 + f.z, f.y, -f.x, 0.0).normalized()
+}
+
 /// A field counts towards confirming the reference, or towards a new one, only while the
 /// sensor turns at least this fast (rad/s; VQF's `magNewMinGyr`, 20 °/s): turning is what
 /// tells a field fixed in the room from a magnet fixed to the sensor.
@@ -820,7 +833,7 @@ impl Robust {
         if a_e.norm_squared() < 1e-12 {
             return;
         }
-        let c = Quat::from_two_vectors(a_e, UP);
+        let c = to_up(a_e);
         // While the low-pass still averages its first readings the corrections undo the
         // start's error, not a bias's drift: nothing is learned from them.
         if !self.rest.at_rest() && s.bias_tau_motion > 0.0 && !self.acc_lp.warming {
@@ -1021,6 +1034,26 @@ mod tests {
         let a = est.rotate_inverse(up);
         let b = truth.rotate_inverse(up);
         libm::atan2(a.cross(b).norm(), a.dot(b))
+    }
+
+    /// [`to_up`] is `Quat::from_two_vectors(a, UP)` bit for bit (zeros compared by value)
+    /// over random directions, including near and at half a turn.
+    #[test]
+    #[cfg_attr(miri, ignore = "long loops: too slow under Miri")]
+    fn to_up_is_from_two_vectors_to_up() {
+        let mut u = crate::math::test_uniform(23);
+        for i in 0..20000 {
+            let a = match i {
+                0 => Vec3::new(0.0, 0.0, -9.81),
+                1 => Vec3::new(1e-7, 0.0, -9.81),
+                2 => Vec3::new(0.0, 0.0, 3.0),
+                _ => Vec3::new(u(), u(), u()) * (10.0 * (u() + 1.0)),
+            };
+            let (got, want) = (to_up(a), Quat::from_two_vectors(a, UP));
+            for (x, y) in [(got.w, want.w), (got.x, want.x), (got.y, want.y), (got.z, want.z)] {
+                assert!(x == y, "{a:?}: {got:?} vs {want:?}");
+            }
+        }
     }
 
     /// The series for `exp(−x) (cos x, sin x)` against libm's `exp` and `sincos`, term
