@@ -305,7 +305,7 @@ fn exp_turn(x: f64) -> (f64, f64) {
 /// and `sincos` (docs/PERFORMANCE.md).
 #[inline(always)]
 fn exp_turn_series(x: f64) -> Option<(f64, f64)> {
-    if x.is_nan() || x >= 1.0 / 32.0 {
+    if !(0.0..1.0 / 32.0).contains(&x) {
         return None;
     }
     // Real parts of (−1 + i)ⁿ / n!: 1, −1, 0, 1/3, −1/6, 1/30, 0, −1/630, 1/2520, −1/22680.
@@ -1083,6 +1083,7 @@ mod tests {
             "E C {worst_c:e}, E S {worst_s:e}"
         );
         assert_eq!(exp_turn_series(1.0 / 32.0), None);
+        assert_eq!(exp_turn_series(-1e-3), None);
         assert_eq!(exp_turn_series(f64::NAN), None);
     }
 
@@ -1096,9 +1097,16 @@ mod tests {
         for (dt, tau) in [(0.0035, 3.0), (0.01, 0.5), (0.004, 0.13), (0.0071, 1.7), (0.02, 0.9)] {
             f.coefficients(dt, tau);
             assert!(f.valid());
-            let (ec, es) = exp_turn(dt / tau);
-            let old =
-                Butterworth { ee: ec + es, ev: es * tau, ve: -2.0 * es / tau, vv: ec - es, ..f.clone() };
+            // The coefficients exactly as the code before the series computed them.
+            let e = libm::exp(-dt / tau);
+            let (s, c) = libm::sincos(dt / tau);
+            let old = Butterworth {
+                ee: e * (c + s),
+                ev: e * s * tau,
+                ve: -2.0 * e * s / tau,
+                vv: e * (c - s),
+                ..f.clone()
+            };
             assert!(old.valid(), "dt {dt}, tau {tau}");
             differ += usize::from(old != f);
             assert!(!Butterworth { ev: f.ev * (1.0 + 1e-12), ..f.clone() }.valid());
