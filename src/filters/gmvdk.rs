@@ -172,8 +172,8 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
 
 /// `SLERP(1, r, h)`: [`slerp`] from the identity, whose dot product with `r` is `r.w`
 /// and whose terms are the weight alone. SLERP is left-invariant
-/// (`SLERP(q ⊗ a, q ⊗ b, h) = q ⊗ SLERP(a, b, h)` for a unit `q`: both arcs' angle is
-/// `a·b`), so `SLERP(q_g, q_g ⊗ Δq, h) = q_g ⊗ SLERP(1, Δq, h)`; a test compares the
+/// (`SLERP(q ⊗ a, q ⊗ b, h) = q ⊗ SLERP(a, b, h)` for a unit `q`, since
+/// `(q ⊗ a)·(q ⊗ b) = a·b`), so `SLERP(q_g, q_g ⊗ Δq, h) = q_g ⊗ SLERP(1, Δq, h)`; a test compares the
 /// two sides. At exactly half a turn (`r.w = 0`) both arcs are shortest: this form
 /// takes `r`'s, the paper's form whichever the rounding of `q_g·(q_g ⊗ Δq)` picks.
 #[inline(always)]
