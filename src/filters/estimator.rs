@@ -32,8 +32,16 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     fn restart(&mut self, settings: Self::Settings) {
         *self = Self::create(settings);
     }
-    /// One update in the native frame; `None` (and no change) on numerical failure.
+    /// One update in the native frame; `None` (and no change) on numerical failure,
+    /// except for a kind with [`Estimator::FAILURE_RESTARTS`].
     fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step>;
+    /// True for a kind whose update keeps no copy of its state to put back: an argument
+    /// at its update shows that no sample within the runner's bounds makes it fail, and a
+    /// failure beyond them (a core driven directly) starts it over from the orientation
+    /// it had, with its settings, so that good samples bring it back. Read by the shared
+    /// tests (`filters::tests`), which hold each kind to its rule.
+    #[cfg_attr(not(test), allow(dead_code))]
+    const FAILURE_RESTARTS: bool = false;
     /// True for kinds with an [`Estimator::update_usual`] of their own; the others'
     /// updates call functions anyway, and the lifecycle calls their `update` directly.
     const USUAL: bool = false;

@@ -761,24 +761,66 @@ impl Robust {
         self.heading_var.codec(c);
     }
 
-    /// Out of line for the reason given at `Complementary::update`.
+    /// One step, in place: `None` when it left the orientation, the bias, δ or the heading
+    /// covariance non-finite, which no sample the filter's runner accepts can cause (the
+    /// argument follows). Then the filter starts over from the orientation it had before
+    /// the step, keeping its settings and a finite bias (`Robust::restart`). Out of line
+    /// for the reason given at `Complementary::update`.
+    ///
+    /// No copy of the state is kept to put back: the copy was the largest single cost of
+    /// the update (docs/PERFORMANCE.md). It is not needed, because from any state
+    /// `Robust::valid` accepts, with settings in their ranges, and a sample within the
+    /// runner's bounds (dt in [1e-9, 1e6] s; each reading's squared norm under
+    /// (1e4 rad/s)², (1e5 m/s²)² and (1e12)², and the accelerometer's and magnetometer's
+    /// at least `f64::MIN_POSITIVE`), every value the step computes is finite:
+    /// - Every low-pass (rest detector, bias at rest, magnetic reference and candidate,
+    ///   hard iron) moves by a gain `dt / (τ + dt)` in [0, 1] towards a bounded input:
+    ///   it stays between its old value and its input. The Butterworth low-pass is the
+    ///   exact flow of a stable system (its coefficients have |·| ≤ √2 max(1, τ, 2/τ)),
+    ///   so its state stays within a constant factor of its inputs and its own bound.
+    /// - Products are bounded by the readings' bounds: the largest squares are the
+    ///   magnetometer's, below 1e30 (the hard-iron spread of a field 10 times the bound);
+    ///   `dt² P_bb` is below 1e12 · 1e10.
+    /// - Every division and normalisation has a divisor bounded away from zero:
+    ///   quaternions are products of unit ones; the accelerometer's earth vector is tested
+    ///   (`1e-12`), the motion-bias scale divides by a norm only when it exceeds a
+    ///   non-negative limit; the low-pass gains divide by τ + dt > 0; a magnetometer
+    ///   reading's rotated norm is its own (nonzero) norm to rounding, and a difference
+    ///   of fields that vanishes gives a NaN dip that fails every comparison and is never
+    ///   stored.
+    /// - Angles: `sin`/`cos` of any finite argument (|ω| dt up to 2e11 rad) are finite;
+    ///   `asin` sees a clamped argument.
+    /// - Clocks grow by dt at most per step and saturate in floating point before
+    ///   overflowing.
+    ///
+    /// A randomised test (`no_accepted_sample_makes_the_step_non_finite`) steps forged
+    /// states at their bounds with samples at theirs and settings at their range ends.
     #[inline(never)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        // Stepped in place, with a copy of the state kept to put back on failure: a step
-        // on a copy then assigned back reads the copy, just written field by field, with
-        // wide loads, which cannot be forwarded from the narrower stores and wait for
-        // them to retire.
-        let before = self.clone();
+        let q = self.q;
         let step = self.step(dt, gyro, accel, mag);
         if !(self.q.is_finite()
             && self.bias.is_finite()
             && self.delta.is_finite()
             && self.heading_var.finite())
         {
-            *self = before;
+            self.restart(q);
             return None;
         }
         Some(step)
+    }
+
+    /// The guard's answer to a non-finite step (see [`Robust::update`]; only readings
+    /// outside the runner's bounds reach it): the orientation `q` from before the step, the
+    /// settings and a finite bias are kept; the rest starts as new, with the heading
+    /// uncertainty that of a lost heading (H4), so good samples bring the filter back.
+    #[cold]
+    #[inline(never)]
+    fn restart(&mut self, q: Quat) {
+        let bias = if self.bias.is_finite() { self.bias } else { Vec3::ZERO };
+        *self = Robust { bias, ..Robust::new(self.settings) };
+        self.set_quaternion(q);
+        self.heading_var.lost();
     }
 
     fn step(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Step {
@@ -1054,6 +1096,175 @@ mod tests {
                 assert!(x == y, "{a:?}: {got:?} vs {want:?}");
             }
         }
+    }
+
+    /// A magnitude at the ends or in the middle of `[0, bound)`, of either sign when
+    /// `signed`: what the randomised tests below put in states, settings and samples.
+    fn extreme(u: &mut dyn FnMut() -> f64, bound: f64, signed: bool) -> f64 {
+        let r = 0.5 * (u() + 1.0);
+        let x = match (4.0 * (u() + 1.0)) as usize {
+            0 => 0.0,
+            1 => f64::MIN_POSITIVE,
+            2 => bound * (1.0 - 1e-9),
+            3 => bound * 0.999,
+            4 => bound * r,
+            5 => bound * 10f64.powf(-15.0 * r),
+            6 => bound * 10f64.powf(-300.0 * r),
+            _ => bound * 1e-6 * r,
+        };
+        if signed && u() < 0.0 {
+            -x
+        } else {
+            x
+        }
+    }
+
+    /// Writes a value at the ends of its range into every field a snapshot holds, in the
+    /// codec's order: `bounds[i]` is the i-th number's bound, negative for one that is
+    /// never negative.
+    struct Forge<'a, U: FnMut() -> f64> {
+        u: &'a mut U,
+        bounds: &'a [f64],
+        i: usize,
+    }
+
+    impl<U: FnMut() -> f64> Codec for Forge<'_, U> {
+        fn u64(&mut self, v: &mut u64) {
+            // Only `mag_count` (bools are below).
+            *v = [0, 1, 1000, u32::MAX as u64][(2.0 * ((self.u)() + 1.0)) as usize];
+        }
+        fn f64(&mut self, v: &mut f64) {
+            let b = self.bounds[self.i];
+            *v = extreme(self.u, b.abs(), b > 0.0);
+            self.i += 1;
+        }
+        fn bool(&mut self, v: &mut bool) {
+            *v = (self.u)() < 0.0;
+        }
+        fn fail(&mut self) {
+            unreachable!()
+        }
+    }
+
+    /// The argument at [`Robust::update`], tried: states at the ends of what `valid`
+    /// accepts (every field forged, then the quaternions, the low-pass's coefficients and
+    /// the heading covariance made consistent), settings at the ends of their ranges, and
+    /// samples at the ends of the runner's bounds (dt from 1e-9 to 1e6 s, each component
+    /// under its bound, squared norms from `f64::MIN_POSITIVE`), stepped 20 times from each
+    /// of 4,000 states: every number of the state stays finite after every step.
+    #[test]
+    #[cfg_attr(miri, ignore = "long loops: too slow under Miri")]
+    fn no_accepted_sample_makes_the_step_non_finite() {
+        use crate::filters::params::{Settings, MAX_PARAMS};
+        use crate::filters::{MAX_ACCEL, MAX_DT, MAX_GYRO, MAX_MAG, MIN_DT};
+        use core::f64::consts::PI;
+        let mut u = crate::math::test_uniform(31);
+        let (rate, acc, mag) = (10.0 * MAX_GYRO, 10.0 * MAX_ACCEL, 10.0 * MAX_MAG);
+        let norm = 3f64.sqrt() * MAX_MAG;
+        #[rustfmt::skip]
+        let bounds = [
+            1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, PI, 1.0, 1.0, 1.0, 1.0, // q_gyr, q_inc, δ, q
+            rate, rate, rate, // bias
+            1.0, 1.0, 1.0, 1.0, 1.0, 1.0, acc, acc, acc, 1e12, 1e12, 1e12, -1e6, // low-pass
+            rate, rate, rate, acc, acc, acc, acc, acc, acc, -1e300, // rest detector
+            -norm, PI, mag, mag, mag, -(2.0 * mag) * (2.0 * mag), -1e300, mag, mag, mag, // magnetic
+            -MAG_CONFIRM_TIME, -norm, PI, -1e300, // reference confirmation, candidate
+            1.0, 1.0, 1.0, // heading covariance
+        ];
+        let unit = |u: &mut dyn FnMut() -> f64| Quat::new(u(), u(), u(), u()).normalized();
+        let reading = |u: &mut dyn FnMut() -> f64, bound: f64| loop {
+            let mut c = || extreme(&mut *u, bound, true);
+            let v = Vec3::new(c(), c(), c());
+            if v.norm_squared() >= f64::MIN_POSITIVE {
+                return v;
+            }
+        };
+        for case in 0..4000 {
+            let mut slots = [0.0; MAX_PARAMS];
+            RobustSettings::default().write_slots(&mut slots);
+            for p in PARAMS {
+                let r = 0.5 * (u() + 1.0);
+                slots[p.id as usize] = match (5.0 * r) as usize {
+                    0 => p.min,
+                    1 => p.max,
+                    2 if p.zero_off => 0.0,
+                    3 if p.min > 0.0 => p.min * (p.max / p.min).powf(0.5 * (u() + 1.0)),
+                    _ => p.default,
+                };
+            }
+            let settings = RobustSettings::from_slots(&slots);
+            let mut f = Robust::new(settings);
+            f.codec(&mut Forge { u: &mut u, bounds: &bounds, i: 0 });
+            (f.q_gyr, f.q_inc, f.q) = (unit(&mut u), unit(&mut u), unit(&mut u));
+            let dt0 = MIN_DT * (MAX_DT / MIN_DT).powf(0.5 * (u() + 1.0));
+            f.acc_lp.coefficients(dt0, settings.tau_acc);
+            let h = &mut f.heading_var;
+            h.p_ee = extreme(&mut u, HEADING_VAR_MAX, false);
+            h.p_bb = extreme(&mut u, rate * rate, false);
+            h.p_eb = (h.p_ee * h.p_bb).sqrt() * u();
+            assert!(f.valid(), "case {case}: forged state not valid: {f:?}");
+            for _ in 0..20 {
+                let dt = match (4.0 * (u() + 1.0)) as usize {
+                    0 => MIN_DT,
+                    1 => MAX_DT,
+                    _ => MIN_DT * (MAX_DT / MIN_DT).powf(0.5 * (u() + 1.0)),
+                };
+                let gyro = Vec3::new(
+                    extreme(&mut u, MAX_GYRO, true),
+                    extreme(&mut u, MAX_GYRO, true),
+                    extreme(&mut u, MAX_GYRO, true),
+                );
+                let accel = (u() < 0.6).then(|| reading(&mut u, MAX_ACCEL));
+                let m = (u() < 0.6).then(|| reading(&mut u, MAX_MAG));
+                let before = f.clone();
+                f.step(dt, gyro, accel, m);
+                let mut check = Finite(true);
+                f.codec(&mut check);
+                assert!(
+                    check.0,
+                    "case {case}: dt {dt}, {gyro:?}, {accel:?}, {m:?} from {before:?} gave {f:?}"
+                );
+            }
+        }
+    }
+
+    /// A codec that finds whether every number is finite.
+    struct Finite(bool);
+
+    impl Codec for Finite {
+        fn u64(&mut self, _: &mut u64) {}
+        fn f64(&mut self, v: &mut f64) {
+            self.0 &= v.is_finite();
+        }
+        fn fail(&mut self) {}
+    }
+
+    /// The guard: readings beyond the runner's bounds that do make the step non-finite
+    /// return `None`, keep the orientation from before the step, the settings and the
+    /// bias, and good samples then bring the filter back.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn a_non_finite_step_starts_over_from_the_orientation_before_it() {
+        let q = Quat::from_axis_angle(Vec3::new(1.0, 2.0, 3.0).normalized(), 0.7);
+        let mut f = filter(RobustSettings::default(), q);
+        f.bias = Vec3::new(0.01, -0.02, 0.005);
+        assert!(f.update(DT, Vec3::new(f64::NAN, 0.0, 0.0), Some(q.rotate_inverse(G)), None).is_none());
+        assert_eq!(f.quaternion(), q);
+        assert_eq!(f.bias(), Vec3::new(0.01, -0.02, 0.005));
+        assert_eq!(f.settings, RobustSettings::default());
+        assert_eq!(f.heading_sigma(), HEADING_VAR_MAX.sqrt());
+        let mut good = f.clone();
+        good.restart(q);
+        assert_eq!(f, good);
+        // Still at q, with the gyroscope reading the bias.
+        let (a, m) = (q.rotate_inverse(G), q.rotate_inverse(FIELD));
+        for _ in 0..500 {
+            let step = f.update(DT, Vec3::new(0.01, -0.02, 0.005), Some(a), Some(m));
+            assert!(step.is_some_and(|s| s.used_accel && s.used_mag));
+        }
+        assert!(inclination(f.quaternion(), q) < 1e-3);
+        assert!(f.heading_sigma() < 0.1);
+        assert!(f.valid());
     }
 
     /// The series for `exp(−x) (cos x, sin x)` against libm's `exp` and `sincos`, term
@@ -1492,6 +1703,8 @@ mod estimator_impl {
     use crate::filters::Diagnostics;
 
     estimator!(impl for Robust { settings: RobustSettings, native: Enu, own_startup: false } {
+        const FAILURE_RESTARTS: bool = true;
+
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Robust::update(self, dt, gyro, accel, mag)
