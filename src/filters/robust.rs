@@ -451,14 +451,16 @@ const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
 /// `Quat::from_two_vectors(a, UP)` with the terms that multiply UP's zeros left out:
 /// with `f = a/|a|`, `cos = f·UP = f_z` and `f × UP = (f_y, −f_x, 0)`. The same bits
 /// except for the sign of a zero component (a test checks). Half a turn (a pointing down)
-/// goes to the general function.
+/// goes to the general function. For `|a|²` in `[1e-12, 1e30]`, as the update's earth
+/// vector is (`Robust::update`), both norms are in `inv_sqrt`'s fast range: `|f|² = 1`
+/// and `|[1 + f_z, f_y, −f_x, 0]|² = 2 (1 + f_z) > 2e-12`.
 #[inline(always)]
 fn to_up(a: Vec3) -> Quat {
-    let f = a.normalized();
+    let f = a.normalized_in_range();
     if f.z < -1.0 + 1e-12 {
         return Quat::from_two_vectors(a, UP);
     }
-    Quat::new(1.0 + f.z, f.y, -f.x, 0.0).normalized()
+    Quat::new(1.0 + f.z, f.y, -f.x, 0.0).normalized_in_range()
 }
 
 /// A field counts towards confirming the reference, or towards a new one, only while the
@@ -541,10 +543,6 @@ impl HeadingVariance {
     fn lost(&mut self) {
         self.p_ee = HEADING_VAR_MAX;
         self.p_eb = 0.0;
-    }
-
-    fn finite(&self) -> bool {
-        self.p_ee.is_finite() && self.p_eb.is_finite() && self.p_bb.is_finite()
     }
 
     /// What (H1)-(H4) can leave: variances in range, and a covariance (|P_eb|² ≤ P_ee P_bb,
@@ -761,18 +759,20 @@ impl Robust {
         self.heading_var.codec(c);
     }
 
-    /// One step, in place: `None` when it left the orientation, the bias, δ or the heading
-    /// covariance non-finite, which no sample the filter's runner accepts can cause (the
-    /// argument follows). Then the filter starts over from the orientation it had before
-    /// the step, keeping its settings and a finite bias (`Robust::restart`). Out of line
-    /// for the reason given at `Complementary::update`.
+    /// One step, in place: `None` when it left the orientation non-finite, which no sample
+    /// the filter's runner accepts can cause (the argument follows). Then the filter
+    /// starts over from the orientation it had before the step, keeping its settings and
+    /// a finite bias (`Robust::restart`). The orientation is the one value checked: a
+    /// non-finite bias or δ reaches it by the next step, and the heading covariance's
+    /// (H4) sets a NaN or infinite variance back to the lost heading's. Out of line for
+    /// the reason given at `Complementary::update`.
     ///
     /// No copy of the state is kept to put back: the copy was the largest single cost of
     /// the update (docs/PERFORMANCE.md). It is not needed, because from any state
     /// `Robust::valid` accepts, with settings in their ranges, and a sample within the
-    /// runner's bounds (dt in [1e-9, 1e6] s; each reading's squared norm under
-    /// (1e4 rad/s)², (1e5 m/s²)² and (1e12)², and the accelerometer's and magnetometer's
-    /// at least `f64::MIN_POSITIVE`), every value the step computes is finite:
+    /// runner's bounds (dt in [1e-9, 1e6] s; each component under 1e4 rad/s, 1e5 m/s²
+    /// and 1e12, and the accelerometer's and magnetometer's squared norms at least
+    /// `f64::MIN_POSITIVE`), every value the step computes is finite:
     /// - Every low-pass (rest detector, bias at rest, magnetic reference and candidate,
     ///   hard iron) moves by a gain `dt / (τ + dt)` in [0, 1] towards a bounded input:
     ///   it stays between its old value and its input. The Butterworth low-pass is the
@@ -782,8 +782,9 @@ impl Robust {
     ///   magnetometer's, below 1e30 (the hard-iron spread of a field 10 times the bound);
     ///   `dt² P_bb` is below 1e12 · 1e10.
     /// - Every division and normalisation has a divisor bounded away from zero:
-    ///   quaternions are products of unit ones; the accelerometer's earth vector is tested
-    ///   (`1e-12`), the motion-bias scale divides by a norm only when it exceeds a
+    ///   quaternions are products of unit ones (so their squared norms, near 1, are in
+    ///   `inv_sqrt`'s fast range, and are normalised without its range test); the
+    ///   accelerometer's earth vector is tested (`1e-12`), the motion-bias scale divides by a norm only when it exceeds a
     ///   non-negative limit; the low-pass gains divide by τ + dt > 0; a magnetometer
     ///   reading's rotated norm is its own (nonzero) norm to rounding, and a difference
     ///   of fields that vanishes gives a NaN dip that fails every comparison and is never
@@ -799,11 +800,7 @@ impl Robust {
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         let q = self.q;
         let step = self.step(dt, gyro, accel, mag);
-        if !(self.q.is_finite()
-            && self.bias.is_finite()
-            && self.delta.is_finite()
-            && self.heading_var.finite())
-        {
+        if !self.q.is_finite() {
             self.restart(q);
             return None;
         }
@@ -838,7 +835,7 @@ impl Robust {
             self.bias = self.bias + (self.rest.gyro_lp() - self.bias) * k_b;
             self.heading_var.bias_step(k_b, s.bias_sigma_rest);
         }
-        self.q_gyr = (self.q_gyr * rotation_of(gyro - self.bias, dt)).normalized();
+        self.q_gyr = (self.q_gyr * rotation_of(gyro - self.bias, dt)).normalized_in_range();
         self.heading_var.gyro_step(dt, &s);
         if let Some(a) = accel {
             step.used_accel = true;
@@ -860,7 +857,7 @@ impl Robust {
             let (s_half, c_half) = libm::sincos(0.5 * self.delta);
             Quat::new(c_half, 0.0, 0.0, s_half) * q_e
         };
-        self.q = q.normalized();
+        self.q = q.normalized_in_range();
         step
     }
 
@@ -891,7 +888,7 @@ impl Robust {
             }
             self.bias = b;
         }
-        self.q_inc = (c * self.q_inc).normalized();
+        self.q_inc = (c * self.q_inc).normalized_in_range();
     }
 
     /// Corrects heading from one magnetometer reading; true when it was used.

@@ -82,6 +82,17 @@ impl Quat {
         self.scale(super::inv_sqrt(self.norm_squared()))
     }
 
+    /// [`Quat::normalized`] for a quaternion whose squared norm the caller knows to lie in
+    /// [`super::inv_sqrt`]'s fast range, (1e-300, 1e300): a product of unit quaternions,
+    /// say. The same bits, without the range test. (A NaN or infinite squared norm gives
+    /// NaN components, for the caller's finiteness test.)
+    #[inline(always)]
+    pub(crate) fn normalized_in_range(self) -> Quat {
+        let n2 = self.norm_squared();
+        debug_assert!(!(n2 <= 1e-300 || n2 >= 1e300) || !n2.is_finite(), "|q|² = {n2}");
+        self.scale(super::inv_sqrt_in_range(n2))
+    }
+
     /// The quaternion divided by its norm, or `None` when the norm is zero, overflows or
     /// the result is not finite (the check every filter's update makes before it commits).
     #[inline]

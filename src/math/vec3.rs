@@ -42,6 +42,17 @@ impl Vec3 {
         self * super::inv_sqrt(self.norm_squared())
     }
 
+    /// [`Vec3::normalized`] for a vector whose squared norm the caller knows to lie in
+    /// [`super::inv_sqrt`]'s fast range, (1e-300, 1e300): the same bits, without the range
+    /// test. (A NaN or infinite squared norm gives NaN components, for the caller's
+    /// finiteness test.)
+    #[inline(always)]
+    pub(crate) fn normalized_in_range(self) -> Vec3 {
+        let n2 = self.norm_squared();
+        debug_assert!(!(n2 <= 1e-300 || n2 >= 1e300) || !n2.is_finite(), "|v|² = {n2}");
+        self * super::inv_sqrt_in_range(n2)
+    }
+
     /// True when all three components are finite (not NaN, not ±Inf); tested as
     /// [`crate::math::Quat::is_finite`] is.
     #[inline]
