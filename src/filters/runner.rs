@@ -20,10 +20,12 @@ use crate::math::{Frame, Quat, Vec3};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Common {
     pub gravity: f64,
-    /// Gyroscope full-scale range, or [`MAX_GYRO`] when none is set (rad/s).
-    pub gyro_limit: f64,
-    /// Accelerometer full-scale range, or [`MAX_ACCEL`] when none is set (m/s²).
-    pub accel_limit: f64,
+    /// The square of the gyroscope's full-scale range, or of [`MAX_GYRO`] when none is
+    /// set ((rad/s)²): the quick check compares squared norms with it.
+    gyro_limit2: f64,
+    /// The square of the accelerometer's full-scale range, or of [`MAX_ACCEL`] when none
+    /// is set ((m/s²)²).
+    accel_limit2: f64,
     /// dt above which a step is a gap, or [`MAX_DT`] when the policy is off (s): no
     /// accepted dt is larger, so that the quick check's one bound covers both.
     pub gap_limit: f64,
@@ -43,31 +45,47 @@ impl Common {
     fn from_slots(s: &[f64; MAX_PARAMS]) -> (Common, u8) {
         let (gyro, accel, gap) =
             (s[id::GYRO_RANGE as usize], s[id::ACCEL_RANGE as usize], s[id::GAP_DT as usize]);
+        let gyro_limit = if gyro > 0.0 { gyro.min(MAX_GYRO) } else { MAX_GYRO };
+        let accel_limit = if accel > 0.0 { accel.min(MAX_ACCEL) } else { MAX_ACCEL };
         let common = Common {
             gravity: s[id::GRAVITY as usize],
-            gyro_limit: if gyro > 0.0 { gyro.min(MAX_GYRO) } else { MAX_GYRO },
-            accel_limit: if accel > 0.0 { accel.min(MAX_ACCEL) } else { MAX_ACCEL },
+            gyro_limit2: gyro_limit * gyro_limit,
+            accel_limit2: accel_limit * accel_limit,
             gap_limit: if gap > 0.0 { gap.min(MAX_DT) } else { MAX_DT },
         };
+        debug_assert!(common.gyro_limit() == gyro_limit && common.accel_limit() == accel_limit);
         let set = if gyro > 0.0 { Common::GYRO_SET } else { 0 }
             | if accel > 0.0 { Common::ACCEL_SET } else { 0 }
             | if gap > 0.0 { Common::GAP_SET } else { 0 };
         (common, set)
     }
 
+    /// The gyroscope's limit (rad/s): the root of its square is the limit itself, as in
+    /// binary floating point `√(x²)` rounds back to `x` when `x²` neither overflows nor
+    /// underflows (the ranges are 0.1 to 1e4 and 1 to 1e5; `from_slots` checks it in
+    /// debug builds).
+    pub fn gyro_limit(&self) -> f64 {
+        self.gyro_limit2.sqrt()
+    }
+
+    /// The accelerometer's limit (m/s²), as [`Common::gyro_limit`].
+    pub fn accel_limit(&self) -> f64 {
+        self.accel_limit2.sqrt()
+    }
+
     fn write_slots(&self, set: u8, s: &mut [f64; MAX_PARAMS]) {
         s[id::GRAVITY as usize] = self.gravity;
-        s[id::GYRO_RANGE as usize] = if set & Common::GYRO_SET != 0 { self.gyro_limit } else { 0.0 };
-        s[id::ACCEL_RANGE as usize] = if set & Common::ACCEL_SET != 0 { self.accel_limit } else { 0.0 };
+        s[id::GYRO_RANGE as usize] = if set & Common::GYRO_SET != 0 { self.gyro_limit() } else { 0.0 };
+        s[id::ACCEL_RANGE as usize] = if set & Common::ACCEL_SET != 0 { self.accel_limit() } else { 0.0 };
         s[id::GAP_DT as usize] = if set & Common::GAP_SET != 0 { self.gap_limit } else { 0.0 };
     }
 
     fn gyro_range(&self, set: u8) -> Option<f64> {
-        (set & Common::GYRO_SET != 0).then_some(self.gyro_limit)
+        (set & Common::GYRO_SET != 0).then(|| self.gyro_limit())
     }
 
     fn accel_range(&self, set: u8) -> Option<f64> {
-        (set & Common::ACCEL_SET != 0).then_some(self.accel_limit)
+        (set & Common::ACCEL_SET != 0).then(|| self.accel_limit())
     }
 }
 
@@ -384,17 +402,13 @@ impl<E: Estimator> Runner<E> {
     #[inline(always)]
     pub(crate) fn usual<S: SampleView>(&self, s: &S) -> Option<Usual> {
         let (dt, gyro) = (s.dt(), s.gyro()?);
-        let gyro_limit = self.common.gyro_limit;
         // gap_dt ≤ MAX_DT, and MAX_DT when off: a gap fails here too.
-        if !((MIN_DT..=self.common.gap_limit).contains(&dt) && gyro.norm_squared() < gyro_limit * gyro_limit)
+        if !((MIN_DT..=self.common.gap_limit).contains(&dt) && gyro.norm_squared() < self.common.gyro_limit2)
         {
             return None;
         }
         let accel = match s.accel() {
-            Some(a) => Some(
-                Some(Checked::of(a))
-                    .filter(|a| a.within(self.common.accel_limit * self.common.accel_limit))?,
-            ),
+            Some(a) => Some(Some(Checked::of(a)).filter(|a| a.within(self.common.accel_limit2))?),
             None if self.flags & flags::INITIALIZED != 0 => None,
             None => return None,
         };

@@ -91,10 +91,10 @@ impl<E: Estimator> Runner<E> {
         if !(self.recover() && self.saturated(s)) {
             return (*s, false, false);
         }
-        let gyro_saturated = beyond(s.gyro, self.common.gyro_limit, MAX_GYRO);
-        let accel_saturated = beyond(s.accel, self.common.accel_limit, MAX_ACCEL);
+        let gyro_saturated = beyond(s.gyro, self.common.gyro_limit(), MAX_GYRO);
+        let accel_saturated = beyond(s.accel, self.common.accel_limit(), MAX_ACCEL);
         let sample = Sample {
-            gyro: s.gyro.map(|g| if gyro_saturated { clip(g, self.common.gyro_limit) } else { g }),
+            gyro: s.gyro.map(|g| if gyro_saturated { clip(g, self.common.gyro_limit()) } else { g }),
             accel: if accel_saturated { None } else { s.accel },
             ..*s
         };
@@ -104,18 +104,18 @@ impl<E: Estimator> Runner<E> {
     /// True when the sample has a reading this policy clips.
     #[inline]
     pub(crate) fn saturated<S: SampleView>(&self, s: &S) -> bool {
-        beyond(s.gyro(), self.common.gyro_limit, MAX_GYRO)
-            || beyond(s.accel(), self.common.accel_limit, MAX_ACCEL)
+        beyond(s.gyro(), self.common.gyro_limit(), MAX_GYRO)
+            || beyond(s.accel(), self.common.accel_limit(), MAX_ACCEL)
     }
 
     #[cold]
     #[inline(never)]
     pub(crate) fn update_saturated<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
-        let gyro_saturated = beyond(s.gyro(), self.common.gyro_limit, MAX_GYRO);
-        let accel_saturated = beyond(s.accel(), self.common.accel_limit, MAX_ACCEL);
+        let gyro_saturated = beyond(s.gyro(), self.common.gyro_limit(), MAX_GYRO);
+        let accel_saturated = beyond(s.accel(), self.common.accel_limit(), MAX_ACCEL);
         let clipped = Sample {
             dt: s.dt(),
-            gyro: s.gyro().map(|g| if gyro_saturated { clip(g, self.common.gyro_limit) } else { g }),
+            gyro: s.gyro().map(|g| if gyro_saturated { clip(g, self.common.gyro_limit()) } else { g }),
             // A clipped accelerometer reading points the wrong way: left out.
             accel: if accel_saturated { None } else { s.accel() },
             mag: s.mag(),

@@ -568,3 +568,23 @@ fn options_that_keep_a_kind_from_its_usual_step_take_effect_however_set() {
         assert_eq!(by_load.quaternion(), by_param.quaternion(), "{kind:?}");
     }
 }
+
+/// `Common` keeps the squares of the gyroscope's and accelerometer's limits (the quick
+/// check compares squared norms) and gives the limits back as their roots: in binary
+/// floating point `√(x²)` rounds to `x` when `x²` neither overflows nor underflows.
+/// Checked over both ranges, log-uniform, and at their ends.
+#[test]
+#[cfg_attr(miri, ignore = "a long loop: too slow under Miri")]
+fn the_root_of_a_squared_limit_is_the_limit() {
+    let mut u = crate::math::test_uniform(41);
+    for (lo, hi) in [(0.1, MAX_GYRO), (1.0, MAX_ACCEL)] {
+        for i in 0..200_000 {
+            let x = match i {
+                0 => lo,
+                1 => hi,
+                _ => lo * (hi / lo).powf(0.5 * (u() + 1.0)),
+            };
+            assert_eq!((x * x).sqrt(), x, "{x:e}");
+        }
+    }
+}
