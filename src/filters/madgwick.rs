@@ -29,7 +29,7 @@ use super::params::settings;
 use super::rest::RestBias;
 use super::sample::{Checked, Usual};
 use super::Step;
-use crate::math::{inv_sqrt, inv_sqrt_fast, Quat, Vec3};
+use crate::math::{inv_sqrt, inv_sqrt_fast, inv_sqrt_fast_bounded, Quat, Vec3};
 use wide::f64x4;
 
 settings! {
@@ -561,9 +561,15 @@ impl Madgwick {
         // finite (a squared norm under 1e300 bounds each component, and the scale is at
         // most 1e150), so the result needs no test; anything else takes `correct`, the
         // same operations with every test.
-        if let Some(r) = inv_sqrt_fast(gg) {
+        //
+        // In the usual case the upper bounds need no test: with a unit q and unit
+        // readings each component of ∇f is a sum of a few products of components below 1
+        // (and of b_x, b_z ≤ 1), so ‖∇f‖² < 1e3; and ‖next‖ ≤ ‖p‖ + dt β ≤
+        // 1 + ½ dt |ω| + dt β < 1e12 for dt ≤ 1e6 s, |ω − b| < 2e5 rad/s and β ≤ 100.
+        let fast = |x: f64| if USUAL { inv_sqrt_fast_bounded(x) } else { inv_sqrt_fast(x) };
+        if let Some(r) = fast(gg) {
             let next = p - gradient.scale(k * r);
-            if let Some(s) = inv_sqrt_fast(next.norm_squared()) {
+            if let Some(s) = fast(next.norm_squared()) {
                 return Some((next.scale(s), step));
             }
         }

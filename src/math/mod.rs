@@ -117,6 +117,19 @@ pub(crate) fn inv_sqrt_fast(x: f64) -> Option<f64> {
     }
 }
 
+/// [`inv_sqrt_fast`] for an `x` the caller knows to be below 1e300 (a squared norm that
+/// the bounds on accepted readings and on the settings keep small): the lower test only.
+/// The same result wherever that holds; a NaN still gives `None`.
+#[inline(always)]
+pub(crate) fn inv_sqrt_fast_bounded(x: f64) -> Option<f64> {
+    debug_assert!(x < 1e300 || x.is_nan(), "{x}");
+    if x > 1e-300 {
+        Some(inv_sqrt_in_range(x))
+    } else {
+        None
+    }
+}
+
 /// [`inv_sqrt`] for an `x` the caller has already found in `(1e-300, 1e300)`: the same
 /// bits, without the test.
 #[inline(always)]
