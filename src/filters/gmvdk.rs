@@ -176,15 +176,17 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
 /// `(q ⊗ a)·(q ⊗ b) = a·b`), so `SLERP(q_g, q_g ⊗ Δq, h) = q_g ⊗ SLERP(1, Δq, h)`; a test compares the
 /// two sides. At exactly half a turn (`r.w = 0`) both arcs are shortest: this form
 /// takes `r`'s, the paper's form whichever the rounding of `q_g·(q_g ⊗ Δq)` picks.
+/// For a unit `r` and `h` in [0, 1] the result is unit before its normalisation, to
+/// rounding, so that needs no range test.
 #[inline(always)]
 pub fn slerp_from_identity(r: Quat, h: f64) -> Quat {
     let r = if r.w < 0.0 { r.scale(-1.0) } else { r };
     let cos = r.w;
     if cos > 1.0 - 1e-12 {
-        return Quat::new((1.0 - h) + h * r.w, h * r.x, h * r.y, h * r.z).normalized();
+        return Quat::new((1.0 - h) + h * r.w, h * r.x, h * r.y, h * r.z).normalized_in_range();
     }
     let (w1, w2) = slerp_weights(cos, h);
-    Quat::new(w1 + w2 * r.w, w2 * r.x, w2 * r.y, w2 * r.z).normalized()
+    Quat::new(w1 + w2 * r.w, w2 * r.x, w2 * r.y, w2 * r.z).normalized_in_range()
 }
 
 /// [`slerp`]'s weights `(sin((1 − h)ω)/sin ω, sin(hω)/sin ω)` for `cos ω` in
@@ -231,10 +233,11 @@ fn slerp_by_acos(q1: Quat, q2: Quat, cos: f64, h: f64) -> Quat {
 
 /// `SLERP(q1, q2, ½)`: the normalised sum along the shorter arc. Equal to [`slerp`] with
 /// `h = ½`, whose two weights are then both `sin(ω/2)/sin ω`, without its arccosine and
-/// sines.
+/// sines. For unit `q1` and `q2`, `|q1 + q2|² = 2 + 2 q1·q2` is at least 2 on the shorter
+/// arc, so the normalisation needs no range test.
 pub fn slerp_half(q1: Quat, q2: Quat) -> Quat {
     let q2 = if q1.dot(q2) < 0.0 { q2.scale(-1.0) } else { q2 };
-    (q1 + q2).normalized()
+    (q1 + q2).normalized_in_range()
 }
 
 const WINDOW_SLOTS: usize = 1024;
@@ -569,9 +572,11 @@ impl Gmvdk {
         let time = self.time + dt;
         // [1]-[2]: de-biased gyroscope, prediction (7)-(8).
         let omega_b = gyro - self.bias;
-        // Refused when the integration overflows (an absurd but finite rate): normalising
-        // an infinite norm would give the zero quaternion.
-        let q_g = (self.q + self.q.mul_pure(omega_b).scale(0.5 * dt)).try_normalized()?;
+        // |q + ½dt q⊗ω|² = |q|² (1 + (½dt|ω|)²) is at least 1, and for accepted samples
+        // (dt ≤ 1e6 s, |ω| below 1e5 rad/s with the bias's bound) below 1e23: in the fast
+        // range, normalised without its test. A rate that overflows it (a core driven
+        // directly with an absurd one) gives NaN, which the test of q_out below refuses.
+        let q_g = (self.q + self.q.mul_pure(omega_b).scale(0.5 * dt)).normalized_in_range();
 
         // α from stillness (Appendix B.1).
         let c = crate::math::one_minus_exp_neg(dt / st.activity_tau);

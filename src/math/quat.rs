@@ -252,11 +252,13 @@ impl Quat {
             } else {
                 Vec3::new(0.0, 0.0, 1.0)
             };
-            let axis = f.cross(helper).normalized();
+            // |f × helper|² ≥ 2/3: no range test.
+            let axis = f.cross(helper).normalized_in_range();
             return Quat::new(0.0, axis.x, axis.y, axis.z);
         }
         let axis = f.cross(t);
-        Quat::new(1.0 + c, axis.x, axis.y, axis.z).normalized()
+        // |[1 + c, f × t]|² = 2 (1 + c) > 2e-12 for unit f and t: no range test.
+        Quat::new(1.0 + c, axis.x, axis.y, axis.z).normalized_in_range()
     }
 
     /// The angle in radians of the rotation `self ⊗ other*`, in [0, π]. Computed from the
