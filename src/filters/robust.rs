@@ -458,9 +458,17 @@ const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
 fn to_up(a: Vec3) -> Quat {
     let f = a.normalized_in_range();
     if f.z < -1.0 + 1e-12 {
-        return Quat::from_two_vectors(a, UP);
+        return to_up_general(a);
     }
     Quat::new(1.0 + f.z, f.y, -f.x, 0.0).normalized_in_range()
+}
+
+/// [`to_up`]'s rare case, out of line: inlined, the general function's code changed the
+/// registers of the whole step.
+#[cold]
+#[inline(never)]
+fn to_up_general(a: Vec3) -> Quat {
+    Quat::from_two_vectors(a, UP)
 }
 
 /// A field counts towards confirming the reference, or towards a new one, only while the
