@@ -601,9 +601,10 @@ impl Gmvdk {
         // [1]-[2]: de-biased gyroscope, prediction (7)-(8).
         let omega_b = gyro - self.bias;
         // |q + ½dt q⊗ω|² = |q|² (1 + (½dt|ω|)²) is at least 1, and for accepted samples
-        // (dt ≤ 1e6 s, |ω| below 1e5 rad/s with the bias's bound) below 1e23: in the fast
-        // range, normalised without its test. A rate that overflows it (a core driven
-        // directly with an absurd one) gives NaN, which the test of q_out below refuses.
+        // (dt ≤ 1e6 s, |ω| below 2e5 rad/s with each of the bias's components under 1e5)
+        // below 1e23: in the fast range, normalised without its test. A rate that
+        // overflows it (a core driven directly with an absurd one) gives NaN, which the
+        // test of q_out below refuses.
         let q_g = (self.q + self.q.mul_pure(omega_b).scale(0.5 * dt)).normalized_in_range();
 
         // α from stillness (Appendix B.1).

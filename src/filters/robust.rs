@@ -518,7 +518,8 @@ impl HeadingVariance {
     #[inline(always)]
     fn keep_covariance(&mut self) {
         if self.p_eb * self.p_eb > self.p_ee * self.p_bb {
-            // max/min, not clamp: no panic on a NaN from a step about to be undone.
+            // max/min, not clamp: no panic on a NaN (readings beyond the runner's bounds
+            // fed to the core directly), which the lost-heading test below then resets.
             let bound = (self.p_ee * self.p_bb).sqrt();
             self.p_eb = self.p_eb.max(-bound).min(bound);
         }
@@ -559,6 +560,9 @@ impl HeadingVariance {
         use super::holds;
         holds::within(self.p_ee, 0.0, HEADING_VAR_MAX)
             && holds::rate_variance(self.p_bb)
+            // (H1) adds dt P_bb ≥ 0 to P_eb and (H2)-(H4) scale it by 1 − k ≥ 0 or zero it:
+            // never negative. A negative one could take P_ee below zero at the next step.
+            && self.p_eb >= 0.0
             && self.p_eb * self.p_eb <= self.p_ee * self.p_bb * (1.0 + 1e-12) + 1e-300
     }
 
@@ -771,8 +775,10 @@ impl Robust {
     /// the filter's runner accepts can cause (the argument follows). Then the filter
     /// starts over from the orientation it had before the step, keeping its settings and
     /// a finite bias (`Robust::restart`). The orientation is the one value checked: a
-    /// non-finite bias or δ reaches it by the next step, and the heading covariance's
-    /// (H4) sets a NaN or infinite variance back to the lost heading's. Out of line for
+    /// non-finite bias or δ reaches it by the next step, the heading covariance's (H4)
+    /// sets a NaN or infinite variance back to the lost heading's, the hard-iron estimate
+    /// starts over from a non-finite value, and a non-finite magnetic reference or
+    /// candidate is replaced by the next reading that is not. Out of line for
     /// the reason given at `Complementary::update`.
     ///
     /// No copy of the state is kept to put back: the copy was the largest single cost of
@@ -801,6 +807,13 @@ impl Robust {
     ///   `asin` sees a clamped argument.
     /// - Clocks grow by dt at most per step and saturate in floating point before
     ///   overflowing.
+    ///
+    /// A step from a state at the very ends of `valid`'s bounds may leave one a little
+    /// beyond them (the low-pass's output up to about 3e14 from a rate of 1e12, a bias
+    /// component up to √3 times its bound after the motion estimate's rescaling, a
+    /// reference norm above √3 · 1e12 after a large compensated field); the argument
+    /// holds the same from there, every bound being as far from overflow. The filter's own
+    /// states from bounded readings stay well inside.
     ///
     /// A randomised test (`no_accepted_sample_makes_the_step_non_finite`) steps forged
     /// states at their bounds with samples at theirs and settings at their range ends.
@@ -1025,6 +1038,16 @@ impl Robust {
         let k = lp_gain(dt, s.rest_tau.max(0.25 * s.hard_iron_time));
         self.hi_lp = self.hi_lp + (inst - self.hi_lp) * k;
         self.hi_spread += ((inst - self.hi_lp).norm_squared() - self.hi_spread) * k;
+        if !(self.hi_lp.is_finite() && self.hi_spread.is_finite()) {
+            // Only a reading beyond the runner's bounds (a core driven directly) gets here:
+            // the estimate starts over at the next disturbed reading instead of keeping a
+            // NaN that the orientation's guard would never see.
+            self.hi_started = false;
+            self.hi_lp = Vec3::ZERO;
+            self.hi_spread = 0.0;
+            self.hi_clock = 0.0;
+            return;
+        }
         let tol = 0.5 * s.mag_norm_th * self.ref_norm;
         if self.hi_spread.sqrt() < tol && self.accepts(q_e.rotate(m - self.hi_lp)) {
             self.hi_clock += dt;
@@ -1206,7 +1229,7 @@ mod tests {
             let h = &mut f.heading_var;
             h.p_ee = extreme(&mut u, HEADING_VAR_MAX, false);
             h.p_bb = extreme(&mut u, rate * rate, false);
-            h.p_eb = (h.p_ee * h.p_bb).sqrt() * u();
+            h.p_eb = (h.p_ee * h.p_bb).sqrt() * (0.5 * (u() + 1.0));
             assert!(f.valid(), "case {case}: forged state not valid: {f:?}");
             for _ in 0..20 {
                 let dt = match (4.0 * (u() + 1.0)) as usize {
@@ -1242,6 +1265,31 @@ mod tests {
             self.0 &= v.is_finite();
         }
         fn fail(&mut self) {}
+    }
+
+    /// Readings beyond the runner's bounds that leave the orientation finite, driven into
+    /// the core directly: NaN, overflowing and infinite magnetometer readings while the
+    /// field is disturbed. The hard-iron estimate starts over, and good samples then leave
+    /// a state `valid` accepts (a NaN kept in the estimate would fail it).
+    #[test]
+    #[cfg_attr(miri, ignore = "long loops: too slow under Miri")]
+    fn an_absurd_magnetometer_reading_leaves_no_nan_behind() {
+        let still = |_: f64| (Quat::IDENTITY, Vec3::ZERO, Vec3::ZERO);
+        let mut f = filter(RobustSettings::default(), Quat::IDENTITY);
+        run(&mut f, 2.0, still, |_, q| Some(q.rotate_inverse(FIELD)));
+        for bad in [
+            Vec3::new(f64::NAN, 0.0, 0.0),
+            Vec3::new(1e200, 1e200, 1e200),
+            Vec3::new(f64::INFINITY, 0.0, 1.0),
+        ] {
+            run(&mut f, 0.5, still, |_, q| Some(q.rotate_inverse(FIELD * 3.0)));
+            for _ in 0..3 {
+                assert!(f.update(DT, Vec3::ZERO, Some(G), Some(bad)).is_some());
+            }
+            run(&mut f, 0.5, still, |_, q| Some(q.rotate_inverse(FIELD * 3.0)));
+            run(&mut f, 0.5, still, |_, q| Some(q.rotate_inverse(FIELD)));
+            assert!(f.valid(), "{bad:?}: {f:?}");
+        }
     }
 
     /// The guard: readings beyond the runner's bounds that do make the step non-finite
