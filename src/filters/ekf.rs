@@ -400,16 +400,17 @@ fn sub_outer<V: Lanes, const C: usize>(m: &mut Cols<C, V>, u: V, w: V) {
     }
 }
 
-/// True when every lane of every column is finite: `x · 0` is zero for a finite `x` and
-/// NaN for an infinite or NaN one, and a NaN survives the sum. (The zero fourth lanes of
-/// the three-row blocks stay finite unless a real entry is not.)
+/// True when every lane of every column is finite and their sum does not overflow: an
+/// infinite or NaN lane makes its lane's sum infinite or NaN, and `x · 0` is zero only
+/// for a finite `x`. (The zero fourth lanes of the three-row blocks stay finite unless a
+/// real entry is not.) A sum that overflows from finite lanes, near 1e308, also answers
+/// false: such a covariance is refused like a non-finite one.
 #[inline(always)]
 fn all_finite<'a, V: Lanes + 'a>(cols: impl IntoIterator<Item = &'a V>) -> bool {
     let mut cols = cols.into_iter();
     let Some(first) = cols.next() else { return true };
-    let zero = V::splat(first.token(), 0.0);
-    let acc = cols.fold(*first * zero, |acc, c| acc + *c * zero);
-    acc.to_array() == [0.0; 4]
+    let acc = cols.fold(*first, |acc, c| acc + *c);
+    (acc * V::splat(first.token(), 0.0)).to_array() == [0.0; 4]
 }
 
 impl Cov {
@@ -847,7 +848,7 @@ impl Ekf {
         accel: Option<Vec3>,
         mag: Option<Vec3>,
     ) -> Option<Step> {
-        let s = self.settings;
+        let s = &self.settings;
         let mut step = Step::default();
 
         // ---- predict, eqs. (8)-(10), discretised ----
