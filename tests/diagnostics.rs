@@ -167,8 +167,9 @@ fn rest_is_not_reported_once_the_option_is_off() {
     }
 }
 
-/// `Filter::uncertainty`: the frame, the mounting, the heading offset, the declination
-/// and a rig calibration add nothing to it (they are exact), for both kinds that have it.
+/// `Filter::uncertainty`: the mounting, the heading offset, the declination and a rig
+/// calibration add nothing to it (they are exact: the same bits), nor does the frame (to
+/// rounding), for both kinds that have it.
 #[test]
 fn the_uncertainty_does_not_depend_on_the_hosts_offsets() {
     use orient::{filters::RigHeading, Frame, Quat};
@@ -183,7 +184,18 @@ fn the_uncertainty_does_not_depend_on_the_hosts_offsets() {
         }
         let u = enu.uncertainty();
         assert!(u.heading.is_some(), "{kind:?}");
-        assert_eq!(ned.uncertainty(), u, "{kind:?}");
+        // The configured frame adds nothing either, but it is not a host offset on the same
+        // state: the start attitude is computed in the configured frame and rotated to the
+        // kind's native one, so the two filters' states differ by rounding from the first
+        // sample (the EKF's, whose native frame is NED, in 181 snapshot bytes after 500
+        // samples). Equal to rounding, not in every bit.
+        let v = ned.uncertainty();
+        for (a, b) in [(v.heading, u.heading), (v.inclination, u.inclination)] {
+            assert_eq!(a.is_some(), b.is_some(), "{kind:?}");
+            if let (Some(a), Some(b)) = (a, b) {
+                assert!((a - b).abs() <= 1e-12 * b, "{kind:?}: {a} vs {b}");
+            }
+        }
         enu.set_mounting(Quat::new(0.8, 0.2, 0.5, -0.1).normalized()).unwrap();
         enu.set_heading(1.0).unwrap();
         enu.set_declination(0.2).unwrap();
