@@ -501,6 +501,9 @@ impl Gmvdk {
             && self.time >= 0.0
             && self.startup.as_ref().map_or(true, StartupMeans::valid)
             && r.n >= 0.0
+            // An empty regression is the default one: the update starts one over only when
+            // it holds samples.
+            && (r.n > 0.0 || *r == Regression::default())
             && w.len <= WINDOW_SLOTS
             && w.head < WINDOW_SLOTS
             && unit_interval(t.alpha)
@@ -625,16 +628,21 @@ impl Gmvdk {
         let stillness = (1.0 - activity).max(0.0);
         let alpha1 = stillness * st.slope_alpha + 1.0 - st.slope_alpha;
         let alpha = ((alpha1 + alpha1.abs()) / 2.0).min(1.0);
-        let mut trust = Trust { alpha, ..self.trust };
+        // The μ values change only with a magnetometer reading.
+        let mut trust = None;
 
-        // [3]-[6]: accelerometer pipeline.
-        let mut a_init = self.a_init;
+        // [3]-[6]: accelerometer pipeline. The first reading's references are kept at the
+        // commit below (a failed step leaves none).
+        let mut a_new = None;
         // (10)-(13): q_ga = q_g ⊗ Δq_a. Kept as Δq_a: (14), q_sa = SLERP(q_g, q_ga, α), is
         // q_g ⊗ SLERP(1, Δq_a, α) ([`slerp_from_identity`]), formed below with (17).
         let dq_a = match accel {
             Some(a0) => {
                 step.used_accel = true;
-                let a_ref = *a_init.get_or_insert(Vec3::new(0.0, 0.0, a0.norm()));
+                let a_ref = match self.a_init {
+                    Some(r) => r,
+                    None => *a_new.insert(Vec3::new(0.0, 0.0, a0.norm())),
+                };
                 let a_pred = q_g.rotate_inverse(a_ref); // (9)
                 Some(eq10_to_12(a0, a_pred)) // (10)-(12); (13) below
             }
@@ -642,13 +650,16 @@ impl Gmvdk {
         };
 
         // [3']-[6']: magnetometer pipeline with μ_K (Appendix B.2).
-        let mut m_init = self.m_init;
+        let mut m_new = None;
         let mut mu1 = None;
         // SLERP(1, Δq_m, μ_K), with q_sm = q_g ⊗ it.
         let sm = match mag {
             Some(m0) if step.used_accel => {
                 step.used_mag = true;
-                let m_ref = *m_init.get_or_insert(self.q.rotate(m0));
+                let m_ref = match self.m_init {
+                    Some(r) => r,
+                    None => *m_new.insert(self.q.rotate(m0)),
+                };
                 let m0i = self.q.rotate(m0); // (18), previous q_out
                 let cos_l = (m0i.dot(m_ref) / (m0i.norm() * m_ref.norm())).clamp(-1.0, 1.0);
                 let lambda = libm::acos(cos_l); // (19)
@@ -657,7 +668,7 @@ impl Gmvdk {
                 let m1 = 0.5 * (mu_ka + mu_km); // (23)
                 let mu2 = self.window.peek(time, m1, st.mu_window);
                 let mu_k = mu2 * alpha; // (24)
-                trust = Trust { alpha, mu_ka, mu_km, mu_k };
+                trust = Some(Trust { alpha, mu_ka, mu_km, mu_k });
                 mu1 = Some(m1);
                 let m_pred = q_g.rotate_inverse(m_ref);
                 let dq_m = eq10_to_12(m0, m_pred); // q_gm = q_g ⊗ Δq_m
@@ -691,7 +702,9 @@ impl Gmvdk {
                 }
                 self.regression = Regression::default();
             }
-        } else {
+        } else if self.regression.n != 0.0 {
+            // Started over only when it holds samples: eleven stores on every moving step
+            // otherwise.
             self.regression = Regression::default();
         }
         if let Some(m1) = mu1 {
@@ -703,9 +716,16 @@ impl Gmvdk {
         self.g0 = g0;
         self.ms_gyro = ms_gyro;
         self.ms_accel = ms_accel;
-        self.a_init = a_init;
-        self.m_init = m_init;
-        self.trust = trust;
+        if a_new.is_some() {
+            self.a_init = a_new;
+        }
+        if m_new.is_some() {
+            self.m_init = m_new;
+        }
+        match trust {
+            Some(t) => self.trust = t,
+            None => self.trust.alpha = alpha,
+        }
         Some(step)
     }
 }
@@ -948,6 +968,26 @@ mod tests {
         assert_eq!((f.window.len, f.window.head), (0, 0));
         f.window = fresh.window.clone();
         assert_eq!(f, fresh);
+    }
+
+    /// Moving steps leave an empty regression the default one (the update starts it over
+    /// only when it holds samples), a still one fills it, and `valid` refuses an empty
+    /// regression that is not the default, which the update would keep.
+    #[test]
+    fn an_empty_regression_is_the_default_one() {
+        let mut f = Gmvdk::new(GmvdkSettings::default());
+        let accel = Some(Vec3::new(0.0, 0.0, 9.81));
+        for _ in 0..200 {
+            f.update(0.01, Vec3::ZERO, accel, None).unwrap();
+        }
+        assert!(f.startup.is_none() && f.regression.n > 0.0);
+        for i in 0..50 {
+            f.update(0.01, Vec3::new(2.0, -1.0, 0.5 * i as f64), accel, None).unwrap();
+            assert_eq!(f.regression, Regression::default());
+        }
+        assert!(f.valid());
+        f.regression.st = 1.0;
+        assert!(!f.valid());
     }
 
     #[test]
