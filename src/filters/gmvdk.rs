@@ -277,6 +277,26 @@ pub fn slerp_half(q1: Quat, q2: Quat) -> Quat {
     (q1 + q2).normalized_in_range()
 }
 
+/// (19): `λ = acos(cos λ)`. For the small angles of an undisturbed field
+/// (`s² = (1 − cos λ)/2` under 1/256: λ under 7.2°) as `2 asin(s)`, `s = sin(λ/2)`, by
+/// [`asin_over`]'s series (`1 − cos λ` is exact there): a square root and the series
+/// instead of libm's `acos`. Larger angles take `acos`, out of line; a test compares the
+/// two forms.
+#[inline(always)]
+fn eq19_lambda(cos_l: f64) -> f64 {
+    let s2 = 0.5 * (1.0 - cos_l);
+    if s2 < 1.0 / 256.0 {
+        return 2.0 * s2.sqrt() * asin_over(s2);
+    }
+    acos_outline(cos_l)
+}
+
+#[cold]
+#[inline(never)]
+fn acos_outline(c: f64) -> f64 {
+    libm::acos(c)
+}
+
 /// A reference vector of (9) (the initial accelerometer or magnetometer reading in the
 /// earth frame) and its norm, computed once where the reference is set: the update's
 /// predictions `q_G* ⊗ v ⊗ q_G` keep that norm (a rotation does), and (12) and (19)-(22)
@@ -695,17 +715,19 @@ impl Gmvdk {
                     None => *m_new.insert(Reference::new(self.q.rotate(m0))),
                 };
                 let m0i = self.q.rotate(m0); // (18), previous q_out
-                let cos_l = (m0i.dot(m_ref.v) / (m0i.norm() * m_ref.norm)).clamp(-1.0, 1.0);
-                let lambda = libm::acos(cos_l); // (19)
+                                             // |m0i| = |m0|: the rotation keeps the norm, which (12) below needs too.
+                let m0_norm = m0.norm();
+                let cos_l = (m0i.dot(m_ref.v) / (m0_norm * m_ref.norm)).clamp(-1.0, 1.0);
+                let lambda = eq19_lambda(cos_l); // (19)
                 let mu_ka = (1.0 - st.slope_muk * lambda).max(0.0); // (20)
-                let mu_km = (1.0 - (m0i.norm() / m_ref.norm) * lambda).max(0.0); // (21)-(22)
+                let mu_km = (1.0 - (m0_norm / m_ref.norm) * lambda).max(0.0); // (21)-(22)
                 let m1 = 0.5 * (mu_ka + mu_km); // (23)
                 let mu2 = self.window.peek(time, m1, st.mu_window);
                 let mu_k = mu2 * alpha; // (24)
                 trust = Some(Trust { alpha, mu_ka, mu_km, mu_k });
                 mu1 = Some(m1);
                 let m_pred = q_g.rotate_inverse(m_ref.v);
-                let dq_m = eq10_to_12_with_norms(m0, m0.norm(), m_pred, m_ref.norm); // q_gm = q_g ⊗ Δq_m
+                let dq_m = eq10_to_12_with_norms(m0, m0_norm, m_pred, m_ref.norm); // q_gm = q_g ⊗ Δq_m
                 Some(slerp_from_identity(dq_m, mu_k))
             }
             _ => None,
@@ -970,6 +992,26 @@ mod tests {
         assert!(worst <= 8e-16, "{worst:e}");
     }
 
+    /// (19)'s series form against libm's `acos` for cosines from 1 down past the series'
+    /// range (λ to 8°): within three units in the last place of λ; exact at λ = 0.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn eq19_series_is_the_arccosine() {
+        assert_eq!(eq19_lambda(1.0), 0.0);
+        let mut u = crate::math::test_uniform(45);
+        for i in 0..100_000 {
+            // Angles spread over 1e-9 to 8 degrees on a log scale, and a few cosines a
+            // few ulps below 1.
+            let c = if i < 100 {
+                1.0 - i as f64 * f64::EPSILON / 2.0
+            } else {
+                libm::cos(8f64.to_radians() * 10f64.powf(-8.0 * 0.5 * (u() + 1.0)))
+            };
+            let (ours, acos) = (eq19_lambda(c), libm::acos(c));
+            assert!((ours - acos).abs() <= 3.0 * f64::EPSILON * acos, "cos {c}: {ours} vs {acos}");
+        }
+    }
+
     #[test]
     fn eq10_to_13_align_the_predicted_gravity_with_the_measurement() {
         let q_g = Quat::from_axis_angle(Vec3::new(0.3, 1.0, 0.2), 0.5);
@@ -1115,7 +1157,10 @@ mod estimator_impl {
 
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-            gmvdk_update(self, dt, gyro, accel, mag)
+            match mag {
+                None => gmvdk_update_without_mag(self, dt, gyro, accel),
+                Some(m) => gmvdk_update_with_mag(self, dt, gyro, accel, m),
+            }
         }
 
         fn diagnose(&self, d: &mut Diagnostics) {
@@ -1133,13 +1178,25 @@ mod estimator_impl {
     });
 }
 
-/// GMVDK's update in the widest copy the CPU has (crate::isa::widest). Out of line: its
-/// large frame, inlined into a caller, made that caller save six registers and set up
-/// the frame before any work.
+/// GMVDK's update without a magnetometer reading, in the widest copy the CPU has
+/// (crate::isa::widest). Out of line: its large frame, inlined into a caller, made that
+/// caller save six registers and set up the frame before any work. One copy per case:
+/// each is compiled for its own path, so the magnetometer pipeline's code does not shape
+/// the registers of the accelerometer-only step (a change to the first moved the
+/// second's count by 10 instructions when they shared a function).
 #[inline(never)]
-fn gmvdk_update(f: &mut Gmvdk, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+fn gmvdk_update_without_mag(f: &mut Gmvdk, dt: f64, gyro: Vec3, accel: Option<Vec3>) -> Option<Step> {
     crate::isa::widest(
         #[inline(always)]
-        || f.update(dt, gyro, accel, mag),
+        || f.update(dt, gyro, accel, None),
+    )
+}
+
+/// [`gmvdk_update_without_mag`] with a magnetometer reading.
+#[inline(never)]
+fn gmvdk_update_with_mag(f: &mut Gmvdk, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Vec3) -> Option<Step> {
+    crate::isa::widest(
+        #[inline(always)]
+        || f.update(dt, gyro, accel, Some(mag)),
     )
 }
