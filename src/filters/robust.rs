@@ -817,8 +817,29 @@ impl Robust {
     ///
     /// A randomised test (`no_accepted_sample_makes_the_step_non_finite`) steps forged
     /// states at their bounds with samples at theirs and settings at their range ends.
-    #[inline(never)]
+    #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        match mag {
+            None => self.update_without_mag(dt, gyro, accel),
+            Some(m) => self.update_with_mag(dt, gyro, accel, m),
+        }
+    }
+
+    /// [`Robust::update`] without a magnetometer reading: one out-of-line copy per case,
+    /// each compiled for its own path.
+    #[inline(never)]
+    fn update_without_mag(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>) -> Option<Step> {
+        self.guarded(dt, gyro, accel, None)
+    }
+
+    /// [`Robust::update`] with a magnetometer reading.
+    #[inline(never)]
+    fn update_with_mag(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Vec3) -> Option<Step> {
+        self.guarded(dt, gyro, accel, Some(mag))
+    }
+
+    #[inline(always)]
+    fn guarded(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         let q = self.q;
         let step = self.step(dt, gyro, accel, mag);
         if !self.q.is_finite() {
@@ -841,8 +862,9 @@ impl Robust {
         self.heading_var.lost();
     }
 
+    #[inline(always)]
     fn step(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Step {
-        let s = self.settings;
+        let s = &self.settings;
         let mut step = Step::default();
         let th = RestThresholds {
             gyro: s.rest_gyro,
@@ -857,7 +879,7 @@ impl Robust {
             self.heading_var.bias_step(k_b, s.bias_sigma_rest);
         }
         self.q_gyr = (self.q_gyr * rotation_of(gyro - self.bias, dt)).normalized_in_range();
-        self.heading_var.gyro_step(dt, &s);
+        self.heading_var.gyro_step(dt, s);
         if let Some(a) = accel {
             step.used_accel = true;
             self.correct_inclination(dt, a);
@@ -883,7 +905,7 @@ impl Robust {
     }
 
     fn correct_inclination(&mut self, dt: f64, a: Vec3) {
-        let s = self.settings;
+        let s = &self.settings;
         let a_i = self.q_gyr.rotate(a);
         if !self.acc_seen {
             self.acc_lp.start(a_i);
