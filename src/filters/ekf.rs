@@ -1290,10 +1290,29 @@ mod tests {
         assert!((f - direct).norm() < 1e-12, "{f:?} {direct:?}");
     }
 
+    /// `all_finite`: true for finite lanes, false for an infinite or NaN lane, for
+    /// infinities of both signs (whose sum is NaN), and for finite lanes whose sum
+    /// overflows (the covariance is then refused like a non-finite one).
+    #[test]
+    fn the_finiteness_test_answers_for_every_lane() {
+        let v = |x: [f64; 4]| f64x4::new(x);
+        let ok = [v([1.0, -2.0, 3e200, 0.0]), v([-1e300, 5.0, 0.0, -3e200])];
+        assert!(all_finite(&ok));
+        for (lane, bad) in [(0, f64::INFINITY), (1, f64::NEG_INFINITY), (2, f64::NAN), (3, -f64::NAN)] {
+            let mut c = ok;
+            let mut x = c[1].to_array();
+            x[lane] = bad;
+            c[1] = v(x);
+            assert!(!all_finite(&c), "lane {lane} = {bad}");
+        }
+        assert!(!all_finite(&[v([f64::INFINITY; 4]), v([f64::NEG_INFINITY; 4])]));
+        assert!(!all_finite(&[v([1e308, 0.0, 0.0, 0.0]), v([1e308, 0.0, 0.0, 0.0])]));
+    }
+
     /// `exp_and_d`'s multiplied-out D against `L(q) J` with J from `exp_and_jacobian` (the
     /// readable form), on both sides of the small-angle branch and at large angles: each
-    /// entry within four units in the last place of h (D's entries are at most h), and
-    /// the same exponential.
+    /// entry within 4ε h (D's entries are at most h, so 4 to 8 units in the last place of
+    /// h), and the same exponential.
     #[test]
     fn exp_and_d_is_left_of_q_times_the_jacobian() {
         let q = Quat::new(0.7, -0.2, 0.5, 0.3).normalized();

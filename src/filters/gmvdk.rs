@@ -184,7 +184,8 @@ pub fn eq10_to_12(v0: Vec3, v: Vec3) -> Quat {
 }
 
 /// [`eq10_to_12`] with the norms given: the update has the reading's already (α's
-/// accelerometer term), and the prediction `v̂ = q_G* ⊗ v_ref ⊗ q_G` (9) has the norm of
+/// accelerometer term, or for the magnetometer the `|m0|` that (19)-(22) use), and the
+/// prediction `v̂ = q_G* ⊗ v_ref ⊗ q_G` (9) has the norm of
 /// its reference `v_ref`, which [`Reference`] keeps; the update passes those instead of
 /// two more square roots each step (equal to rounding; a test compares).
 #[inline(always)]
@@ -317,7 +318,8 @@ fn acos_outline(c: f64) -> f64 {
 }
 
 /// A reference vector of (9) (the initial accelerometer or magnetometer reading in the
-/// earth frame) and its norm, computed once where the reference is set: the update's
+/// earth frame; after `set_quaternion`, the next accelerometer reading's norm along up)
+/// and its norm, computed once where the reference is set: the update's
 /// predictions `q_G* ⊗ v ⊗ q_G` keep that norm (a rotation does), and (12) and (19)-(22)
 /// read it. Snapshots hold the vector only; the norm is derived again on load.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -733,8 +735,8 @@ impl Gmvdk {
                     Some(r) => r,
                     None => *m_new.insert(Reference::new(self.q.rotate(m0))),
                 };
+                // |m0i| = |m0| below: the rotation keeps the norm, which (12) needs too.
                 let m0i = self.q.rotate(m0); // (18), previous q_out
-                                             // |m0i| = |m0|: the rotation keeps the norm, which (12) below needs too.
                 let m0_norm = m0.norm();
                 let cos_l = (m0i.dot(m_ref.v) / (m0_norm * m_ref.norm)).clamp(-1.0, 1.0);
                 let lambda = eq19_lambda(cos_l); // (19)
@@ -1015,15 +1017,16 @@ mod tests {
     }
 
     /// (19)'s series form against libm's `acos` for cosines from 1 down past the series'
-    /// range (λ to 8°): within three units in the last place of λ; exact at λ = 0.
+    /// range (λ to 8°): within 3ε relative to λ (3 to 6 units in its last place); exact at
+    /// λ = 0.
     #[test]
     #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn eq19_series_is_the_arccosine() {
         assert_eq!(eq19_lambda(1.0), 0.0);
         let mut u = crate::math::test_uniform(45);
         for i in 0..100_000 {
-            // Angles spread over 1e-9 to 8 degrees on a log scale, and a few cosines a
-            // few ulps below 1.
+            // Angles spread over 8e-8 to 8 degrees (1.4e-9 to 0.14 rad) on a log scale, and
+            // a few cosines a few ulps below 1.
             let c = if i < 100 {
                 1.0 - i as f64 * f64::EPSILON / 2.0
             } else {

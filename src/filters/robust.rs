@@ -778,8 +778,10 @@ impl Robust {
     /// non-finite bias or δ reaches it by the next step, the heading covariance's (H4)
     /// sets a NaN or infinite variance back to the lost heading's, the hard-iron estimate
     /// starts over from a non-finite value, and a non-finite magnetic reference or
-    /// candidate is replaced by the next reading that is not. Out of line for
-    /// the reason given at `Complementary::update`.
+    /// candidate is replaced by the next reading that is not. It dispatches on the
+    /// magnetometer reading to two out-of-line copies of that guarded step
+    /// (`update_without_mag`, `update_with_mag`), each compiled for its own path; out of
+    /// line for the reason given at `Complementary::update`.
     ///
     /// No copy of the state is kept to put back: the copy was the largest single cost of
     /// the update (docs/PERFORMANCE.md). It is not needed, because from any state
