@@ -960,6 +960,14 @@ mod tests {
         }
     }
 
+    /// The largest component difference of two forms of (10)-(12), over `1 + 1/w` with w
+    /// the second's scalar part: both lose to cancellation in `1 + cos` what they lose in
+    /// the scalar part, an error of about ε/(2w) for a rotation whose scalar part is w.
+    fn scaled_difference(ours: Quat, other: Quat) -> f64 {
+        let d = [ours.w - other.w, ours.x - other.x, ours.y - other.y, ours.z - other.z];
+        d.iter().fold(0.0f64, |m, x| m.max(x.abs())) / (1.0 + 1.0 / other.w)
+    }
+
     /// [`eq10_to_12`] against `Quat::from_two_vectors` over random pairs of lengths from
     /// 1e-150 to 1e12, near-opposite and opposite pairs included: the same rotation, each
     /// component within 5e-16 (1 + 1/w) for a rotation of scalar part w (both normalised,
@@ -978,14 +986,7 @@ mod tests {
                 1 => (v0 * -1.0 + Vec3::new(u(), u(), u()) * (1e-9 * l0)) * (l1 / l0),
                 _ => Vec3::new(u(), u(), u()) * l1,
             };
-            let (ours, general) = (eq10_to_12(v0, v), Quat::from_two_vectors(v0, v));
-            // Both forms lose to cancellation in 1 + cos what they lose in the scalar part:
-            // an error of about ε/(2w) for a rotation whose scalar part is w.
-            let scale = 1.0 + 1.0 / general.w;
-            for (x, y) in [(ours.w, general.w), (ours.x, general.x), (ours.y, general.y), (ours.z, general.z)]
-            {
-                worst = worst.max((x - y).abs() / scale);
-            }
+            worst = worst.max(scaled_difference(eq10_to_12(v0, v), Quat::from_two_vectors(v0, v)));
         }
         assert!(worst <= 5e-16, "{worst:e}");
     }
@@ -1005,13 +1006,8 @@ mod tests {
             let r = Reference::new(Vec3::new(u(), u(), u()) * l0);
             let v0 = Vec3::new(u(), u(), u()) * l1;
             let v = q_g.rotate_inverse(r.v);
-            let (ours, readable) = (eq10_to_12_with_norms(v0, v0.norm(), v, r.norm), eq10_to_12(v0, v));
-            let scale = 1.0 + 1.0 / readable.w;
-            for (x, y) in
-                [(ours.w, readable.w), (ours.x, readable.x), (ours.y, readable.y), (ours.z, readable.z)]
-            {
-                worst = worst.max((x - y).abs() / scale);
-            }
+            let ours = eq10_to_12_with_norms(v0, v0.norm(), v, r.norm);
+            worst = worst.max(scaled_difference(ours, eq10_to_12(v0, v)));
         }
         assert!(worst <= 8e-16, "{worst:e}");
     }
