@@ -179,19 +179,22 @@ fn models_and_host_frames_survive_reset_and_snapshots() {
 }
 
 /// A blob of format version 2 (before issue 20's fields) is refused as another version,
-/// as is one of version 3 (before the robust kind's heading uncertainty).
+/// as are those of version 3 (before the robust kind's heading uncertainty) and 4 (the
+/// robust kind's heading as an angle, not a half-angle pair).
 #[test]
 fn a_version_2_snapshot_is_refused_as_another_version() {
     use orient::filters::state::{checksum, StateError, VERSION};
-    assert_eq!(VERSION, 4);
+    assert_eq!(VERSION, 5);
     let mut f = Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap();
     let before = f.clone();
-    let mut blob = vec![0u8; f.state_size()];
-    f.save(&mut blob).unwrap();
-    blob[4..6].copy_from_slice(&2u16.to_le_bytes());
-    let end = blob.len() - 8;
-    let sum = checksum(&blob[..end]);
-    blob[end..].copy_from_slice(&sum.to_le_bytes());
-    assert_eq!(f.load(&blob), Err(StateError::Version(2)));
-    assert_eq!(f, before);
+    for old in [2u16, 3, 4] {
+        let mut blob = vec![0u8; f.state_size()];
+        f.save(&mut blob).unwrap();
+        blob[4..6].copy_from_slice(&old.to_le_bytes());
+        let end = blob.len() - 8;
+        let sum = checksum(&blob[..end]);
+        blob[end..].copy_from_slice(&sum.to_le_bytes());
+        assert_eq!(f.load(&blob), Err(StateError::Version(old)));
+        assert_eq!(f, before);
+    }
 }

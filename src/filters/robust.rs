@@ -271,18 +271,6 @@ settings! {
     }
 }
 
-/// Wraps an angle into (-π, π].
-fn wrap(a: f64) -> f64 {
-    use core::f64::consts::{PI, TAU};
-    if a > PI {
-        a - TAU
-    } else if a <= -PI {
-        a + TAU
-    } else {
-        a
-    }
-}
-
 /// Dip of an earth-frame (ENU) field: positive when it points down.
 fn dip(f: Vec3) -> f64 {
     libm::asin((-f.z / f.norm()).clamp(-1.0, 1.0))
@@ -471,6 +459,88 @@ fn to_up_general(a: Vec3) -> Quat {
     Quat::from_two_vectors(a, UP)
 }
 
+/// The heading correction `q_δ = cos(δ/2) + sin(δ/2) k`, a rotation by δ about the
+/// vertical, kept as its half-angle pair `(c, s)` with `c ≥ 0` (δ in [−π, π]).
+///
+/// The readable form keeps δ: `δ ← wrap(δ + k·wrap(atan2(f_x, f_y) − δ))`, then
+/// `q_δ = (cos(δ/2), sin(δ/2))` from `sincos` for every output. [`Turn::corrected`] computes
+/// the same from the pair: the error `wrap(atan2(f_x, f_y) − δ)` is the azimuth of the field
+/// turned by δ, and `q_δ` turns by `k` times it. Small errors (|tan| ≤ 1/4) and small
+/// turns (under 1/8 rad) take series; neither `atan2` nor `sincos` runs in the usual step,
+/// which is what this form pays for (docs/PERFORMANCE.md has the count).
+/// `turn_is_the_readable_heading_step` tests it against the readable form.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Turn {
+    c: f64,
+    s: f64,
+}
+
+impl Turn {
+    const IDENTITY: Turn = Turn { c: 1.0, s: 0.0 };
+
+    /// `q_δ` itself (what [`Turn::times`] is tested against).
+    #[cfg(test)]
+    fn quat(self) -> Quat {
+        Quat::new(self.c, 0.0, 0.0, self.s)
+    }
+
+    /// `q_δ ⊗ q` with q_δ's zero components left out: `(c + s k)(w + x i + y j + z k)`.
+    /// IEEE arithmetic does not fold a product by zero away; the bits are the general
+    /// product's for finite values (`the_turn_product_is_the_hamilton_product` checks).
+    #[inline(always)]
+    fn times(self, q: Quat) -> Quat {
+        let (c, s) = (self.c, self.s);
+        Quat::new(c * q.w - s * q.z, c * q.x - s * q.y, c * q.y + s * q.x, c * q.z + s * q.w)
+    }
+
+    /// `wrap(atan2(f.x, f.y) − δ)`: the azimuth (from north towards east) of the field
+    /// `f_e` (ENU) after the turn by δ, `x′ = x cos δ − y sin δ`, `y′ = x sin δ + y cos δ`.
+    #[inline(always)]
+    fn error(self, f_e: Vec3) -> f64 {
+        let (cos_d, sin_d) = (self.c * self.c - self.s * self.s, 2.0 * self.c * self.s);
+        let x = f_e.x * cos_d - f_e.y * sin_d;
+        let y = f_e.x * sin_d + f_e.y * cos_d;
+        // Strict: it holds only for y > 0, where atan2(x, y) = atan(x / y).
+        if 4.0 * x.abs() < y {
+            let t = x / y;
+            return t * crate::math::atan_over(t * t);
+        }
+        libm::atan2(x, y)
+    }
+
+    /// The turn followed by a further `φ` about the vertical (rad, |φ| ≤ π), with `c ≥ 0`
+    /// kept: past δ = ±π the pair changes sign, as `sincos(wrap(δ)/2)` does.
+    #[inline(always)]
+    fn turned(self, phi: f64) -> Turn {
+        let h = 0.5 * phi;
+        let (ch, sh) = if h * h < 1.0 / 256.0 {
+            let (c, sinc) = crate::math::cos_and_sinc(h * h);
+            (c, sinc * h)
+        } else {
+            let (s, c) = libm::sincos(h);
+            (c, s)
+        };
+        let (c, s) = (self.c * ch - self.s * sh, self.s * ch + self.c * sh);
+        // Both factors are unit to rounding: one Newton step for 1/√(c² + s²) from 1.
+        let n = 1.5 - 0.5 * (c * c + s * s);
+        if c < 0.0 {
+            Turn { c: -c * n, s: -s * n }
+        } else {
+            Turn { c: c * n, s: s * n }
+        }
+    }
+
+    /// The heading step: `q_δ` turned by `k` times the error of the field `f_e`.
+    #[inline(always)]
+    fn corrected(self, k: f64, f_e: Vec3) -> Turn {
+        self.turned(k * self.error(f_e))
+    }
+
+    fn valid(&self) -> bool {
+        (self.c * self.c + self.s * self.s - 1.0).abs() <= 1e-9 && self.c >= 0.0
+    }
+}
+
 /// A field counts towards confirming the reference, or towards a new one, only while the
 /// sensor turns at least this fast (rad/s; VQF's `magNewMinGyr`, 20 °/s): turning is what
 /// tells a field fixed in the room from a magnet fixed to the sensor.
@@ -581,8 +651,8 @@ pub struct Robust {
     q_gyr: Quat,
     /// Inclination correction, quasi-inertial frame to E′.
     q_inc: Quat,
-    /// Heading correction about the vertical (rad).
-    delta: f64,
+    /// Heading correction about the vertical, `q_δ`.
+    turn: Turn,
     /// The output, `q_δ ⊗ q_inc ⊗ q_gyr`.
     q: Quat,
     bias: Vec3,
@@ -622,7 +692,7 @@ impl Robust {
             settings,
             q_gyr: Quat::IDENTITY,
             q_inc: Quat::IDENTITY,
-            delta: 0.0,
+            turn: Turn::IDENTITY,
             q: Quat::IDENTITY,
             bias: Vec3::ZERO,
             acc_lp: Butterworth::default(),
@@ -653,7 +723,7 @@ impl Robust {
     pub fn set_quaternion(&mut self, q: Quat) {
         self.q_gyr = q;
         self.q_inc = Quat::IDENTITY;
-        self.delta = 0.0;
+        self.turn = Turn::IDENTITY;
         self.q = q;
         self.acc_seen = false;
         self.heading_var.p_ee = 0.0;
@@ -684,7 +754,7 @@ impl Robust {
         }
         self.q_gyr = q;
         self.q_inc = Quat::IDENTITY;
-        self.delta = 0.0;
+        self.turn = Turn::IDENTITY;
         self.q = q;
         self.acc_lp.start(q.rotate(r.accel));
         self.acc_seen = true;
@@ -728,7 +798,7 @@ impl Robust {
         holds::unit(self.q_gyr)
             && holds::unit(self.q_inc)
             && holds::unit(self.q)
-            && holds::within(self.delta, -PI, PI)
+            && self.turn.valid()
             && holds::rate(self.bias)
             && self.acc_lp.valid()
             && self.rest.valid()
@@ -748,7 +818,8 @@ impl Robust {
     pub(crate) fn codec(&mut self, c: &mut dyn Codec) {
         c.quat(&mut self.q_gyr);
         c.quat(&mut self.q_inc);
-        c.f64(&mut self.delta);
+        c.f64(&mut self.turn.c);
+        c.f64(&mut self.turn.s);
         c.quat(&mut self.q);
         c.vec3(&mut self.bias);
         self.acc_lp.codec(c);
@@ -800,13 +871,14 @@ impl Robust {
     /// - Every division and normalisation has a divisor bounded away from zero:
     ///   quaternions are products of unit ones (so their squared norms, near 1, are in
     ///   `inv_sqrt`'s fast range, and are normalised without its range test); the
-    ///   accelerometer's earth vector is tested (`1e-12`), the motion-bias scale divides by a norm only when it exceeds a
-    ///   non-negative limit; the low-pass gains divide by τ + dt > 0; a magnetometer
-    ///   reading's rotated norm is its own (nonzero) norm to rounding, and a difference
-    ///   of fields that vanishes gives a NaN dip that fails every comparison and is never
-    ///   stored.
+    ///   accelerometer's earth vector is tested (`1e-12`), the motion-bias scale divides
+    ///   by a norm only when it exceeds a non-negative limit; the low-pass gains divide by
+    ///   τ + dt > 0; the heading error divides x′ by y′ only when y′ > 4|x′| (a quotient
+    ///   under 1/4); a magnetometer reading's rotated norm is its own (nonzero) norm to
+    ///   rounding, and a difference of fields that vanishes gives a NaN dip that fails
+    ///   every comparison and is never stored.
     /// - Angles: `sin`/`cos` of any finite argument (|ω| dt up to 2e11 rad) are finite;
-    ///   `asin` sees a clamped argument.
+    ///   `asin` sees a clamped argument, `atan2` finite ones.
     /// - Clocks grow by dt at most per step and saturate in floating point before
     ///   overflowing.
     ///
@@ -893,16 +965,10 @@ impl Robust {
             step.used_mag = self.correct_heading(dt, m, q_e);
         }
         // q = q_δ ⊗ q_e. Without a heading offset (every update without a magnetometer)
-        // q_δ is the identity, and no product is needed.
-        let q = if self.delta == 0.0 {
-            q_e
-        } else {
-            // One shared range reduction: libm's sincos gives sin's and cos's bits (a test
-            // in `math` checks it).
-            let (s_half, c_half) = libm::sincos(0.5 * self.delta);
-            Quat::new(c_half, 0.0, 0.0, s_half) * q_e
-        };
-        self.q = q.normalized_in_range();
+        // q_δ is the identity, and no product is needed. A product of quaternions that
+        // are unit to rounding is unit to a few ulp (each factor was normalised in its
+        // own step), and q is computed again from them at every step: no normalisation.
+        self.q = if self.turn == Turn::IDENTITY { q_e } else { self.turn.times(q_e) };
         step
     }
 
@@ -949,18 +1015,25 @@ impl Robust {
         }
         // A compensation in use is kept while it passes: a small offset leaves the raw
         // field within the tests at some orientations, where it would turn the heading.
-        let field = if self.hard_iron_on && self.accepts(q_e.rotate(m - self.hard_iron)) {
-            Some(m - self.hard_iron)
-        } else if self.accepts_norm_dip(raw_norm, raw_dip) {
-            // The hard-iron estimate and its clock are kept: a small offset lets the raw
-            // field pass at some orientations, and starting over at each would never let
-            // the estimate complete at high sample rates.
-            self.hard_iron_on = false;
-            Some(m)
-        } else {
-            self.hard_iron_on = false;
-            self.estimate_hard_iron(dt, m, q_e);
-            None
+        // The field used, in E′, with its norm and dip.
+        let compensated = || {
+            let f_e = q_e.rotate(m - self.hard_iron);
+            (f_e, f_e.norm(), dip(f_e))
+        };
+        let field = match self.hard_iron_on.then(compensated) {
+            Some((f_e, n, d)) if self.accepts_norm_dip(n, d) => Some((f_e, n, d)),
+            _ if self.accepts_norm_dip(raw_norm, raw_dip) => {
+                // The hard-iron estimate and its clock are kept: a small offset lets the
+                // raw field pass at some orientations, and starting over at each would
+                // never let the estimate complete at high sample rates.
+                self.hard_iron_on = false;
+                Some((raw, raw_norm, raw_dip))
+            }
+            _ => {
+                self.hard_iron_on = false;
+                self.estimate_hard_iron(dt, m, q_e);
+                None
+            }
         };
         self.mag_disturbed = field.is_none();
         let turning = self.rest.gyro_lp().norm() >= MAG_NEW_MIN_GYRO;
@@ -968,21 +1041,14 @@ impl Robust {
             self.ref_confirmed = (self.ref_confirmed + dt).min(MAG_CONFIRM_TIME);
         }
         self.new_field(dt, raw_norm, raw_dip, turning);
-        let Some(f) = field else { return false };
-        let (f_e, f_dip) = if f == m {
-            (raw, raw_dip)
-        } else {
-            let f_e = q_e.rotate(f);
-            (f_e, dip(f_e))
-        };
-        let target = libm::atan2(f_e.x, f_e.y);
+        let Some((f_e, f_norm, f_dip)) = field else { return false };
         self.mag_count = self.mag_count.saturating_add(1);
         // The first samples are averaged (gain 1/n) until the exponential gain is larger.
         let k = lp_gain(dt, s.tau_mag).max(1.0 / self.mag_count as f64);
-        self.delta = wrap(self.delta + k * wrap(target - self.delta));
+        self.turn = self.turn.corrected(k, f_e);
         self.heading_var.heading_step(k, s.mag_heading_sigma);
         let kr = lp_gain(dt, 10.0 * s.tau_mag).max(1.0 / self.mag_count as f64);
-        self.ref_norm += (f.norm() - self.ref_norm) * kr;
+        self.ref_norm += (f_norm - self.ref_norm) * kr;
         self.ref_dip += (f_dip - self.ref_dip) * kr;
         true
     }
@@ -1096,6 +1162,98 @@ mod tests {
     /// An earth field in ENU (µT): north and down, dip about 63°.
     const FIELD: Vec3 = Vec3::new(0.0, 20.0, -40.0);
     const DT: f64 = 0.01;
+
+    /// Wraps an angle into (-π, π].
+    fn wrap(a: f64) -> f64 {
+        use core::f64::consts::{PI, TAU};
+        if a > PI {
+            a - TAU
+        } else if a <= -PI {
+            a + TAU
+        } else {
+            a
+        }
+    }
+
+    /// The readable heading step of [`Turn`]: δ itself, `atan2` and `sincos`.
+    fn readable_heading_step(delta: f64, k: f64, f_e: Vec3) -> (f64, Turn) {
+        let target = libm::atan2(f_e.x, f_e.y);
+        let delta = wrap(delta + k * wrap(target - delta));
+        let (s, c) = libm::sincos(0.5 * delta);
+        (delta, Turn { c, s })
+    }
+
+    /// [`Turn::corrected`] against the readable step, from random headings, fields and
+    /// gains: fields near the turned north (the series), anywhere (libm), and the first
+    /// sample's gain 1 (a turn of up to π). The pairs agree as rotations within 4 ulp
+    /// (`c ≥ 0` leaves the sign free only at δ = ±π) and the error within 4 ulp of π.
+    #[test]
+    #[cfg_attr(miri, ignore = "long loops: too slow under Miri")]
+    fn turn_is_the_readable_heading_step() {
+        use core::f64::consts::PI;
+        let mut u = crate::math::test_uniform(97);
+        let mut series = 0;
+        for i in 0..40000 {
+            let delta = if i % 97 == 0 { PI } else { PI * u() };
+            let (s, c) = libm::sincos(0.5 * delta);
+            let turn = Turn { c, s };
+            // The field's azimuth: within 1/4 rad of the turned north, or anywhere.
+            let azimuth = if i % 2 == 0 { delta + u() / 4.0 } else { PI * u() };
+            let (h, z) = (20.0 + 30.0 * u(), 40.0 * u());
+            let f_e = Vec3::new(h * libm::sin(azimuth), h * libm::cos(azimuth), z);
+            let k = match i % 4 {
+                0 => 1.0,
+                1 => 0.5 * (u() + 1.0),
+                _ => 10f64.powf(-5.0 + 4.0 * 0.5 * (u() + 1.0)),
+            };
+            let e = turn.error(f_e);
+            let want_e = wrap(libm::atan2(f_e.x, f_e.y) - delta);
+            let de = (e - want_e).abs();
+            assert!(de.min(2.0 * PI - de) <= 4.0 * f64::EPSILON * PI, "{delta} {f_e:?}: {e} vs {want_e}");
+            series += usize::from(4.0 * libm::tan(e).abs() < 0.99 && e.abs() < 1.0);
+            let got = turn.corrected(k, f_e);
+            let (_, want) = readable_heading_step(delta, k, f_e);
+            let apart = |a: Turn, b: Turn| (a.c - b.c).abs().max((a.s - b.s).abs());
+            let d = apart(got, want).min(apart(got, Turn { c: -want.c, s: -want.s }));
+            assert!(d <= 4.0 * f64::EPSILON, "{delta} {f_e:?} {k}: {got:?} vs {want:?}");
+            assert!(got.valid(), "{got:?}");
+        }
+        assert!(series > 15000, "{series} steps took the series");
+    }
+
+    /// [`Turn::times`] gives the general Hamilton product's bits.
+    #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+    fn the_turn_product_is_the_hamilton_product() {
+        let mut u = crate::math::test_uniform(6);
+        for _ in 0..1000 {
+            let (s, c) = libm::sincos(3.0 * u());
+            let turn = Turn { c: c.abs(), s };
+            let q = Quat::new(u(), u(), u(), u()).normalized();
+            let (got, want) = (turn.times(q), turn.quat() * q);
+            assert_eq!(
+                [got.w, got.x, got.y, got.z].map(f64::to_bits),
+                [want.w, want.x, want.y, want.z].map(f64::to_bits),
+                "{turn:?} {q:?}"
+            );
+        }
+    }
+
+    /// A million small corrections keep the pair unit to rounding: each step's Newton
+    /// normalisation takes out what the products add.
+    #[test]
+    #[cfg_attr(miri, ignore = "long loops: too slow under Miri")]
+    fn the_turn_stays_unit() {
+        let mut u = crate::math::test_uniform(5);
+        let mut turn = Turn::IDENTITY;
+        let mut worst = 0.0f64;
+        for _ in 0..1_000_000 {
+            let f_e = Vec3::new(20.0 * u(), 20.0 + u(), -40.0);
+            turn = turn.corrected(0.01 * (u() + 1.0), f_e);
+            worst = worst.max((turn.c * turn.c + turn.s * turn.s - 1.0).abs());
+        }
+        assert!(worst <= 4.0 * f64::EPSILON, "{worst:e}");
+    }
 
     fn filter(settings: RobustSettings, q: Quat) -> Robust {
         let mut f = Robust::new(settings);
@@ -1215,7 +1373,7 @@ mod tests {
         let norm = 3f64.sqrt() * MAX_MAG;
         #[rustfmt::skip]
         let bounds = [
-            1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, PI, 1.0, 1.0, 1.0, 1.0, // q_gyr, q_inc, δ, q
+            1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, // q_gyr, q_inc, q_δ, q
             rate, rate, rate, // bias
             1.0, 1.0, 1.0, 1.0, 1.0, 1.0, acc, acc, acc, 1e12, 1e12, 1e12, -1e6, // low-pass
             rate, rate, rate, acc, acc, acc, acc, acc, acc, -1e300, // rest detector
@@ -1248,6 +1406,8 @@ mod tests {
             let mut f = Robust::new(settings);
             f.codec(&mut Forge { u: &mut u, bounds: &bounds, i: 0 });
             (f.q_gyr, f.q_inc, f.q) = (unit(&mut u), unit(&mut u), unit(&mut u));
+            let (s, c) = libm::sincos(PI * u());
+            f.turn = Turn { c: c.abs(), s };
             let dt0 = MIN_DT * (MAX_DT / MIN_DT).powf(0.5 * (u() + 1.0));
             f.acc_lp.coefficients(dt0, settings.tau_acc);
             let h = &mut f.heading_var;
