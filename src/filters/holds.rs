@@ -34,9 +34,13 @@ pub fn mag(v: Vec3) -> bool {
     v.max_abs() < MARGIN * MAX_MAG
 }
 
-/// A mean of magnetometer norms: no more than a reading's largest norm, √3 · bound.
+/// A reading's largest norm, √3 · bound, with room for the rounding of a rotated
+/// reading's norm.
+pub const MAG_NORM_MAX: f64 = 1.732_050_807_568_877_2 * MAX_MAG * (1.0 + 1e-12);
+
+/// A mean of magnetometer norms: no more than [`MAG_NORM_MAX`].
 pub fn mag_norm(x: f64) -> bool {
-    (0.0..=3f64.sqrt() * MAX_MAG).contains(&x)
+    (0.0..=MAG_NORM_MAX).contains(&x)
 }
 
 /// A squared deviation between magnetometer-like values.

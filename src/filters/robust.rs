@@ -884,10 +884,11 @@ impl Robust {
     ///
     /// A step from a state at the very ends of `valid`'s bounds may leave one a little
     /// beyond them (the low-pass's output up to about 3e14 from a rate of 1e12, a bias
-    /// component up to √3 times its bound after the motion estimate's rescaling, a
-    /// reference norm above √3 · 1e12 after a large compensated field); the argument
-    /// holds the same from there, every bound being as far from overflow. The filter's own
-    /// states from bounded readings stay well inside.
+    /// component up to √3 times its bound after the motion estimate's rescaling); the
+    /// argument holds the same from there, every bound being as far from overflow. The
+    /// filter's own states from bounded readings stay well inside. The reference norm is
+    /// held within `holds::MAG_NORM_MAX`: a compensated field may be larger than any
+    /// reading (`a_large_compensated_field_keeps_the_reference_valid`).
     ///
     /// A randomised test (`no_accepted_sample_makes_the_step_non_finite`) steps forged
     /// states at their bounds with samples at theirs and settings at their range ends.
@@ -1048,7 +1049,10 @@ impl Robust {
         self.turn = self.turn.corrected(k, f_e);
         self.heading_var.heading_step(k, s.mag_heading_sigma);
         let kr = lp_gain(dt, 10.0 * s.tau_mag).max(1.0 / self.mag_count as f64);
-        self.ref_norm += (f_norm - self.ref_norm) * kr;
+        // A compensated field may be larger than any reading (a large hard-iron offset
+        // taken away); the reference stays within what a reading's norm can be, as
+        // `valid` requires.
+        self.ref_norm = (self.ref_norm + (f_norm - self.ref_norm) * kr).min(super::holds::MAG_NORM_MAX);
         self.ref_dip += (f_dip - self.ref_dip) * kr;
         true
     }
@@ -1237,6 +1241,24 @@ mod tests {
                 "{turn:?} {q:?}"
             );
         }
+    }
+
+    /// A compensated field larger than any reading (readings near the bound, a hard-iron
+    /// offset opposite to them, the widest norm test) is used, and the reference norm's
+    /// low-pass stays within what `valid` accepts: the state still saves and loads.
+    #[test]
+    fn a_large_compensated_field_keeps_the_reference_valid() {
+        use crate::filters::holds::MAG_NORM_MAX;
+        use crate::filters::MAX_MAG;
+        let settings = RobustSettings { mag_norm_th: 10.0, ..RobustSettings::default() };
+        let mut f = Robust::new(settings);
+        let m = Vec3::new(0.0, 0.99 * MAX_MAG, -0.99 * MAX_MAG);
+        (f.mag_count, f.ref_norm, f.ref_dip) = (5, 0.9 * MAG_NORM_MAX, dip(m));
+        (f.hard_iron_on, f.hard_iron) = (true, m * -1.0);
+        assert!(f.valid());
+        assert!(f.correct_heading(DT, m, Quat::IDENTITY), "the compensated field 2m is used");
+        assert_eq!(f.ref_norm, MAG_NORM_MAX);
+        assert!(f.valid(), "{f:?}");
     }
 
     /// A million small corrections keep the pair unit to rounding: each step's Newton
