@@ -34,13 +34,30 @@ pub(crate) fn widest<R>(f: impl FnOnce() -> R) -> R {
     f()
 }
 
-/// Whether [`widest`] takes the AVX copy: the CPU has AVX and `ORIENT_ISA` is not
-/// `baseline`. Read once.
+/// Whether [`widest`] takes the AVX copy: [`UNKNOWN`] until the first call decides,
+/// then [`BASELINE`] or [`WIDE`] (the CPU has AVX and `ORIENT_ISA` is not `baseline`).
+/// A plain atomic byte rather than a lazily initialised cell: every update reads it, and
+/// the read is then one load and one comparison (the cell's took two of each). Threads
+/// that decide at the same time store the same value, so relaxed ordering suffices.
 #[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
-static AVX: once_cell::sync::Lazy<bool> = once_cell::sync::Lazy::new(|| {
-    std::arch::is_x86_feature_detected!("avx")
-        && std::env::var_os("ORIENT_ISA").map_or(true, |v| v != "baseline")
-});
+static AVX: core::sync::atomic::AtomicU8 = core::sync::atomic::AtomicU8::new(UNKNOWN);
+#[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
+const UNKNOWN: u8 = 0;
+#[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
+const BASELINE: u8 = 1;
+#[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
+const WIDE: u8 = 2;
+
+/// Decides [`AVX`] once (the first update's call), out of line.
+#[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
+#[cold]
+#[inline(never)]
+fn decide_avx() -> bool {
+    let wide = std::arch::is_x86_feature_detected!("avx")
+        && std::env::var_os("ORIENT_ISA").map_or(true, |v| v != "baseline");
+    AVX.store(if wide { WIDE } else { BASELINE }, core::sync::atomic::Ordering::Relaxed);
+    wide
+}
 
 /// Whether to take the AVX copy: [`AVX`], unless a unit test asked for the baseline.
 #[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
@@ -50,7 +67,11 @@ fn use_avx() -> bool {
     if FORCE_BASELINE.with(|f| f.get()) {
         return false;
     }
-    *AVX
+    match AVX.load(core::sync::atomic::Ordering::Relaxed) {
+        WIDE => true,
+        BASELINE => false,
+        _ => decide_avx(),
+    }
 }
 
 #[cfg(test)]
