@@ -7,8 +7,9 @@
 //! register copies. Everywhere else (other architectures, CPUs without AVX, Miri) the
 //! closure runs as it is.
 //!
-//! Setting the environment variable `ORIENT_ISA=baseline` before the first update
-//! keeps the baseline code on any CPU: for tools that do not decode every AVX
+//! Setting the environment variable `ORIENT_ISA=baseline` before the first EKF or GMVDK
+//! filter is made (the kinds that use this module, through [`prepare`]) keeps the
+//! baseline code on any CPU: for tools that do not decode every AVX
 //! instruction (valgrind 3.19 stops at a register-to-register `vmovq`), and to compare.
 //!
 //! [`widest_lanes`] does the same for code generic over its four-lane type, which it
@@ -34,11 +35,12 @@ pub(crate) fn widest<R>(f: impl FnOnce() -> R) -> R {
     f()
 }
 
-/// Whether [`widest`] takes the AVX copy: [`UNKNOWN`] until the first call decides,
-/// then [`BASELINE`] or [`WIDE`] (the CPU has AVX and `ORIENT_ISA` is not `baseline`).
-/// A plain atomic byte rather than a lazily initialised cell: every update reads it, and
-/// the read is then one load and one comparison (the cell's took two of each). Threads
-/// that decide at the same time store the same value, so relaxed ordering suffices.
+/// Whether [`widest`] takes the AVX copy: [`UNKNOWN`] until [`prepare`] decides, then
+/// [`BASELINE`] or [`WIDE`] (the CPU has AVX and `ORIENT_ISA` is not `baseline`). A plain
+/// atomic byte decided when a filter is made, rather than a lazily initialised cell
+/// decided at the first update: every update reads it, and the read is then one load and
+/// one comparison (the cell's took two of each). Threads that decide at the same time
+/// store the same value, so relaxed ordering suffices.
 #[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
 static AVX: core::sync::atomic::AtomicU8 = core::sync::atomic::AtomicU8::new(UNKNOWN);
 #[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
@@ -48,15 +50,24 @@ const BASELINE: u8 = 1;
 #[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
 const WIDE: u8 = 2;
 
-/// Decides [`AVX`] once (the first update's call), out of line.
+/// Decides whether [`widest`] takes the AVX copy, once per process (later calls return at
+/// the first test). The kinds that run through [`widest`] call it when a filter is made;
+/// until it has run, [`widest`] takes the baseline copy, which gives the same bits.
+#[inline]
+pub(crate) fn prepare() {
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
+    if AVX.load(core::sync::atomic::Ordering::Relaxed) == UNKNOWN {
+        decide_avx();
+    }
+}
+
 #[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
 #[cold]
 #[inline(never)]
-fn decide_avx() -> bool {
+fn decide_avx() {
     let wide = std::arch::is_x86_feature_detected!("avx")
         && std::env::var_os("ORIENT_ISA").map_or(true, |v| v != "baseline");
     AVX.store(if wide { WIDE } else { BASELINE }, core::sync::atomic::Ordering::Relaxed);
-    wide
 }
 
 /// Whether to take the AVX copy: [`AVX`], unless a unit test asked for the baseline.
@@ -67,11 +78,7 @@ fn use_avx() -> bool {
     if FORCE_BASELINE.with(|f| f.get()) {
         return false;
     }
-    match AVX.load(core::sync::atomic::Ordering::Relaxed) {
-        WIDE => true,
-        BASELINE => false,
-        _ => decide_avx(),
-    }
+    AVX.load(core::sync::atomic::Ordering::Relaxed) == WIDE
 }
 
 #[cfg(test)]
@@ -190,4 +197,22 @@ mod avx4 {
     op!(Sub, sub, SubAssign, sub_assign, _mm256_sub_pd);
     op!(Mul, mul, MulAssign, mul_assign, _mm256_mul_pd);
     op!(Div, div, DivAssign, div_assign, _mm256_div_pd);
+}
+
+#[cfg(all(test, target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
+mod tests {
+    use super::{AVX, BASELINE, UNKNOWN, WIDE};
+    use core::sync::atomic::Ordering::Relaxed;
+
+    /// Making a filter of a kind that runs through `widest` decides the copy, as this
+    /// CPU and `ORIENT_ISA` say.
+    #[test]
+    fn making_an_ekf_or_gmvdk_filter_decides_the_copy() {
+        let _ = crate::filters::ekf::Ekf::new(Default::default());
+        let _ = crate::filters::gmvdk::Gmvdk::new(Default::default());
+        let wide = std::arch::is_x86_feature_detected!("avx")
+            && std::env::var_os("ORIENT_ISA").map_or(true, |v| v != "baseline");
+        assert_ne!(AVX.load(Relaxed), UNKNOWN);
+        assert_eq!(AVX.load(Relaxed), if wide { WIDE } else { BASELINE });
+    }
 }

@@ -698,6 +698,7 @@ fn vector_of<V: Lanes>(t: V::Token, q: Quat) -> V {
 
 impl Ekf {
     pub fn new(settings: EkfSettings) -> Ekf {
+        crate::isa::prepare();
         let mut f = Ekf {
             settings,
             x: Blocks { q: vector_of((), Quat::IDENTITY), w: f64x4::splat(0.0), d: f64x4::splat(0.0) },

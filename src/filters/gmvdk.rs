@@ -478,6 +478,7 @@ pub struct Gmvdk {
 
 impl Gmvdk {
     pub fn new(settings: GmvdkSettings) -> Gmvdk {
+        crate::isa::prepare();
         Gmvdk {
             settings,
             q: Quat::IDENTITY,
