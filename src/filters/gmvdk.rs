@@ -177,13 +177,14 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
 /// which normalises both vectors first: two divisions more (a test compares them).
 ///
 /// `|Δq|² = q₀² + |Δ|² = 2 |v₀||v̂| q₀`: the normalisation takes that product, not Δq's
-/// four squares. Its relative error is that of q₀, about 2⁻⁵³ |v₀||v̂| / q₀, so it is used
-/// while `q₀ > |v₀||v̂| / 2` (the reading within 120° of the prediction; that error
-/// under 2 ulp):
-/// readings farther off (the last of them pointing opposite, with no unique axis), or so
-/// small or large that `|Δq|²` leaves `inv_sqrt`'s fast range, go to
-/// `from_two_vectors`, out of line. Taking the product cut GMVDK's MARG update by about
-/// 18 instructions (docs/PERFORMANCE.md).
+/// four squares. Its relative error is q₀'s, about 2⁻⁵³ |v₀||v̂| / q₀, plus up to twice
+/// that of the norms passed (the update passes the reference's stored norm, a few ulp
+/// from the rotated prediction's). It is used while `q₀ > |v₀||v̂| / 2` (the reading
+/// within 120° of the prediction), where that is a few ulp; the SLERPs that take Δq
+/// normalise their results. Readings farther off (the last of them pointing opposite,
+/// with no unique axis), or so small or large that `|Δq|²` leaves `inv_sqrt`'s fast
+/// range, go to `from_two_vectors`, out of line. The product cut GMVDK's MARG update by
+/// about 18 instructions (docs/PERFORMANCE.md).
 #[inline(always)]
 pub fn eq10_to_12(v0: Vec3, v: Vec3) -> Quat {
     eq10_to_12_with_norms(v0, v0.norm(), v, v.norm())

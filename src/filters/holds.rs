@@ -9,6 +9,12 @@ pub fn unit(q: Quat) -> bool {
     (q.norm_squared() - 1.0).abs() <= 1e-9
 }
 
+/// A product of three quaternions that [`unit`] accepts, not normalised again (the robust
+/// kind's output): `|q|²` within `(1 ± 1e-9)³` of 1, with room for rounding.
+pub fn unit_product_of_three(q: Quat) -> bool {
+    (q.norm_squared() - 1.0).abs() <= 3.1e-9
+}
+
 /// Estimates follow the readings, and a blend of bounded readings and predictions
 /// may overshoot them a little: a decoded estimate must stay within ten times the
 /// readings' physical bound (a forged 1e300 is refused).
