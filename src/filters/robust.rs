@@ -1184,11 +1184,11 @@ mod tests {
     }
 
     /// The readable heading step of [`Turn`]: δ itself, `atan2` and `sincos`.
-    fn readable_heading_step(delta: f64, k: f64, f_e: Vec3) -> (f64, Turn) {
+    fn readable_heading_step(delta: f64, k: f64, f_e: Vec3) -> Turn {
         let target = libm::atan2(f_e.x, f_e.y);
         let delta = wrap(delta + k * wrap(target - delta));
         let (s, c) = libm::sincos(0.5 * delta);
-        (delta, Turn { c, s })
+        Turn { c, s }
     }
 
     /// [`Turn::corrected`] against the readable step, from random headings, fields and
@@ -1220,7 +1220,7 @@ mod tests {
             assert!(de.min(2.0 * PI - de) <= 4.0 * f64::EPSILON * PI, "{delta} {f_e:?}: {e} vs {want_e}");
             series += usize::from(4.0 * libm::tan(e).abs() < 0.99 && e.abs() < 1.0);
             let got = turn.corrected(k, f_e);
-            let (_, want) = readable_heading_step(delta, k, f_e);
+            let want = readable_heading_step(delta, k, f_e);
             let apart = |a: Turn, b: Turn| (a.c - b.c).abs().max((a.s - b.s).abs());
             let d = apart(got, want).min(apart(got, Turn { c: -want.c, s: -want.s }));
             assert!(d <= 4.0 * f64::EPSILON, "{delta} {f_e:?} {k}: {got:?} vs {want:?}");
