@@ -350,11 +350,12 @@ impl Complementary {
     /// and an estimate unit to 1e-8 before its renormalisation. The same result, or `None`
     /// with nothing changed otherwise.
     #[inline(always)]
-    pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<Step> {
+    pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<u32> {
         let (Phase::Running(r), Some(a)) = (&mut self.phase, s.accel) else {
             return None;
         };
         Complementary::step::<true>(r, &self.settings, s.dt, s.gyro, || a.norm(), || a.unit())
+            .map(|st| st.flags(true, s.mag.is_some()))
     }
 
     /// Eqs. (4)-(10) from the running state with an accelerometer reading, given as its

@@ -55,9 +55,12 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     /// [`Estimator::update`]'s usual case, which calls no function: the same result, or
     /// `None` with nothing changed when the case is not the usual one (the caller then
     /// takes [`Estimator::update`]). Called only while [`Estimator::usual_settings`].
+    /// Returns the flags the step leaves ([`Step::flags`]), computed in the kind's copy of
+    /// the step for each case, where they are constants or nearly.
     #[inline(always)]
-    fn update_usual(&mut self, s: &Usual) -> Option<Step> {
-        self.update(s.dt, s.gyro, s.accel.map(|a| a.v), s.mag.map(|m| m.v))
+    fn update_usual(&mut self, s: &Usual) -> Option<u32> {
+        let step = self.update(s.dt, s.gyro, s.accel.map(|a| a.v), s.mag.map(|m| m.v))?;
+        Some(step.flags(s.accel.is_some(), s.mag.is_some()))
     }
     /// The output orientation (native frame, or relative for GMVDK's relative output).
     fn quaternion(&self) -> Quat;
@@ -146,6 +149,26 @@ pub struct Step {
     pub initializing: bool,
 }
 
+impl Step {
+    /// The [`super::flags`] an update past initialisation leaves: initialised, and each
+    /// reading the sample had either used or rejected.
+    #[inline(always)]
+    pub(crate) fn flags(self, had_accel: bool, had_mag: bool) -> u32 {
+        let bit = |used: bool, had: bool, used_bit: u32, rejected_bit: u32| {
+            if used {
+                used_bit
+            } else if had {
+                rejected_bit
+            } else {
+                0
+            }
+        };
+        super::flags::INITIALIZED
+            | bit(self.used_accel, had_accel, super::flags::ACCEL_USED, super::flags::ACCEL_REJECTED)
+            | bit(self.used_mag, had_mag, super::flags::MAG_USED, super::flags::MAG_REJECTED)
+    }
+}
+
 /// An [`Estimator`] impl: the kind's identity and the items every kind writes the same
 /// way (construction, settings, and the forwards to its inherent `quaternion`,
 /// `set_quaternion`, `reacquire`, `codec` and `valid`; with `usual: true`, also
@@ -163,7 +186,7 @@ macro_rules! estimator {
             }
 
             #[inline(always)]
-            fn update_usual(&mut self, s: &$crate::filters::sample::Usual) -> Option<$crate::filters::Step> {
+            fn update_usual(&mut self, s: &$crate::filters::sample::Usual) -> Option<u32> {
                 $T::update_usual(self, s)
             }
 

@@ -477,18 +477,25 @@ impl Madgwick {
     /// [`Madgwick::usual_settings`]: every squared norm in [`inv_sqrt`]'s fast range. The
     /// same result, or `None` with nothing changed otherwise.
     #[inline(always)]
-    pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<Step> {
+    pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<u32> {
         debug_assert!(self.usual_settings());
         // One copy of the step per case, so that each knows which readings it has (and
-        // the flags it leaves are constants).
+        // the flags it leaves are constants, computed before the copies join).
         let (bias, dt, gyro) = (self.bias, s.dt, s.gyro);
-        let (q, step) = match (s.accel, s.mag) {
-            (Some(a), None) => self.step::<true>(bias, dt, gyro, Some(a.unit()), None),
-            (Some(a), Some(m)) => self.step::<true>(bias, dt, gyro, Some(a.unit()), Some(m.unit())),
-            (None, m) => self.step::<true>(bias, dt, gyro, None, m.map(Checked::unit)),
+        let flags = |had_accel, had_mag| move |(q, step): (Quat, Step)| (q, step.flags(had_accel, had_mag));
+        let (q, flags) = match (s.accel, s.mag) {
+            (Some(a), None) => {
+                self.step::<true>(bias, dt, gyro, Some(a.unit()), None).map(flags(true, false))
+            }
+            (Some(a), Some(m)) => {
+                self.step::<true>(bias, dt, gyro, Some(a.unit()), Some(m.unit())).map(flags(true, true))
+            }
+            (None, m) => {
+                self.step::<true>(bias, dt, gyro, None, m.map(Checked::unit)).map(flags(false, m.is_some()))
+            }
         }?;
         self.q = q;
-        Some(step)
+        Some(flags)
     }
 
     /// [`Madgwick::update`] with the rest-bias option: the detector's state and the bias

@@ -162,11 +162,16 @@ impl Mahony {
     /// norm is then in [`crate::math::inv_sqrt`]'s fast range: see [`Mahony::step`]). The
     /// same result, or `None` with nothing changed otherwise.
     #[inline(always)]
-    pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<Step> {
+    pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<u32> {
         debug_assert!(self.usual_settings());
+        // The flags each case leaves are computed in its copy, before the copies join.
         match (s.accel, s.mag) {
-            (Some(a), None) => self.update_with::<false, true>(s.dt, s.gyro, a.unit(), Vec3::ZERO),
-            (Some(a), Some(m)) => self.update_with::<true, true>(s.dt, s.gyro, a.unit(), m.unit()),
+            (Some(a), None) => self
+                .update_with::<false, true>(s.dt, s.gyro, a.unit(), Vec3::ZERO)
+                .map(|st| st.flags(true, false)),
+            (Some(a), Some(m)) => self
+                .update_with::<true, true>(s.dt, s.gyro, a.unit(), m.unit())
+                .map(|st| st.flags(true, true)),
             (None, _) => None,
         }
     }

@@ -473,8 +473,12 @@ impl<E: Estimator> Runner<E> {
         let usual = (self.policy == 0)
             & (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED);
         if let Some(u) = if usual { self.usual(s) } else { None } {
-            if let Some(step) = self.core.update_usual(&u) {
-                self.stepped(step, u.accel.map(|a| a.v), u.mag.map(|m| m.v));
+            if let Some(flags) = self.core.update_usual(&u) {
+                if let Some(a) = u.accel {
+                    self.last_accel = a.v;
+                    self.bits |= Self::HAS_ACCEL;
+                }
+                self.flags = flags;
                 return Ok(());
             }
         }
@@ -498,7 +502,7 @@ impl<E: Estimator> Runner<E> {
             self.last_accel = a;
             self.bits |= Self::HAS_ACCEL;
         }
-        self.flags = flags::INITIALIZED | used_flags(step, accel.is_some(), mag.is_some());
+        self.flags = step.flags(accel.is_some(), mag.is_some());
     }
 
     /// One step. On error nothing changes: the state is bit-identical to before.
@@ -609,10 +613,8 @@ impl<E: Estimator> Runner<E> {
                     self.last_accel = a;
                     self.bits |= Self::HAS_ACCEL;
                 }
-                self.flags = flags::INITIALIZED
-                    | used_flags(step, accel.is_some(), mag.is_some())
-                    | if gap { flags::GAP } else { 0 }
-                    | pending;
+                self.flags =
+                    step.flags(accel.is_some(), mag.is_some()) | if gap { flags::GAP } else { 0 } | pending;
                 Ok(())
             }
             None => Err(Error::Numeric),
@@ -662,9 +664,7 @@ impl<E: Estimator> Runner<E> {
                 self.flags = if step.initializing {
                     0
                 } else {
-                    flags::INITIALIZED
-                        | used_flags(step, accel.is_some(), mag.is_some())
-                        | if gap { flags::GAP } else { 0 }
+                    step.flags(accel.is_some(), mag.is_some()) | if gap { flags::GAP } else { 0 }
                 };
                 Ok(())
             }
@@ -726,7 +726,7 @@ impl<E: Estimator> Runner<E> {
 
     /// What a lane step leaves besides the core's state.
     pub(crate) fn lane_done(&mut self, accel: Vec3, step: Step, had_mag: bool) {
-        self.flags = flags::INITIALIZED | used_flags(step, true, had_mag);
+        self.flags = step.flags(true, had_mag);
         self.last_accel = accel;
         self.bits |= Self::HAS_ACCEL;
     }
@@ -905,22 +905,6 @@ fn extras_codec(x: &mut Extras, c: &mut dyn Codec) {
     let mut n = x.burst.1 as u64;
     c.u64(&mut n);
     x.burst.1 = n.min(u32::MAX as u64) as u32;
-}
-
-/// The used and rejected bits of one update.
-#[inline(always)]
-fn used_flags(step: Step, had_accel: bool, had_mag: bool) -> u32 {
-    let bit = |used: bool, had: bool, used_bit: u32, rejected_bit: u32| {
-        if used {
-            used_bit
-        } else if had {
-            rejected_bit
-        } else {
-            0
-        }
-    };
-    bit(step.used_accel, had_accel, flags::ACCEL_USED, flags::ACCEL_REJECTED)
-        | bit(step.used_mag, had_mag, flags::MAG_USED, flags::MAG_REJECTED)
 }
 
 /// The configuration as it travels in a snapshot.
