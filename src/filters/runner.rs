@@ -167,6 +167,11 @@ impl<E: Estimator> Runner<E> {
     /// The extras' box is made: the output goes through the host's frames. Kept beside
     /// [`Runner::RELATIVE`] so that the read tests both with one instruction.
     const HOSTED: u8 = 64;
+    /// The filter has no orientation yet ([`flags::INITIALIZED`] clear), kept beside
+    /// [`Runner::RELATIVE`] and [`Runner::HOSTED`] so that the read tests all three with
+    /// one instruction. [`Runner::sync_uninit`] sets it wherever `INITIALIZED` may change;
+    /// the usual step and the lane step find it clear and leave it so.
+    const UNINIT: u8 = 128;
     /// `saturation_recovery`: readings beyond the ranges are clipped and recovered from.
     const RECOVER: u8 = 1;
     /// `same_instant`: dt = 0 is the same instant as the next step.
@@ -327,6 +332,7 @@ impl<E: Estimator> Runner<E> {
         self.last_accel = Vec3::ZERO;
         self.set_has_accel(false);
         self.flags = 0;
+        self.sync_uninit();
         match self.init() {
             // From the first sample, or the core's own start-up period.
             Init::AccMag => {}
@@ -369,6 +375,13 @@ impl<E: Estimator> Runner<E> {
         };
         self.core.set_quaternion(native);
         self.flags |= flags::INITIALIZED;
+        self.sync_uninit();
+    }
+
+    /// [`Runner::UNINIT`] from [`flags::INITIALIZED`], after any write that may change it.
+    fn sync_uninit(&mut self) {
+        let uninit = if self.flags & flags::INITIALIZED == 0 { Self::UNINIT } else { 0 };
+        self.bits = (self.bits & !Self::UNINIT) | uninit;
     }
 
     /// The quick test on the sample where it lies, the exact rules (on a copy) only when
@@ -666,12 +679,14 @@ impl<E: Estimator> Runner<E> {
                 } else {
                     step.flags(accel.is_some(), mag.is_some()) | if gap { flags::GAP } else { 0 }
                 };
+                self.sync_uninit();
                 Ok(())
             }
             None => {
                 if let Some(flags) = saved {
                     self.core.restart(*self.core.settings());
                     self.flags = flags;
+                    self.sync_uninit();
                 }
                 Err(Error::Numeric)
             }
@@ -795,6 +810,7 @@ impl<E: Estimator> Runner<E> {
         let config = head.config(E::KIND).filter(|_| r.ok).ok_or(StateError::Corrupt)?;
         let mut fresh = Runner::<E>::new(&config).map_err(|_| StateError::Corrupt)?;
         r.u32(&mut fresh.flags);
+        fresh.sync_uninit();
         let mut last = None;
         r.opt_vec3(&mut last);
         fresh.set_has_accel(last.is_some());
@@ -844,13 +860,16 @@ impl<E: Estimator> Runner<E> {
     #[inline(always)]
     pub(crate) fn output(&self) -> Quat {
         debug_assert_eq!(self.bits & Self::HOSTED != 0, self.extras.0.is_some());
-        if self.bits & (Self::RELATIVE | Self::HOSTED) != 0 {
+        debug_assert_eq!(self.bits & Self::UNINIT != 0, self.flags & flags::INITIALIZED == 0);
+        if self.bits & (Self::RELATIVE | Self::HOSTED | Self::UNINIT) != 0 {
             return self.output_hosted();
         }
-        self.quaternion()
+        // What `quaternion` gives when initialised and not relative.
+        E::NATIVE.express(self.frame, self.core.quaternion())
     }
 
-    /// [`Runner::output`] with a relative output or the extras' box made.
+    /// [`Runner::output`] with a relative output, the extras' box made, or before
+    /// initialisation.
     #[cold]
     #[inline(never)]
     fn output_hosted(&self) -> Quat {
