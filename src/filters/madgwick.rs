@@ -29,8 +29,51 @@ use super::params::settings;
 use super::rest::RestBias;
 use super::sample::{Checked, Usual};
 use super::Step;
+use crate::math::lanes::Real;
 use crate::math::{inv_sqrt, inv_sqrt_fast, inv_sqrt_fast_bounded, Quat, Vec3};
 use wide::f64x4;
+
+/// A quaternion's components `[q1 q2 q3 q4]` (w, x, y, z), of one filter (`T = f64`) or
+/// of four (`f64x4`, one filter per lane): the update below is written once, on these,
+/// for both (see [`Real`]).
+type Q<T> = [T; 4];
+/// A vector's components `[x y z]`, as [`Q`].
+type V<T> = [T; 3];
+
+#[inline(always)]
+fn q_of(q: Quat) -> Q<f64> {
+    [q.w, q.x, q.y, q.z]
+}
+
+#[inline(always)]
+fn v_of(v: Vec3) -> V<f64> {
+    [v.x, v.y, v.z]
+}
+
+#[inline(always)]
+fn quat(q: Q<f64>) -> Quat {
+    Quat::new(q[0], q[1], q[2], q[3])
+}
+
+/// [`Quat::dot`]: `(a1 b1 + a2 b2) + (a3 b3 + a4 b4)`.
+#[inline(always)]
+fn dot_of<T: Real>(a: Q<T>, b: Q<T>) -> T {
+    (a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + a[3] * b[3])
+}
+
+/// [`Vec3::cross`].
+#[inline(always)]
+fn cross_of<T: Real>(u: V<T>, v: V<T>) -> V<T> {
+    [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+}
+
+/// `v` divided by its norm as [`Vec3::normalized`], with `inv_sqrt` the caller's (a
+/// range test, or every lane's); `None` when it declines.
+#[inline(always)]
+fn normalized_of<T: Real>(v: V<T>, inv_sqrt: impl Fn(T) -> Option<T>) -> Option<V<T>> {
+    let r = inv_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])?;
+    Some(v.map(|c| c * r))
+}
 
 settings! {
     /// Madgwick's settings, in user units.
@@ -78,8 +121,18 @@ pub fn beta_from_gyro_error(gyro_error_max: f64) -> f64 {
 /// Objective function for gravity, eq. (12): `f_g = q* ⊗ [0 0 0 1] ⊗ q − â`.
 #[inline]
 pub fn objective_g(q: Quat, a: Vec3) -> [f64; 3] {
-    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
-    [2.0 * (q2 * q4 - q1 * q3) - a.x, 2.0 * (q1 * q2 + q3 * q4) - a.y, 2.0 * (0.5 - q2 * q2 - q3 * q3) - a.z]
+    objective_g_of(q_of(q), v_of(a))
+}
+
+#[inline(always)]
+fn objective_g_of<T: Real>(q: Q<T>, a: V<T>) -> V<T> {
+    let [q1, q2, q3, q4] = q;
+    let k = T::of;
+    [
+        k(2.0) * (q2 * q4 - q1 * q3) - a[0],
+        k(2.0) * (q1 * q2 + q3 * q4) - a[1],
+        k(2.0) * (k(0.5) - q2 * q2 - q3 * q3) - a[2],
+    ]
 }
 
 /// Jacobian of (12), eq. (13): rows are the components of `f_g`, columns `q1..q4`.
@@ -96,11 +149,17 @@ pub fn jacobian_g(q: Quat) -> [[f64; 4]; 3] {
 /// Objective function for the magnetic field, eq. (16), with `ᴱb̂ = [0 b_x 0 b_z]` (14).
 #[inline]
 pub fn objective_b(q: Quat, bx: f64, bz: f64, m: Vec3) -> [f64; 3] {
-    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    objective_b_of(q_of(q), bx, bz, v_of(m))
+}
+
+#[inline(always)]
+fn objective_b_of<T: Real>(q: Q<T>, bx: T, bz: T, m: V<T>) -> V<T> {
+    let [q1, q2, q3, q4] = q;
+    let k = T::of;
     [
-        2.0 * bx * (0.5 - q3 * q3 - q4 * q4) + 2.0 * bz * (q2 * q4 - q1 * q3) - m.x,
-        2.0 * bx * (q2 * q3 - q1 * q4) + 2.0 * bz * (q1 * q2 + q3 * q4) - m.y,
-        2.0 * bx * (q1 * q3 + q2 * q4) + 2.0 * bz * (0.5 - q2 * q2 - q3 * q3) - m.z,
+        k(2.0) * bx * (k(0.5) - q3 * q3 - q4 * q4) + k(2.0) * bz * (q2 * q4 - q1 * q3) - m[0],
+        k(2.0) * bx * (q2 * q3 - q1 * q4) + k(2.0) * bz * (q1 * q2 + q3 * q4) - m[1],
+        k(2.0) * bx * (q1 * q3 + q2 * q4) + k(2.0) * bz * (k(0.5) - q2 * q2 - q3 * q3) - m[2],
     ]
 }
 
@@ -125,15 +184,29 @@ pub fn jacobian_b(q: Quat, bx: f64, bz: f64) -> [[f64; 4]; 3] {
 /// `b_x = √(h_x² + h_y²)`, `b_z = h_z`.
 #[inline]
 pub fn reference_field(q: Quat, m: Vec3) -> (f64, f64) {
-    let h = q.rotate(m);
-    ((h.x * h.x + h.y * h.y).sqrt(), h.z)
+    reference_field_of(q_of(q), v_of(m))
+}
+
+/// (31)-(32) with `q ⊗ m̂ ⊗ q*` as [`Quat::rotate`] computes it: `m̂ + q1 t + u × t`,
+/// `u = [q2 q3 q4]`, `t = 2 u × m̂`.
+#[inline(always)]
+fn reference_field_of<T: Real>(q: Q<T>, m: V<T>) -> (T, T) {
+    let u = [q[1], q[2], q[3]];
+    let t = cross_of(u, m).map(|c| c * T::of(2.0));
+    let ut = cross_of(u, t);
+    let h: V<T> = core::array::from_fn(|i| m[i] + t[i] * q[0] + ut[i]);
+    ((h[0] * h[0] + h[1] * h[1]).sqrt(), h[2])
 }
 
 /// `Jᵀ f` for a 3×4 Jacobian and a 3-vector, as a quaternion (eq. (8)).
 #[inline]
 pub fn jt_f(j: &[[f64; 4]; 3], f: &[f64; 3]) -> Quat {
-    let col = |c: usize| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2];
-    Quat::new(col(0), col(1), col(2), col(3))
+    quat(jt_f_of(j, f))
+}
+
+#[inline(always)]
+fn jt_f_of<T: Real>(j: &[[T; 4]; 3], f: &V<T>) -> Q<T> {
+    core::array::from_fn(|c| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2])
 }
 
 /// `½ ∇f` for the IMU, eq. (21) first case: `½ J_gᵀ f_g` with (13) halved, whose rows
@@ -145,24 +218,36 @@ pub fn jt_f(j: &[[f64; 4]; 3], f: &[f64; 3]) -> Quat {
 /// against [`jt_f`] of [`jacobian_g`] and [`objective_g`]).
 #[inline]
 pub fn half_gradient_imu(q: Quat, a: Vec3) -> Quat {
-    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
-    let [f1, f2, f3] = objective_g(q, a);
-    Quat::new(
+    quat(half_gradient_imu_of(q_of(q), v_of(a)))
+}
+
+#[inline(always)]
+fn half_gradient_imu_of<T: Real>(q: Q<T>, a: V<T>) -> Q<T> {
+    let [q1, q2, q3, q4] = q;
+    let [f1, f2, f3] = objective_g_of(q, a);
+    let two = T::of(2.0);
+    [
         q2 * f2 - q3 * f1,
-        (q4 * f1 + q1 * f2) - 2.0 * q2 * f3,
-        (q4 * f2 - q1 * f1) - 2.0 * q3 * f3,
+        (q4 * f1 + q1 * f2) - two * q2 * f3,
+        (q4 * f2 - q1 * f1) - two * q3 * f3,
         q2 * f1 + q3 * f2,
-    )
+    ]
 }
 
 /// (17) halved: `½ J_b` (see [`half_gradient_imu`] for why half).
 #[inline]
 pub fn half_jacobian_b(q: Quat, bx: f64, bz: f64) -> [[f64; 4]; 3] {
-    let Quat { w: q1, x: q2, y: q3, z: q4 } = q;
+    half_jacobian_b_of(q_of(q), bx, bz)
+}
+
+#[inline(always)]
+fn half_jacobian_b_of<T: Real>(q: Q<T>, bx: T, bz: T) -> [[T; 4]; 3] {
+    let [q1, q2, q3, q4] = q;
+    let two = T::of(2.0);
     [
-        [-bz * q3, bz * q4, -2.0 * bx * q3 - bz * q1, -2.0 * bx * q4 + bz * q2],
+        [-bz * q3, bz * q4, -two * bx * q3 - bz * q1, -two * bx * q4 + bz * q2],
         [-bx * q4 + bz * q2, bx * q3 + bz * q1, bx * q2 + bz * q4, -bx * q1 + bz * q3],
-        [bx * q3, bx * q4 - 2.0 * bz * q2, bx * q1 - 2.0 * bz * q3, bx * q2],
+        [bx * q3, bx * q4 - two * bz * q2, bx * q1 - two * bz * q3, bx * q2],
     ]
 }
 
@@ -170,168 +255,98 @@ pub fn half_jacobian_b(q: Quat, bx: f64, bz: f64) -> [[f64; 4]; 3] {
 /// as [`half_gradient_imu`] and the field part `½ J_bᵀ f_b`.
 #[inline]
 pub fn half_gradient_marg(q: Quat, a: Vec3, bx: f64, bz: f64, m: Vec3) -> Quat {
-    half_gradient_imu(q, a) + jt_f(&half_jacobian_b(q, bx, bz), &objective_b(q, bx, bz, m))
+    quat(half_gradient_marg_of(q_of(q), v_of(a), bx, bz, v_of(m)))
+}
+
+#[inline(always)]
+fn half_gradient_marg_of<T: Real>(q: Q<T>, a: V<T>, bx: T, bz: T, m: V<T>) -> Q<T> {
+    let g = half_gradient_imu_of(q, a);
+    let b = jt_f_of(&half_jacobian_b_of(q, bx, bz), &objective_b_of(q, bx, bz, m));
+    core::array::from_fn(|i| g[i] + b[i])
+}
+
+/// (3) and (29) with the gyroscope alone: `q + ½ q ⊗ [0 ω] dt`, the product as
+/// [`Quat::mul_pure`] and the ½ folded into dt (both products exact but for rounding
+/// once: the same bits).
+#[inline(always)]
+fn predict_of<T: Real>(q: Q<T>, omega: V<T>, dt: T) -> Q<T> {
+    let [w, x, y, z] = q;
+    let [vx, vy, vz] = omega;
+    let q_omega = [
+        -(x * vx) - (y * vy + z * vz),
+        w * vx + (y * vz - z * vy),
+        (w * vy - x * vz) + z * vx,
+        (w * vz + x * vy) - y * vx,
+    ];
+    let h = T::of(0.5) * dt;
+    core::array::from_fn(|i| q[i] + q_omega[i] * h)
+}
+
+/// What [`correct_of`] found.
+enum Corrected<T> {
+    /// The new estimate, normalised, and whether the field was used.
+    Next(Q<T>, bool),
+    /// A squared norm outside the caller's fast range: the prediction, `½ ∇f`, `‖½ ∇f‖²`,
+    /// `dt β` and whether the field was used, for the careful path
+    /// ([`Madgwick::correct`]).
+    Slow(Q<T>, Q<T>, T, T, bool),
+    /// Lanes that differ on whether the field has a horizontal part.
+    Mixed,
+}
+
+/// Eqs. (29)-(30) from the estimate `q`, the prediction `p` ([`predict_of`]) and the
+/// normalised readings `â` and `m̂`, for one filter or for lanes: the field term (18)-(19)
+/// when `m̂` has a horizontal part (`b_x > 0`), else (12)-(13); then `p − dt β ∇f/‖∇f‖`,
+/// normalised. `inv_sqrt`: the caller's fast form, `None` outside its range.
+#[inline(always)]
+fn correct_of<T: Real>(
+    q: Q<T>,
+    p: Q<T>,
+    a: V<T>,
+    m: Option<V<T>>,
+    dt: T,
+    (beta_imu, beta_marg): (T, T),
+    inv_sqrt: impl Fn(T) -> Option<T>,
+) -> Corrected<T> {
+    // A match, not a closure: LLVM left the closure out of line, and the call spilled
+    // eight registers.
+    let marg = match m {
+        Some(m) => {
+            let (bx, bz) = reference_field_of(q, m);
+            match bx.decide(|v| v > 0.0) {
+                Some(true) => Some(half_gradient_marg_of(q, a, bx, bz, m)),
+                Some(false) => None,
+                None => return Corrected::Mixed,
+            }
+        }
+        None => None,
+    };
+    let used_mag = marg.is_some();
+    let (gradient, beta) = match marg {
+        Some(g) => (g, beta_marg),
+        None => (half_gradient_imu_of(q, a), beta_imu),
+    };
+    let gg = dot_of(gradient, gradient);
+    let k = beta * dt;
+    if let Some(r) = inv_sqrt(gg) {
+        let c = k * r;
+        let next: Q<T> = core::array::from_fn(|i| p[i] - gradient[i] * c);
+        if let Some(s) = inv_sqrt(dot_of(next, next)) {
+            return Corrected::Next(next.map(|c| c * s), used_mag);
+        }
+    }
+    Corrected::Slow(p, gradient, gg, k, used_mag)
+}
+
+/// [`crate::math::inv_sqrt`] on every lane, or `None` when a lane is outside the range
+/// where it is `√x · (1/x)`.
+#[inline(always)]
+fn inv_sqrt_lanes(x: f64x4) -> Option<f64x4> {
+    (x.decide(|v| v > 1e-300 && v < 1e300) == Some(true)).then(|| x.sqrt() * (f64x4::splat(1.0) / x))
 }
 
 /// The number of filters [`Madgwick::update_lanes`] steps at once.
 pub(crate) const LANES: usize = 4;
-
-/// Four f64 lanes: the arithmetic of one Madgwick update applied to four filters at
-/// once, in the `wide` crate's `f64x4` (two SSE2 registers on x86-64's baseline, NEON on
-/// aarch64, plain arrays elsewhere). Each operation is the IEEE operation of the scalar
-/// code, lane by lane, in the same order, so every lane's result is bit-identical to
-/// [`Madgwick::update`], while the four latency chains overlap. Explicit rather than
-/// left to LLVM's SLP vectoriser, which this crate's build turns off
-/// (`.cargo/config.toml`).
-#[derive(Clone, Copy)]
-struct L(f64x4);
-
-impl L {
-    #[inline(always)]
-    fn splat(v: f64) -> Self {
-        L(f64x4::splat(v))
-    }
-    #[inline(always)]
-    fn new(v: [f64; LANES]) -> Self {
-        L(f64x4::new(v))
-    }
-    #[inline(always)]
-    fn lanes(self) -> [f64; LANES] {
-        self.0.to_array()
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        L(self.0.sqrt())
-    }
-    #[inline(always)]
-    fn all(self, f: impl Fn(f64) -> bool) -> bool {
-        self.lanes().iter().all(|v| f(*v))
-    }
-}
-
-macro_rules! lane_op {
-    ($tr:ident, $f:ident, $op:tt) => {
-        impl core::ops::$tr for L {
-            type Output = L;
-            #[inline(always)]
-            fn $f(self, o: L) -> L {
-                L(self.0 $op o.0)
-            }
-        }
-    };
-}
-lane_op!(Add, add, +);
-lane_op!(Sub, sub, -);
-lane_op!(Mul, mul, *);
-lane_op!(Div, div, /);
-
-/// A quaternion of lanes (w, x, y, z).
-type Lq = [L; 4];
-
-/// `a ⊗ b` as [`Quat`]'s `Mul`.
-#[inline(always)]
-fn lmul(a: Lq, b: Lq) -> Lq {
-    let [aw, ax, ay, az] = a;
-    let [bw, bx, by, bz] = b;
-    [
-        (aw * bw - ax * bx) - (ay * by + az * bz),
-        (aw * bx + ax * bw) + (ay * bz - az * by),
-        (aw * by - ax * bz) + (ay * bw + az * bx),
-        (aw * bz + ax * by) - (ay * bx - az * bw),
-    ]
-}
-
-/// `u × v` as [`Vec3::cross`].
-#[inline(always)]
-fn lcross(u: [L; 3], v: [L; 3]) -> [L; 3] {
-    [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
-}
-
-/// `q ⊗ [0, v] ⊗ q*` as [`Quat::rotate`]: `v + w t + u × t`, `t = 2 u × v`.
-#[inline(always)]
-fn lrotate(q: Lq, v: [L; 3]) -> [L; 3] {
-    let u = [q[1], q[2], q[3]];
-    let t = lcross(u, v).map(|c| c * L::splat(2.0));
-    let ut = lcross(u, t);
-    core::array::from_fn(|i| v[i] + t[i] * q[0] + ut[i])
-}
-
-/// [`inv_sqrt`] on every lane, or `None` when a lane is outside the range where it is
-/// `√x · (1/x)`.
-#[inline(always)]
-fn linv_sqrt(x: L) -> Option<L> {
-    x.all(|v| v > 1e-300 && v < 1e300).then(|| x.sqrt() * (L::splat(1.0) / x))
-}
-
-/// `a·b` of two lane quaternions as [`Quat::dot`].
-#[inline(always)]
-fn ldot(a: Lq, b: Lq) -> L {
-    (a[0] * b[0] + a[1] * b[1]) + (a[2] * b[2] + a[3] * b[3])
-}
-
-/// [`Vec3::normalized`], or `None` as [`linv_sqrt`].
-#[inline(always)]
-fn lnormalized(v: [L; 3]) -> Option<[L; 3]> {
-    let r = linv_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])?;
-    Some([v[0] * r, v[1] * r, v[2] * r])
-}
-
-/// `Jᵀ f` as [`jt_f`].
-#[inline(always)]
-fn ljt_f(j: &[[L; 4]; 3], f: &[L; 3]) -> Lq {
-    core::array::from_fn(|c| j[0][c] * f[0] + j[1][c] * f[1] + j[2][c] * f[2])
-}
-
-/// [`jacobian_g`] and [`objective_g`].
-#[inline(always)]
-fn lgravity(q: Lq, a: [L; 3]) -> ([[L; 4]; 3], [L; 3]) {
-    let [q1, q2, q3, q4] = q;
-    let k = L::splat;
-    let f = [
-        k(2.0) * (q2 * q4 - q1 * q3) - a[0],
-        k(2.0) * (q1 * q2 + q3 * q4) - a[1],
-        k(2.0) * (k(0.5) - q2 * q2 - q3 * q3) - a[2],
-    ];
-    let j = [
-        [k(-2.0) * q3, k(2.0) * q4, k(-2.0) * q1, k(2.0) * q2],
-        [k(2.0) * q2, k(2.0) * q1, k(2.0) * q4, k(2.0) * q3],
-        [k(0.0), k(-4.0) * q2, k(-4.0) * q3, k(0.0)],
-    ];
-    (j, f)
-}
-
-/// [`jacobian_b`] and [`objective_b`].
-#[inline(always)]
-fn lfield(q: Lq, bx: L, bz: L, m: [L; 3]) -> ([[L; 4]; 3], [L; 3]) {
-    let [q1, q2, q3, q4] = q;
-    let k = L::splat;
-    let f = [
-        k(2.0) * bx * (k(0.5) - q3 * q3 - q4 * q4) + k(2.0) * bz * (q2 * q4 - q1 * q3) - m[0],
-        k(2.0) * bx * (q2 * q3 - q1 * q4) + k(2.0) * bz * (q1 * q2 + q3 * q4) - m[1],
-        k(2.0) * bx * (q1 * q3 + q2 * q4) + k(2.0) * bz * (k(0.5) - q2 * q2 - q3 * q3) - m[2],
-    ];
-    let j = [
-        [
-            k(-2.0) * bz * q3,
-            k(2.0) * bz * q4,
-            k(-4.0) * bx * q3 - k(2.0) * bz * q1,
-            k(-4.0) * bx * q4 + k(2.0) * bz * q2,
-        ],
-        [
-            k(-2.0) * bx * q4 + k(2.0) * bz * q2,
-            k(2.0) * bx * q3 + k(2.0) * bz * q1,
-            k(2.0) * bx * q2 + k(2.0) * bz * q4,
-            k(-2.0) * bx * q1 + k(2.0) * bz * q3,
-        ],
-        [
-            k(2.0) * bx * q3,
-            k(2.0) * bx * q4 - k(4.0) * bz * q2,
-            k(2.0) * bx * q1 - k(4.0) * bz * q3,
-            k(2.0) * bx * q2,
-        ],
-    ];
-    (j, f)
-}
 
 /// Madgwick's filter. Its state is the orientation alone, in its native North-West-Up frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -391,9 +406,10 @@ impl Madgwick {
 
     /// [`LANES`] filters' steps at once, each with an accelerometer reading and all with or all
     /// without a magnetometer reading; bit-identical to calling [`Madgwick::update`] on
-    /// each. `None`, with nothing changed, when a filter needs the scalar path: the
-    /// rest-bias option is on, or a lane meets an edge case (no horizontal field, a
-    /// squared norm outside [`inv_sqrt`]'s fast range, a non-finite result).
+    /// each, since both are [`predict_of`] and [`correct_of`]. `None`, with nothing
+    /// changed, when a filter needs the one-filter path: the rest-bias option is on, or
+    /// a lane meets an edge case (a squared norm outside [`inv_sqrt`]'s fast range, or
+    /// lanes that differ on whether the field has a horizontal part).
     pub(crate) fn update_lanes(
         fs: &mut [&mut Madgwick; LANES],
         dt: [f64; LANES],
@@ -404,52 +420,27 @@ impl Madgwick {
         if fs.iter().any(|f| f.settings.rest_bias_tau > 0.0) {
             return None;
         }
-        let lane = |g: &dyn Fn(usize) -> f64| L::new(core::array::from_fn(g));
-        let q: Lq = [lane(&|i| fs[i].q.w), lane(&|i| fs[i].q.x), lane(&|i| fs[i].q.y), lane(&|i| fs[i].q.z)];
-        let g = [
-            lane(&|i| gyro[i].x - fs[i].bias.x),
-            lane(&|i| gyro[i].y - fs[i].bias.y),
-            lane(&|i| gyro[i].z - fs[i].bias.z),
-        ];
-        let zero = L::splat(0.0);
-        let half = L::splat(0.5);
-        let dt = L::new(dt);
-        let qdo = lmul(q, [zero, g[0], g[1], g[2]]).map(|c| c * half);
-        let p: Lq = core::array::from_fn(|c| q[c] + qdo[c] * dt);
-        let a = lnormalized([lane(&|i| accel[i].x), lane(&|i| accel[i].y), lane(&|i| accel[i].z)])?;
-        let (jg, fg) = lgravity(q, a);
-        let mut gradient = ljt_f(&jg, &fg);
-        let beta = match mag {
-            Some(mag) => {
-                let m = lnormalized([lane(&|i| mag[i].x), lane(&|i| mag[i].y), lane(&|i| mag[i].z)])?;
-                let h = lrotate(q, m);
-                let bx = (h[0] * h[0] + h[1] * h[1]).sqrt();
-                if !bx.all(|v| v > 0.0) {
-                    return None;
-                }
-                let (jb, fb) = lfield(q, bx, h[2], m);
-                let gb = ljt_f(&jb, &fb);
-                gradient = core::array::from_fn(|c| gradient[c] + gb[c]);
-                lane(&|i| fs[i].settings.beta_marg)
-            }
-            None => lane(&|i| fs[i].settings.beta_imu),
+        let lane = |g: &dyn Fn(usize) -> f64| f64x4::new(core::array::from_fn(g));
+        let vector = |v: &[Vec3; LANES]| [lane(&|i| v[i].x), lane(&|i| v[i].y), lane(&|i| v[i].z)];
+        let q = [lane(&|i| fs[i].q.w), lane(&|i| fs[i].q.x), lane(&|i| fs[i].q.y), lane(&|i| fs[i].q.z)];
+        let omega = vector(&core::array::from_fn(|i| gyro[i] - fs[i].bias));
+        let dt = f64x4::new(dt);
+        // The same source as the one-filter step (`Madgwick::step`), in lanes.
+        let p = predict_of(q, omega, dt);
+        let a = normalized_of(vector(&accel), inv_sqrt_lanes)?;
+        let m = match mag {
+            Some(m) => Some(normalized_of(vector(&m), inv_sqrt_lanes)?),
+            None => None,
         };
-        // ½∇f, as the scalar step: the same bits (halving is exact), and the fast-range
-        // test below then sees the value the scalar step's test sees.
-        let gradient = gradient.map(|c| c * half);
-        let gg = ldot(gradient, gradient);
-        let k = beta * dt;
-        let c = k * linv_sqrt(gg)?;
-        let next: Lq = core::array::from_fn(|i| p[i] - gradient[i] * c);
-        let r = linv_sqrt(ldot(next, next))?;
-        let out: Lq = next.map(|c| c * r);
-        if !out.iter().all(|c| c.all(f64::is_finite)) {
+        let betas = (lane(&|i| fs[i].settings.beta_imu), lane(&|i| fs[i].settings.beta_marg));
+        let Corrected::Next(out, used_mag) = correct_of(q, p, a, m, dt, betas, inv_sqrt_lanes) else {
             return None;
-        }
+        };
+        let out = out.map(f64x4::to_array);
         for (i, f) in fs.iter_mut().enumerate() {
-            f.q = Quat::new(out[0].lanes()[i], out[1].lanes()[i], out[2].lanes()[i], out[3].lanes()[i]);
+            f.q = Quat::new(out[0][i], out[1][i], out[2][i], out[3][i]);
         }
-        Some(Step { used_accel: true, used_mag: mag.is_some(), initializing: false })
+        Some(Step { used_accel: true, used_mag, initializing: false })
     }
 
     /// One filter step, eqs. (29)-(30). `gyro` in rad/s, `accel` and `mag` in any unit
@@ -531,59 +522,38 @@ impl Madgwick {
         a: Option<Vec3>,
         m: Option<Vec3>,
     ) -> Option<(Quat, Step)> {
-        let q = self.q;
-        let gyro = gyro - bias;
-        // (3): rate of change of orientation measured by the gyroscope, ½ q ⊗ ω, and (29)
-        // with it alone: the prediction the correction is taken from. The ½ is folded
-        // into dt (both products exact but for rounding once: the same bits).
+        let q = q_of(self.q);
+        let p = predict_of(q, v_of(gyro - bias), dt);
         let mut step = Step::default();
-        let p = q + q.mul_pure(gyro).scale(0.5 * dt);
         let Some(a) = a else {
+            let p = quat(p);
             let p = if USUAL { p.try_normalized_usual() } else { p.try_normalized() };
             return Some((p?, step));
         };
         step.used_accel = true;
-        // A match, not a closure: LLVM left the closure out of line, and the call spilled
-        // eight registers.
-        let marg = match m {
-            Some(m) => {
-                let (bx, bz) = reference_field(q, m);
-                if bx > 0.0 {
-                    Some(half_gradient_marg(q, a, bx, bz, m))
-                } else {
-                    None
-                }
-            }
-            None => None,
-        };
-        step.used_mag = marg.is_some();
-        let (gradient, beta) = match marg {
-            Some(g) => (g, self.settings.beta_marg),
-            None => (half_gradient_imu(q, a), self.settings.beta_imu),
-        };
-        let gg = gradient.norm_squared();
-        let k = beta * dt;
-        // (30) and (29): the prediction less dt β ∇f/‖∇f‖, normalised. The usual case:
-        // ‖∇f‖² and the result's squared norm in inv_sqrt's fast range. Then every value is
-        // finite (a squared norm under 1e300 bounds each component, and the scale is at
-        // most 1e150), so the result needs no test; anything else takes `correct`, the
-        // same operations with every test.
+        // The usual case: ‖∇f‖² and the result's squared norm in inv_sqrt's fast range.
+        // Then every value is finite (a squared norm under 1e300 bounds each component,
+        // and the scale is at most 1e150), so the result needs no test; anything else
+        // takes `correct`, the same operations with every test.
         //
         // In the usual case the upper bounds need no test: with a unit q and unit
         // readings each component of ∇f is a sum of a few products of components below 1
         // (and of b_x, b_z ≤ 1), so ‖∇f‖² < 1e3; and ‖next‖ ≤ ‖p‖ + dt β ≤
         // 1 + ½ dt |ω| + dt β < 1e12 for dt ≤ 1e6 s, |ω − b| < 2e5 rad/s and β ≤ 100.
         let fast = |x: f64| if USUAL { inv_sqrt_fast_bounded(x) } else { inv_sqrt_fast(x) };
-        if let Some(r) = fast(gg) {
-            let next = p - gradient.scale(k * r);
-            if let Some(s) = fast(next.norm_squared()) {
-                return Some((next.scale(s), step));
+        let betas = (self.settings.beta_imu, self.settings.beta_marg);
+        match correct_of(q, p, v_of(a), m.map(v_of), dt, betas, fast) {
+            Corrected::Next(next, used_mag) => {
+                step.used_mag = used_mag;
+                Some((quat(next), step))
             }
+            Corrected::Slow(p, gradient, gg, k, used_mag) if !USUAL => {
+                step.used_mag = used_mag;
+                Some((Self::correct(quat(p), quat(gradient), gg, k)?, step))
+            }
+            // One filter's lanes cannot differ.
+            Corrected::Slow(..) | Corrected::Mixed => None,
         }
-        if USUAL {
-            return None;
-        }
-        Some((Self::correct(p, gradient, gg, k)?, step))
     }
 
     /// (29)-(30), the correction of the prediction `p` by the gradient `∇f` (with

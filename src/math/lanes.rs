@@ -73,3 +73,58 @@ impl Lanes for f64x4 {
         self
     }
 }
+
+/// The arithmetic of a step written once for one filter (`f64`) and for four filters at
+/// once (`f64x4`, one filter per lane): Madgwick's update and its four-lane form come from
+/// the same source (`filters::madgwick`). Every operation is the IEEE operation lane by
+/// lane, so each lane gives the bits `f64` gives.
+pub(crate) trait Real:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + core::ops::Neg<Output = Self>
+{
+    /// `x` in every lane.
+    fn of(x: f64) -> Self;
+    fn sqrt(self) -> Self;
+    /// `Some(true)` when `f` holds in every lane, `Some(false)` when in none, `None` when
+    /// the lanes differ (a step then leaves them to the one-filter path).
+    fn decide(self, f: impl Fn(f64) -> bool) -> Option<bool>;
+}
+
+impl Real for f64 {
+    #[inline(always)]
+    fn of(x: f64) -> f64 {
+        x
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn decide(self, f: impl Fn(f64) -> bool) -> Option<bool> {
+        Some(f(self))
+    }
+}
+
+impl Real for f64x4 {
+    #[inline(always)]
+    fn of(x: f64) -> f64x4 {
+        f64x4::splat(x)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> f64x4 {
+        f64x4::sqrt(self)
+    }
+    #[inline(always)]
+    fn decide(self, f: impl Fn(f64) -> bool) -> Option<bool> {
+        let [a, b, c, d] = self.to_array().map(f);
+        if a == b && b == c && c == d {
+            Some(a)
+        } else {
+            None
+        }
+    }
+}

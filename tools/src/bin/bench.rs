@@ -320,6 +320,10 @@ fn main() {
     }
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../examples/data/broad_01_excerpt.csv");
     let marg_rec = Recording::read(path.as_ref(), true).expect("demo recording");
+    if let Some(i) = args.iter().position(|a| a == "--count-frame") {
+        count_frame(&args[i + 1], args[i + 2].parse().expect("frames"), &marg_rec);
+        return;
+    }
     if let Some(i) = args.iter().position(|a| a == "--count") {
         let with_mag = args[i + 2] == "marg";
         let n: usize = args[i + 3].parse().expect("N");
@@ -477,6 +481,59 @@ fn main() {
         }
     }
     multi_sensor(rounds, &marg_rec);
+}
+
+/// `frames` frames of the RIG-sensor Madgwick MARG rig of [`multi_sensor`], for
+/// instruction counts (`--count-frame multi|single|rust FRAMES`; callgrind, as
+/// `scripts/callgrind-counts.sh` does for single filters): `multi` is one
+/// `orient_filters_update` per frame with quaternions out, `single` RIG calls of
+/// `orient_filter_update` each with `orient_filter_quaternion` (the same outputs), `rust`
+/// RIG calls of `Filter::update`.
+fn count_frame(how: &str, frames: usize, rec: &Recording) {
+    // 64 frames made beforehand and cycled, so that making them is no per-frame cost.
+    let all = rec.samples();
+    let made: Vec<[Sample; RIG]> = (0..64).map(|f| core::array::from_fn(|i| all[f + i])).collect();
+    let made_c: Vec<[OrientSample; RIG]> = made.iter().map(|fr| fr.map(|s| c_sample(&s))).collect();
+    let mut out = [OrientQuaternion::default(); RIG];
+    match how {
+        "multi" | "single" => {
+            let rig: Vec<*mut OrientFilter> = (0..RIG).map(|_| new_c_filter(Kind::Madgwick)).collect();
+            for f in 0..frames {
+                let fr = &made_c[f % 64];
+                if how == "multi" {
+                    let st = unsafe {
+                        orient_filters_update(
+                            rig.as_ptr(),
+                            fr.as_ptr(),
+                            RIG,
+                            out.as_mut_ptr(),
+                            std::ptr::null_mut(),
+                        )
+                    };
+                    black_box(st);
+                } else {
+                    for ((h, s), q) in rig.iter().zip(fr).zip(&mut out) {
+                        black_box(unsafe { orient_filter_update(*h, s) });
+                        black_box(unsafe { orient_filter_quaternion(*h, q) });
+                    }
+                }
+            }
+            for h in rig {
+                unsafe { orient_filter_free(h) };
+            }
+        }
+        "rust" => {
+            let mut rig: Vec<Filter> =
+                (0..RIG).map(|_| Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap()).collect();
+            for f in 0..frames {
+                for (filter, s) in rig.iter_mut().zip(&made[f % 64]) {
+                    let _ = black_box(filter.update(s));
+                }
+            }
+        }
+        _ => panic!("--count-frame multi|single|rust FRAMES"),
+    }
+    black_box(out);
 }
 
 /// One frame of RIG Madgwick MARG filters: one multi-sensor call against one C call
