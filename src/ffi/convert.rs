@@ -55,6 +55,7 @@ pub(crate) fn quat_to(q: Quat) -> OrientQuaternion {
 pub(crate) const SAMPLE_ALL: u32 = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL | ORIENT_SAMPLE_MAG;
 
 /// A host's sample whose flags and reserved field have been checked, read in place.
+#[derive(Clone, Copy)]
 pub(crate) struct HostSample<'a>(&'a OrientSample);
 
 impl HostSample<'_> {
@@ -93,10 +94,6 @@ pub(crate) fn host_sample(s: &OrientSample) -> Result<HostSample<'_>, OrientStat
         ));
     }
     Ok(HostSample(s))
-}
-
-pub(crate) fn sample_from(s: &OrientSample) -> Result<Sample, OrientStatus> {
-    host_sample(s).map(|h| h.to_sample())
 }
 
 pub(crate) fn config_to(c: &Config) -> OrientConfig {

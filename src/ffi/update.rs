@@ -120,9 +120,9 @@ pub unsafe extern "C" fn orient_filter_update_batch(
 /// changes nothing. A bad
 /// sample stops the call: the filters before it stay updated, its filter and those
 /// after it are unchanged, and `*processed` (when not NULL) is its index; on success it
-/// is `n`. `filters` and `samples` may be NULL only when `n` is 0. Four consecutive
-/// distinct Madgwick filters with the same sensors present are updated side by side,
-/// with the same bits as separate calls.
+/// is `n`. `filters` and `samples` may be NULL only when `n` is 0. Distinct Madgwick
+/// filters past initialisation with the same sensors present are updated side by side
+/// in pairs (entries 0-1, 2-3, ...), with the same bits as separate calls.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filters_update(
     filters: *const *mut OrientFilter,
@@ -150,35 +150,41 @@ pub unsafe extern "C" fn orient_filters_update(
         }
         // Reports a bad sample at `i`: its index in `*processed`, the detail prefixed.
         let failed = |i: usize, status: OrientStatus| fail_item(processed, "filter", i, status);
-        const LANES: usize = 4;
+        use crate::filters::madgwick::LANES;
         let mut i = 0;
         while i < n {
             let group = &handles[i..n.min(i + LANES)];
             let distinct =
                 group.len() == LANES && (0..LANES).all(|a| (a + 1..LANES).all(|b| group[a] != group[b]));
             if distinct {
-                // Four different filters: their steps may run side by side.
-                let mut converted = [Sample::default(); LANES];
+                // Different filters, LANES of them: their steps may run side by side.
+                // The host's samples, read in place (see SampleView), up to the first
+                // whose flag word is refused.
+                let mut views = [None; LANES];
                 let mut bad = None;
-                for (k, c) in converted.iter_mut().enumerate() {
-                    match sample_from(&samples[i + k]) {
-                        Ok(s) => *c = s,
+                for (k, v) in views.iter_mut().enumerate() {
+                    match host_sample(&samples[i + k]) {
+                        Ok(s) => *v = Some(s),
                         Err(status) => {
                             bad = Some((k, status));
                             break;
                         }
                     }
                 }
-                let ptrs: [*mut OrientFilter; LANES] = [group[0], group[1], group[2], group[3]];
+                let ptrs: [*mut OrientFilter; LANES] = core::array::from_fn(|k| group[k]);
                 let mut fs = ptrs.map(|p| &mut (*p).filter);
                 let result = match bad {
                     None => {
-                        let refs = [0, 1, 2, 3].map(|k| &converted[k]);
-                        Filter::update_group(&mut fs, refs).map_err(|(k, e)| (k, from_core(e)))
+                        let views = views.map(|v| v.expect("every sample viewed"));
+                        let refs = core::array::from_fn(|k| &views[k]);
+                        Filter::update_group_view(&mut fs, refs).map_err(|(k, e)| (k, from_core(e)))
                     }
                     // The ones before the bad sample still get their update.
                     Some((k, status)) => (0..k)
-                        .try_for_each(|j| fs[j].update(&converted[j]).map_err(|e| (j, from_core(e))))
+                        .try_for_each(|j| match &views[j] {
+                            Some(v) => fs[j].update_inline(v).map_err(|e| (j, from_core(e))),
+                            None => unreachable!("viewed before the refused one"),
+                        })
                         .and(Err((k, status))),
                 };
                 // Every filter the group updated has its output written, also when a
@@ -196,8 +202,8 @@ pub unsafe extern "C" fn orient_filters_update(
             // One mutable borrow at a time, so a handle listed twice is simply updated
             // twice, in order.
             let f = &mut (*handles[i]).filter;
-            sample_from(&samples[i])
-                .and_then(|s| f.update(&s).map_err(from_core))
+            host_sample(&samples[i])
+                .and_then(|s| f.update_inline(&s).map_err(from_core))
                 .map_err(|status| failed(i, status))?;
             if !quaternions.is_null() {
                 quaternions.add(i).write(quat_to(f.quaternion()));

@@ -161,78 +161,78 @@ impl Filter {
 
     /// Updates `N` distinct filters, `filters[i]` with `samples[i]`, in order: the result
     /// is exactly that of calling [`Filter::update`] on each (same bits, same errors),
-    /// stopping at the first error, whose index is returned with it. When all are
-    /// Madgwick filters past initialisation with the same sensors present, their steps run
-    /// side by side in lanes (see the Madgwick module), which overlaps their work.
+    /// stopping at the first error, whose index is returned with it. Where consecutive
+    /// filters, [`Filter::GROUP_LANES`] at a time from the first, are all Madgwick filters
+    /// past initialisation with the same sensors present, their steps run side by side in
+    /// lanes (see the Madgwick module), which takes fewer instructions than one by one.
     pub fn update_group<const N: usize>(
         filters: &mut [&mut Filter; N],
         samples: [&Sample; N],
     ) -> Result<(), (usize, Error)> {
-        let lanes = (
-            <&mut [&mut Filter; LANES]>::try_from(&mut filters[..]),
-            <[&Sample; LANES]>::try_from(&samples[..]),
-        );
-        if let (Ok(fs), Ok(ss)) = lanes {
-            if let Some(result) = Filter::try_lanes(fs, ss) {
-                return result;
+        Filter::update_group_view(filters, samples)
+    }
+
+    /// [`Filter::update_group`] for any [`SampleView`] (the C call passes the host's
+    /// structs, read in place).
+    pub(crate) fn update_group_view<S: SampleView, const N: usize>(
+        filters: &mut [&mut Filter; N],
+        samples: [&S; N],
+    ) -> Result<(), (usize, Error)> {
+        let mut start = 0;
+        while start < N {
+            let end = N.min(start + LANES);
+            let lanes = (
+                <&mut [&mut Filter; LANES]>::try_from(&mut filters[start..end]),
+                <[&S; LANES]>::try_from(&samples[start..end]),
+            );
+            if let (Ok(fs), Ok(ss)) = lanes {
+                if Filter::try_lanes(fs, ss).is_some() {
+                    start = end;
+                    continue;
+                }
             }
-        }
-        for (i, (f, s)) in filters.iter_mut().zip(samples).enumerate() {
-            f.update(s).map_err(|e| (i, e))?;
+            for (i, (f, s)) in filters[start..end].iter_mut().zip(&samples[start..end]).enumerate() {
+                f.update_inline(*s).map_err(|e| (start + i, e))?;
+            }
+            start = end;
         }
         Ok(())
     }
 
-    /// The lane path of [`Filter::update_group`]; `None` when it does not apply (nothing
-    /// changed then).
-    pub(crate) fn try_lanes(
+    /// How many filters [`Filter::update_group`] steps side by side.
+    pub const GROUP_LANES: usize = LANES;
+
+    /// The lane path of [`Filter::update_group`]: `None`, with nothing changed, unless
+    /// every filter is a Madgwick filter whose usual step takes its sample
+    /// ([`Runner::lane_usual`]) and the samples all have a magnetometer reading or none
+    /// has. Anything else (a sample the rules refuse, a gap, a policy) goes one filter at
+    /// a time, which gives the same result and reports the same error.
+    pub(crate) fn try_lanes<S: SampleView>(
         filters: &mut [&mut Filter; LANES],
-        samples: [&Sample; LANES],
-    ) -> Option<Result<(), (usize, Error)>> {
-        let with_mag = samples[0].mag.is_some();
-        for (f, s) in filters.iter().zip(samples) {
-            let eligible = match &f.0 {
-                Inner::Madgwick(r) => r.lane_ready(s) && s.mag.is_some() == with_mag,
-                _ => false,
-            };
-            if !eligible {
-                return None;
-            }
-        }
-        // A rejected sample: the filters before it are updated (one by one, which gives
-        // the same bits), and its index is reported.
-        for (i, s) in samples.iter().enumerate() {
-            if let Err(e) = filters[i].check(s) {
-                for j in 0..i {
-                    if let Err(e) = filters[j].update(samples[j]) {
-                        return Some(Err((j, e)));
-                    }
-                }
-                return Some(Err((i, e)));
-            }
-        }
-        // Gaps were sent down the single path above.
-        let dt = samples.map(|s| s.dt);
-        // check() guarantees the readings are present.
-        let gyro = samples.map(|s| s.gyro.unwrap_or_default());
-        let accel = samples.map(|s| s.accel.unwrap_or_default());
-        let mag = with_mag.then(|| samples.map(|s| s.mag.unwrap_or_default()));
+        samples: [&S; LANES],
+    ) -> Option<()> {
         let mut runners = filters.each_mut().map(|f| match &mut f.0 {
             Inner::Madgwick(r) => Some(r),
             _ => None,
         });
-        if runners.iter().any(Option::is_none) {
+        let mut usual = [None; LANES];
+        for ((r, s), u) in runners.iter().zip(samples).zip(&mut usual) {
+            *u = Some(r.as_ref()?.lane_usual(s)?);
+        }
+        let usual = usual.map(|u| u.expect("set above"));
+        let with_mag = usual[0].mag.is_some();
+        if usual.iter().any(|u| u.mag.is_some() != with_mag) {
             return None;
         }
         let mut runners = runners.each_mut().map(|r| r.take().expect("checked above"));
         let step = {
             let mut cores = runners.each_mut().map(|r| &mut r.core);
-            Madgwick::update_lanes(&mut cores, dt, gyro, accel, mag)?
+            Madgwick::update_lanes(&mut cores, &usual)?
         };
-        for (r, a) in runners.iter_mut().zip(accel) {
-            r.lane_done(a, step, with_mag);
+        for (r, u) in runners.iter_mut().zip(&usual) {
+            r.lane_done(u, step);
         }
-        Some(Ok(()))
+        Some(())
     }
 
     /// The GMVDK state, for tests.

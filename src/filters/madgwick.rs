@@ -31,7 +31,7 @@ use super::sample::{Checked, Usual};
 use super::Step;
 use crate::math::lanes::Real;
 use crate::math::{inv_sqrt, inv_sqrt_fast, inv_sqrt_fast_bounded, Quat, Vec3};
-use wide::f64x4;
+use wide::f64x2 as Lane;
 
 /// A quaternion's components `[q1 q2 q3 q4]` (w, x, y, z), of one filter (`T = f64`) or
 /// of four (`f64x4`, one filter per lane): the update below is written once, on these,
@@ -65,14 +65,6 @@ fn dot_of<T: Real>(a: Q<T>, b: Q<T>) -> T {
 #[inline(always)]
 fn cross_of<T: Real>(u: V<T>, v: V<T>) -> V<T> {
     [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
-}
-
-/// `v` divided by its norm as [`Vec3::normalized`], with `inv_sqrt` the caller's (a
-/// range test, or every lane's); `None` when it declines.
-#[inline(always)]
-fn normalized_of<T: Real>(v: V<T>, inv_sqrt: impl Fn(T) -> Option<T>) -> Option<V<T>> {
-    let r = inv_sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])?;
-    Some(v.map(|c| c * r))
 }
 
 settings! {
@@ -341,12 +333,12 @@ fn correct_of<T: Real>(
 /// [`crate::math::inv_sqrt`] on every lane, or `None` when a lane is outside the range
 /// where it is `√x · (1/x)`.
 #[inline(always)]
-fn inv_sqrt_lanes(x: f64x4) -> Option<f64x4> {
-    (x.decide(|v| v > 1e-300 && v < 1e300) == Some(true)).then(|| x.sqrt() * (f64x4::splat(1.0) / x))
+fn inv_sqrt_lanes(x: Lane) -> Option<Lane> {
+    (x.decide(|v| v > 1e-300 && v < 1e300) == Some(true)).then(|| x.sqrt() * (Lane::splat(1.0) / x))
 }
 
 /// The number of filters [`Madgwick::update_lanes`] steps at once.
-pub(crate) const LANES: usize = 4;
+pub(crate) const LANES: usize = 2;
 
 /// Madgwick's filter. Its state is the orientation alone, in its native North-West-Up frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -406,37 +398,34 @@ impl Madgwick {
 
     /// [`LANES`] filters' steps at once, each with an accelerometer reading and all with or all
     /// without a magnetometer reading; bit-identical to calling [`Madgwick::update`] on
-    /// each, since both are [`predict_of`] and [`correct_of`]. `None`, with nothing
-    /// changed, when a filter needs the one-filter path: the rest-bias option is on, or
-    /// a lane meets an edge case (a squared norm outside [`inv_sqrt`]'s fast range, or
-    /// lanes that differ on whether the field has a horizontal part).
-    pub(crate) fn update_lanes(
-        fs: &mut [&mut Madgwick; LANES],
-        dt: [f64; LANES],
-        gyro: [Vec3; LANES],
-        accel: [Vec3; LANES],
-        mag: Option<[Vec3; LANES]>,
-    ) -> Option<Step> {
-        if fs.iter().any(|f| f.settings.rest_bias_tau > 0.0) {
-            return None;
-        }
-        let lane = |g: &dyn Fn(usize) -> f64| f64x4::new(core::array::from_fn(g));
-        let vector = |v: &[Vec3; LANES]| [lane(&|i| v[i].x), lane(&|i| v[i].y), lane(&|i| v[i].z)];
+    /// each, since both are [`predict_of`] and [`correct_of`]. The samples are those the
+    /// usual step takes (`Runner::lane_usual`). `None`, with nothing changed, when a lane
+    /// meets an edge case (a squared norm outside [`inv_sqrt`]'s fast range, or lanes that
+    /// differ on whether the field has a horizontal part).
+    pub(crate) fn update_lanes(fs: &mut [&mut Madgwick; LANES], u: &[Usual; LANES]) -> Option<Step> {
+        // Runner::lane_usual takes no filter with a kind option (the rest-bias learner).
+        debug_assert!(fs.iter().all(|f| f.usual_settings()));
+        let lane = |g: &dyn Fn(usize) -> f64| Lane::new(core::array::from_fn(g));
+        let vector = |v: &dyn Fn(usize) -> Vec3| [lane(&|i| v(i).x), lane(&|i| v(i).y), lane(&|i| v(i).z)];
+        // A reading's direction as `Checked::unit` gives it: v √n² (1/n²), its squared
+        // norm n² taken by the quick check (in inv_sqrt's fast range).
+        let unit = |c: &dyn Fn(usize) -> Option<Checked>| {
+            let n2 = lane(&|i| c(i).map_or(1.0, Checked::norm_squared));
+            let r = n2.sqrt() * (Lane::splat(1.0) / n2);
+            vector(&|i| c(i).map_or(Vec3::ZERO, |c| c.v)).map(|x| x * r)
+        };
         let q = [lane(&|i| fs[i].q.w), lane(&|i| fs[i].q.x), lane(&|i| fs[i].q.y), lane(&|i| fs[i].q.z)];
-        let omega = vector(&core::array::from_fn(|i| gyro[i] - fs[i].bias));
-        let dt = f64x4::new(dt);
+        let omega = vector(&|i| u[i].gyro - fs[i].bias);
+        let dt = lane(&|i| u[i].dt);
         // The same source as the one-filter step (`Madgwick::step`), in lanes.
         let p = predict_of(q, omega, dt);
-        let a = normalized_of(vector(&accel), inv_sqrt_lanes)?;
-        let m = match mag {
-            Some(m) => Some(normalized_of(vector(&m), inv_sqrt_lanes)?),
-            None => None,
-        };
+        let a = unit(&|i| u[i].accel);
+        let m = u[0].mag.is_some().then(|| unit(&|i| u[i].mag));
         let betas = (lane(&|i| fs[i].settings.beta_imu), lane(&|i| fs[i].settings.beta_marg));
         let Corrected::Next(out, used_mag) = correct_of(q, p, a, m, dt, betas, inv_sqrt_lanes) else {
             return None;
         };
-        let out = out.map(f64x4::to_array);
+        let out = out.map(Lane::to_array);
         for (i, f) in fs.iter_mut().enumerate() {
             f.q = Quat::new(out[0][i], out[1][i], out[2][i], out[3][i]);
         }

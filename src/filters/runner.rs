@@ -729,20 +729,24 @@ impl<E: Estimator> Runner<E> {
         Ok(())
     }
 
-    /// True when the lanes of [`super::Filter::update_group`] may take this filter's step
-    /// with this sample: past initialisation, nothing pending, no gap, an accelerometer.
-    pub(crate) fn lane_ready(&self, s: &Sample) -> bool {
-        self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED
-            // Models, clipping, bursts and the kind's options take the single path.
-            && self.policy == 0
-            && s.dt <= self.common.gap_limit
-            && s.accel.is_some()
+    /// The sample when the lanes of [`super::Filter::update_group`] may take this filter's
+    /// step with it: the conditions of [`Runner::update_outline`]'s usual step
+    /// (initialised, nothing pending, no policy or kind option, a sample the quick check
+    /// passes with no gap), and an accelerometer reading.
+    #[inline(always)]
+    pub(crate) fn lane_usual<S: SampleView>(&self, s: &S) -> Option<Usual> {
+        let usual = (self.policy == 0)
+            & (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED);
+        if !usual {
+            return None;
+        }
+        self.usual(s).filter(|u| u.accel.is_some())
     }
 
-    /// What a lane step leaves besides the core's state.
-    pub(crate) fn lane_done(&mut self, accel: Vec3, step: Step, had_mag: bool) {
-        self.flags = step.flags(true, had_mag);
-        self.last_accel = accel;
+    /// What a lane step with the sample `u` leaves besides the core's state.
+    pub(crate) fn lane_done(&mut self, u: &Usual, step: Step) {
+        self.flags = step.flags(true, u.mag.is_some());
+        self.last_accel = u.accel.map_or(Vec3::ZERO, |a| a.v);
         self.bits |= Self::HAS_ACCEL;
     }
 

@@ -33,6 +33,12 @@ impl Checked {
         self.n2 > 1e-300 && self.n2 < bound
     }
 
+    /// `|v|²`, as the check computed it.
+    #[inline(always)]
+    pub(crate) fn norm_squared(self) -> f64 {
+        self.n2
+    }
+
     /// `|v|`: the bits of [`Vec3::norm`].
     #[inline(always)]
     pub(crate) fn norm(self) -> f64 {

@@ -12,7 +12,7 @@
 //! ([`Lanes::token`]).
 
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Sub, SubAssign};
-use wide::f64x4;
+use wide::{f64x2, f64x4};
 
 /// Four f64 lanes with lane-wise IEEE arithmetic.
 pub trait Lanes:
@@ -109,22 +109,24 @@ impl Real for f64 {
     }
 }
 
-impl Real for f64x4 {
-    #[inline(always)]
-    fn of(x: f64) -> f64x4 {
-        f64x4::splat(x)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> f64x4 {
-        f64x4::sqrt(self)
-    }
-    #[inline(always)]
-    fn decide(self, f: impl Fn(f64) -> bool) -> Option<bool> {
-        let [a, b, c, d] = self.to_array().map(f);
-        if a == b && b == c && c == d {
-            Some(a)
-        } else {
-            None
+/// [`Real`] for a `wide` lane type: one filter per lane.
+macro_rules! real_lanes {
+    ($($t:ident),*) => {$(
+        impl Real for $t {
+            #[inline(always)]
+            fn of(x: f64) -> $t {
+                $t::splat(x)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> $t {
+                $t::sqrt(self)
+            }
+            #[inline(always)]
+            fn decide(self, f: impl Fn(f64) -> bool) -> Option<bool> {
+                let v = self.to_array().map(f);
+                v.iter().all(|x| *x == v[0]).then_some(v[0])
+            }
         }
-    }
+    )*};
 }
+real_lanes!(f64x2, f64x4);

@@ -928,9 +928,9 @@ static void uncertainty(int32_t kind) {
     CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
 }
 
-/* A hand of 20 Madgwick filters: groups of four run side by side in lanes; the bits
- * must still equal separate updates, and a bad sample inside a group must stop the
- * frame at its index with the filters before it updated. */
+/* A hand of 20 Madgwick filters: pairs run side by side in lanes; the bits must still
+ * equal separate updates, and a bad sample inside a pair must stop the frame at its
+ * index with the filters before it updated. */
 static void madgwick_rig(void) {
     enum { N = 20 };
     OrientFilter *rig[N], *twins[N];
@@ -965,8 +965,9 @@ static void madgwick_rig(void) {
     } else {
         passed++;
     }
-    /* The bad sample is the third of the group 4-7: filters 4 and 5 are updated in that
-     * group and their outputs written; from 6 on nothing is written. */
+    /* The bad sample is the first of the pair 6-7: filters 0-5 are updated and their
+     * outputs written; from 6 on nothing is written. The flag case below puts it second
+     * in that pair (7), so that its pair's first filter is updated. */
     frame[6].accel.y = INFINITY;
     for (k = 0; k < N; k++) out[k] = unwritten;
     CHECK_STATUS(orient_filters_update(rig, frame, N, out, &processed), ORIENT_STATUS_NON_FINITE);
