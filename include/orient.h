@@ -1694,9 +1694,10 @@ OrientStatus orient_filter_update_batch(OrientFilter *filter,
  * changes nothing. A bad
  * sample stops the call: the filters before it stay updated, its filter and those
  * after it are unchanged, and `*processed` (when not NULL) is its index; on success it
- * is `n`. `filters` and `samples` may be NULL only when `n` is 0. Distinct Madgwick
- * filters past initialisation with the same sensors present are updated side by side
- * in pairs (entries 0-1, 2-3, ...), with the same bits as separate calls.
+ * is `n`. `filters` and `samples` may be NULL only when `n` is 0. On x86-64 and
+ * aarch64, distinct Madgwick filters past initialisation with the same sensors present
+ * are updated side by side in pairs (entries 0-1, 2-3, ...); on every target the
+ * results have the same bits as separate calls.
  */
 OrientStatus orient_filters_update(OrientFilter *const *filters,
                                    const struct OrientSample *samples,

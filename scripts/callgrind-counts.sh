@@ -42,3 +42,17 @@ for kind in madgwick mahony complementary ekf gmvdk robust; do
     echo "$line"
   done
 done
+# One frame of the bench's 20-sensor Madgwick MARG rig through the C ABI, per frame:
+# orient_filters_update with quaternions out, and 20 orient_filter_update calls each with
+# orient_filter_quaternion (bench --count-frame).
+if [ -z "$via" ]; then
+  frame() {
+    ORIENT_ISA=baseline valgrind --tool=callgrind --callgrind-out-file=/dev/null "$bin" --count-frame "$1" "$2" 2>&1 \
+      | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
+  }
+  for how in multi single; do
+    a=$(frame "$how" 200)
+    b=$(frame "$how" 1200)
+    printf '%-14s %-5s %12.1f   (20-sensor frame, per frame)\n' "frame-$how" marg "$(echo "($b - $a) / 1000" | bc -l)"
+  done
+fi

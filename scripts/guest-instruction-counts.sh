@@ -35,4 +35,13 @@ for spec in "aarch64-unknown-linux-gnu:qemu-aarch64:/usr/aarch64-linux-gnu" \
       printf '%-30s %-14s %-5s %12.1f\n' "$target" "$kind" "$mode" "$(echo "($b - $a) / $n" | bc -l)"
     done
   done
+  # The bench's 20-sensor Madgwick MARG rig, per frame (bench --count-frame): one
+  # orient_filters_update with quaternions out, or 20 single calls each with its read.
+  for how in multi single; do
+    a=$("$qemu" -L "$sysroot" -plugin "$work/insn_count.so" "$bin" --count-frame "$how" 20 2>&1 >/dev/null \
+      | sed -n 's/^guest instructions: //p')
+    b=$("$qemu" -L "$sysroot" -plugin "$work/insn_count.so" "$bin" --count-frame "$how" 520 2>&1 >/dev/null \
+      | sed -n 's/^guest instructions: //p')
+    printf '%-30s %-14s %-5s %12.1f   (per frame)\n' "$target" "frame-$how" marg "$(echo "($b - $a) / 500" | bc -l)"
+  done
 done

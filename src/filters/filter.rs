@@ -82,6 +82,12 @@ pub(crate) use with_kind;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Filter(Inner);
 
+/// Whether [`Filter::update_group`] steps Madgwick filters in lanes on this target: where
+/// two f64 lanes are one register (x86-64's SSE2, aarch64's NEON). Elsewhere the `wide`
+/// crate's lanes are arrays, and the 20-sensor frame took more guest instructions in
+/// lanes than one filter at a time (armv7: 9,725 against 7,895, docs/PERFORMANCE.md).
+const LANES_PAY: bool = cfg!(any(target_arch = "x86_64", target_arch = "aarch64"));
+
 impl Filter {
     pub fn new(config: &Config) -> Result<Filter, Error> {
         fn boxed<E: Estimator>(c: &Config) -> Result<Box<Runner<E>>, Error> {
@@ -161,10 +167,11 @@ impl Filter {
 
     /// Updates `N` distinct filters, `filters[i]` with `samples[i]`, in order: the result
     /// is exactly that of calling [`Filter::update`] on each (same bits, same errors),
-    /// stopping at the first error, whose index is returned with it. Where consecutive
-    /// filters, [`Filter::GROUP_LANES`] at a time from the first, are all Madgwick filters
-    /// past initialisation with the same sensors present, their steps run side by side in
-    /// lanes (see the Madgwick module), which takes fewer instructions than one by one.
+    /// stopping at the first error, whose index is returned with it. On x86-64 and
+    /// aarch64, where consecutive filters, [`Filter::GROUP_LANES`] at a time from the
+    /// first, are all Madgwick filters past initialisation with the same sensors present,
+    /// their steps run side by side in lanes (see the Madgwick module), which takes fewer
+    /// instructions than one by one.
     pub fn update_group<const N: usize>(
         filters: &mut [&mut Filter; N],
         samples: [&Sample; N],
@@ -185,7 +192,7 @@ impl Filter {
                 <&mut [&mut Filter; LANES]>::try_from(&mut filters[start..end]),
                 <[&S; LANES]>::try_from(&samples[start..end]),
             );
-            if let (Ok(fs), Ok(ss)) = lanes {
+            if let (true, Ok(fs), Ok(ss)) = (LANES_PAY, lanes.0, lanes.1) {
                 if Filter::try_lanes(fs, ss).is_some() {
                     start = end;
                     continue;
@@ -199,7 +206,8 @@ impl Filter {
         Ok(())
     }
 
-    /// How many filters [`Filter::update_group`] steps side by side.
+    /// How many filters [`Filter::update_group`] steps side by side (on x86-64 and
+    /// aarch64).
     pub const GROUP_LANES: usize = LANES;
 
     /// The lane path of [`Filter::update_group`]: `None`, with nothing changed, unless
