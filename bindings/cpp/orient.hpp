@@ -346,8 +346,8 @@ private:
 
 /// One frame of a rig in one call: `handles[i]` (from Filter::native()) takes
 /// `samples[i]`, and `out[i]` (when given) receives its orientation. On x86-64 and
-/// aarch64 distinct Madgwick filters run side by side in pairs (entries 0-1, 2-3, ...);
-/// the results equal separate updates bit
+/// aarch64 two consecutive distinct Madgwick filters may run side by side; the results
+/// equal separate updates bit
 /// for bit. Stops at the first bad sample, its index in *processed. Keep the handles in
 /// an array you reuse across frames: the call allocates nothing.
 inline OrientStatus update_rig(OrientFilter* const* handles, const OrientSample* samples, std::size_t n,

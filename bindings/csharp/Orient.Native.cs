@@ -1720,9 +1720,9 @@ namespace Orient.Native
         /// sample stops the call: the filters before it stay updated, its filter and those
         /// after it are unchanged, and `*processed` (when not NULL) is its index; on success it
         /// is `n`. `filters` and `samples` may be NULL only when `n` is 0. On x86-64 and
-        /// aarch64, distinct Madgwick filters past initialisation with the same sensors present
-        /// are updated side by side in pairs (entries 0-1, 2-3, ...); on every target the
-        /// results have the same bits as separate calls.
+        /// aarch64, two consecutive distinct Madgwick filters may be updated side by side, which
+        /// takes fewer instructions; on every target the results and statuses are those of
+        /// separate calls, bit for bit.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_filters_update(IntPtr* filters, Sample* samples, UIntPtr n, Quaternion* quaternions, UIntPtr* processed);

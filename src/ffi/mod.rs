@@ -305,22 +305,23 @@ mod tests {
 
     #[test]
     fn a_rig_call_writes_the_output_of_every_filter_it_updated() {
-        // A lane group of four distinct Madgwick filters whose third sample is refused,
-        // once by the flag check and once by the reading checks.
+        // Four distinct Madgwick filters (two lane pairs) whose third or fourth sample (the
+        // first or the second of a pair) is refused, once by the flag check and once by
+        // the reading checks.
         let unwritten = OrientQuaternion { w: f64::NAN, x: 7.0, y: 7.0, z: 7.0 };
         let spoil: [fn(&mut OrientSample); 2] = [|s| s.reserved = 1, |s| s.gyro.y = f64::NAN];
-        for spoil in spoil {
+        for (spoil, bad) in spoil.into_iter().flat_map(|f| [(f, 2), (f, 3)]) {
             unsafe {
                 let hs: Vec<*mut OrientFilter> = (0..4).map(|_| new_madgwick()).collect();
                 let twins: Vec<*mut OrientFilter> = (0..4).map(|_| new_madgwick()).collect();
                 let mut frame = [moving_sample(); 4];
-                spoil(&mut frame[2]);
+                spoil(&mut frame[bad]);
                 let mut out = [unwritten; 4];
                 let mut n = 99;
                 let status = orient_filters_update(hs.as_ptr(), frame.as_ptr(), 4, out.as_mut_ptr(), &mut n);
                 assert_ne!(status, OrientStatus::Ok);
-                assert_eq!(n, 2);
-                for k in 0..2 {
+                assert_eq!(n, bad);
+                for k in 0..bad {
                     assert_eq!(orient_filter_update(twins[k], &frame[k]), OrientStatus::Ok);
                     let mut q = OrientQuaternion::default();
                     assert_eq!(orient_filter_quaternion(twins[k], &mut q), OrientStatus::Ok);
@@ -328,7 +329,7 @@ mod tests {
                     assert_eq!(orient_filter_quaternion(hs[k], &mut q), OrientStatus::Ok);
                     assert_eq!(quat_bits(out[k]), quat_bits(q), "filter {k}");
                 }
-                for o in &out[2..] {
+                for o in &out[bad..] {
                     assert_eq!(quat_bits(*o), quat_bits(unwritten), "an unprocessed entry was written");
                 }
                 for h in hs.into_iter().chain(twins) {
@@ -355,7 +356,7 @@ mod tests {
             let mut out = [OrientQuaternion::default(); 5];
             let mut n = 0;
             for _ in 0..3 {
-                // Four distinct handles (a lane group), then one more.
+                // Four distinct handles (two lane pairs), then one more (the odd tail).
                 assert_eq!(
                     orient_filters_update(hs.as_ptr(), frame.as_ptr(), 5, out.as_mut_ptr(), &mut n),
                     OrientStatus::Ok

@@ -82,10 +82,11 @@ pub(crate) use with_kind;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Filter(Inner);
 
-/// Whether [`Filter::update_group`] steps Madgwick filters in lanes on this target: where
-/// two f64 lanes are one register (x86-64's SSE2, aarch64's NEON). Elsewhere the `wide`
-/// crate's lanes are arrays, and the 20-sensor frame took more guest instructions in
-/// lanes than one filter at a time (armv7: 9,725 against 7,895, docs/PERFORMANCE.md).
+/// Whether [`Filter::update_group`] steps Madgwick filters in lanes on this target: the
+/// two where it was measured to pay, and where two f64 lanes are one register (x86-64's
+/// SSE2, aarch64's NEON). On armv7, without f64 SIMD, the `wide` crate's lanes are arrays,
+/// and the 20-sensor frame took more guest instructions in lanes than one filter at a
+/// time (9,725 against 7,895, docs/PERFORMANCE.md); other targets were not measured.
 const LANES_PAY: bool = cfg!(any(target_arch = "x86_64", target_arch = "aarch64"));
 
 impl Filter {
@@ -169,9 +170,11 @@ impl Filter {
     /// is exactly that of calling [`Filter::update`] on each (same bits, same errors),
     /// stopping at the first error, whose index is returned with it. On x86-64 and
     /// aarch64, where consecutive filters, [`Filter::GROUP_LANES`] at a time from the
-    /// first, are all Madgwick filters past initialisation with the same sensors present,
-    /// their steps run side by side in lanes (see the Madgwick module), which takes fewer
-    /// instructions than one by one.
+    /// first, are Madgwick filters whose usual step takes their samples (past
+    /// initialisation, nothing pending, no policy or rest-bias option, no gap, an
+    /// accelerometer reading, the same sensors present), their steps may run side by side
+    /// in lanes, which takes fewer instructions than one by one; nothing else depends on
+    /// whether they do.
     pub fn update_group<const N: usize>(
         filters: &mut [&mut Filter; N],
         samples: [&Sample; N],

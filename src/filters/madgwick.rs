@@ -29,12 +29,12 @@ use super::params::settings;
 use super::rest::RestBias;
 use super::sample::{Checked, Usual};
 use super::Step;
+use crate::math::lanes::F64x2 as Lane;
 use crate::math::lanes::Real;
 use crate::math::{inv_sqrt, inv_sqrt_fast, inv_sqrt_fast_bounded, Quat, Vec3};
-use wide::f64x2 as Lane;
 
 /// A quaternion's components `[q1 q2 q3 q4]` (w, x, y, z), of one filter (`T = f64`) or
-/// of four (`f64x4`, one filter per lane): the update below is written once, on these,
+/// of two ([`Lane`], one filter per lane): the update below is written once, on these,
 /// for both (see [`Real`]).
 type Q<T> = [T; 4];
 /// A vector's components `[x y z]`, as [`Q`].
@@ -334,7 +334,7 @@ fn correct_of<T: Real>(
 /// where it is `√x · (1/x)`.
 #[inline(always)]
 fn inv_sqrt_lanes(x: Lane) -> Option<Lane> {
-    (x.decide(|v| v > 1e-300 && v < 1e300) == Some(true)).then(|| x.sqrt() * (Lane::splat(1.0) / x))
+    (x.decide(|v| v > 1e-300 && v < 1e300) == Some(true)).then(|| x.sqrt() * (Lane::of(1.0) / x))
 }
 
 /// The number of filters [`Madgwick::update_lanes`] steps at once.
@@ -411,7 +411,7 @@ impl Madgwick {
         // norm n² taken by the quick check (in inv_sqrt's fast range).
         let unit = |c: &dyn Fn(usize) -> Option<Checked>| {
             let n2 = lane(&|i| c(i).map_or(1.0, Checked::norm_squared));
-            let r = n2.sqrt() * (Lane::splat(1.0) / n2);
+            let r = n2.sqrt() * (Lane::of(1.0) / n2);
             vector(&|i| c(i).map_or(Vec3::ZERO, |c| c.v)).map(|x| x * r)
         };
         let q = [lane(&|i| fs[i].q.w), lane(&|i| fs[i].q.x), lane(&|i| fs[i].q.y), lane(&|i| fs[i].q.z)];

@@ -97,8 +97,9 @@ pub(crate) struct Runner<E: Estimator> {
     frame: Frame,
     /// Which sensor ranges and gap dt are set ([`Common::GYRO_SET`],
     /// [`Common::ACCEL_SET`], [`Common::GAP_SET`], see [`Common::from_slots`]),
-    /// [`Runner::HAS_ACCEL`], [`Runner::RELATIVE`], [`Runner::IDENTITY_INIT`] and
-    /// [`Runner::HOSTED`]: one byte, so that the head stays a few words.
+    /// [`Runner::HAS_ACCEL`], [`Runner::RELATIVE`], [`Runner::IDENTITY_INIT`],
+    /// [`Runner::HOSTED`] and [`Runner::UNINIT`]: one byte, so that the head stays a few
+    /// words.
     bits: u8,
     /// Issue 20's policies that are on ([`Runner::RECOVER`], [`Runner::SAME_INSTANT`],
     /// [`Runner::MODELS`]) and [`Runner::KIND_OPTION`] (the kind's settings keep it from

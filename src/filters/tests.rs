@@ -294,15 +294,21 @@ fn a_group_stops_at_a_bad_sample_like_single_updates() {
     for (f, s) in single.iter_mut().zip(&samples) {
         f.update(s).unwrap();
     }
-    samples[2].mag = Some(Vec3::new(f64::NAN, 0.0, 0.0));
-    let result = {
-        let [a, b, c, d] = &mut group[..] else { unreachable!() };
-        Filter::update_group(&mut [a, b, c, d], [&samples[0], &samples[1], &samples[2], &samples[3]])
-    };
-    assert_eq!(result, Err((2, Error::NonFinite(Field::Mag))));
-    single[0].update(&samples[0]).unwrap();
-    single[1].update(&samples[1]).unwrap();
-    assert_eq!(group, single);
+    // The bad sample second in its lane pair (its pair's first filter is updated), then
+    // first in it.
+    for bad in [3, 2] {
+        let mut spoiled = samples.clone();
+        spoiled[bad].mag = Some(Vec3::new(f64::NAN, 0.0, 0.0));
+        let result = {
+            let [a, b, c, d] = &mut group[..] else { unreachable!() };
+            Filter::update_group(&mut [a, b, c, d], [&spoiled[0], &spoiled[1], &spoiled[2], &spoiled[3]])
+        };
+        assert_eq!(result, Err((bad, Error::NonFinite(Field::Mag))));
+        for (f, s) in single.iter_mut().zip(&spoiled).take(bad) {
+            f.update(s).unwrap();
+        }
+        assert_eq!(group, single, "bad sample {bad}");
+    }
     // A gap (dt above gap_dt) takes the same path as alone, flag included.
     samples[2] = rig_sample(2, 1, true);
     samples[1].dt = 5.0;
@@ -628,6 +634,32 @@ fn the_root_of_a_squared_limit_is_the_limit() {
                 _ => lo * (hi / lo).powf(0.5 * (u() + 1.0)),
             };
             assert_eq!((x * x).sqrt(), x, "{x:e}");
+        }
+    }
+}
+
+/// The lanes negate as IEEE arithmetic does (−0 stays −0), so a pair gives the single
+/// updates' bits even with zeros: an estimate with a −0 component, no rotation, readings
+/// with zero components.
+#[test]
+fn a_pair_keeps_the_sign_of_zero_like_single_updates() {
+    let mut config = Config::new(Kind::Madgwick).unwrap();
+    config.frame = Frame::Nwu; // Madgwick's native frame: the estimate is stored as set.
+    let mut pair: Vec<Filter> = (0..LANES).map(|_| Filter::new(&config).unwrap()).collect();
+    for f in &mut pair {
+        f.set_quaternion(Quat::new(-0.0, 1.0, 0.0, 0.0)).unwrap();
+    }
+    let mut single = pair.clone();
+    for mag in [None, Some(Vec3::new(0.0, 20.0, -40.0))] {
+        let s = Sample { dt: 0.01, gyro: Some(Vec3::ZERO), accel: Some(Vec3::new(1.0, 0.0, -9.7)), mag };
+        let mut fs: Vec<&mut Filter> = pair.iter_mut().collect();
+        let fs = <&mut [&mut Filter; LANES]>::try_from(&mut fs[..]).unwrap();
+        assert_eq!(Filter::try_lanes(fs, [&s; LANES]), Some(()), "{mag:?}");
+        for (g, f) in pair.iter().zip(&mut single) {
+            f.update(&s).unwrap();
+            let (a, b) = (g.quaternion(), f.quaternion());
+            let bits = |q: Quat| [q.w, q.x, q.y, q.z].map(f64::to_bits);
+            assert_eq!(bits(a), bits(b), "{mag:?}: {a:?} vs {b:?}");
         }
     }
 }

@@ -74,10 +74,10 @@ impl Lanes for f64x4 {
     }
 }
 
-/// The arithmetic of a step written once for one filter (`f64`) and for four filters at
-/// once (`f64x4`, one filter per lane): Madgwick's update and its four-lane form come from
-/// the same source (`filters::madgwick`). Every operation is the IEEE operation lane by
-/// lane, so each lane gives the bits `f64` gives.
+/// The arithmetic of a step written once for one filter (`f64`) and for two filters at
+/// once ([`F64x2`], one filter per lane): Madgwick's update and its lane form come from
+/// the same source (`filters::madgwick`). Every operation, negation included, is the IEEE
+/// operation lane by lane, so each lane gives the bits `f64` gives.
 pub(crate) trait Real:
     Copy
     + Add<Output = Self>
@@ -109,24 +109,89 @@ impl Real for f64 {
     }
 }
 
-/// [`Real`] for a `wide` lane type: one filter per lane.
-macro_rules! real_lanes {
-    ($($t:ident),*) => {$(
-        impl Real for $t {
+/// Two f64 lanes in `wide`'s `f64x2` (one SSE2 or NEON register). A type of its own for
+/// the negation: `wide` negates as `0 − x`, which gives +0 for +0 where IEEE negation
+/// gives −0; here `−x` is `−0 − x`, the IEEE negation of every value but NaN.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct F64x2(f64x2);
+
+impl F64x2 {
+    #[inline(always)]
+    pub(crate) fn new(v: [f64; 2]) -> F64x2 {
+        F64x2(f64x2::new(v))
+    }
+    #[inline(always)]
+    pub(crate) fn to_array(self) -> [f64; 2] {
+        self.0.to_array()
+    }
+}
+
+macro_rules! pair_op {
+    ($tr:ident, $f:ident, $op:tt) => {
+        impl $tr for F64x2 {
+            type Output = F64x2;
             #[inline(always)]
-            fn of(x: f64) -> $t {
-                $t::splat(x)
-            }
-            #[inline(always)]
-            fn sqrt(self) -> $t {
-                $t::sqrt(self)
-            }
-            #[inline(always)]
-            fn decide(self, f: impl Fn(f64) -> bool) -> Option<bool> {
-                let v = self.to_array().map(f);
-                v.iter().all(|x| *x == v[0]).then_some(v[0])
+            fn $f(self, o: F64x2) -> F64x2 {
+                F64x2(self.0 $op o.0)
             }
         }
-    )*};
+    };
 }
-real_lanes!(f64x2, f64x4);
+pair_op!(Add, add, +);
+pair_op!(Sub, sub, -);
+pair_op!(Mul, mul, *);
+pair_op!(Div, div, /);
+
+impl core::ops::Neg for F64x2 {
+    type Output = F64x2;
+    #[inline(always)]
+    fn neg(self) -> F64x2 {
+        F64x2(f64x2::splat(-0.0) - self.0)
+    }
+}
+
+impl Real for F64x2 {
+    #[inline(always)]
+    fn of(x: f64) -> F64x2 {
+        F64x2(f64x2::splat(x))
+    }
+    #[inline(always)]
+    fn sqrt(self) -> F64x2 {
+        F64x2(self.0.sqrt())
+    }
+    #[inline(always)]
+    fn decide(self, f: impl Fn(f64) -> bool) -> Option<bool> {
+        let [a, b] = self.to_array().map(f);
+        (a == b).then_some(a)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pair_arithmetic_is_f64s_lane_by_lane_including_the_sign_of_zero() {
+        let values = [0.0, -0.0, 1.5, -2.25, 1e-310, f64::INFINITY, f64::NEG_INFINITY, 3.0e300];
+        let bits = |v: [f64; 2]| v.map(f64::to_bits);
+        for &x in &values {
+            for &y in &values {
+                let (a, b) = (F64x2::new([x, y]), F64x2::new([y, x]));
+                assert_eq!(bits((-a).to_array()), bits([-x, -y]), "-{x} -{y}");
+                assert_eq!(bits((a + b).to_array()), bits([x + y, y + x]));
+                assert_eq!(bits((a - b).to_array()), bits([x - y, y - x]));
+                assert_eq!(bits((a * b).to_array()), bits([x * y, y * x]));
+                if y != 0.0 && x != 0.0 {
+                    assert_eq!(bits((a / b).to_array()), bits([x / y, y / x]));
+                }
+                assert_eq!(
+                    bits(F64x2::new([x.abs(), y.abs()]).sqrt().to_array()),
+                    bits([x.abs().sqrt(), y.abs().sqrt()])
+                );
+            }
+        }
+        assert_eq!(F64x2::new([1.0, 2.0]).decide(|v| v > 0.0), Some(true));
+        assert_eq!(F64x2::new([-1.0, -2.0]).decide(|v| v > 0.0), Some(false));
+        assert_eq!(F64x2::new([1.0, -2.0]).decide(|v| v > 0.0), None);
+    }
+}
