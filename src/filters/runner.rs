@@ -484,19 +484,21 @@ impl<E: Estimator> Runner<E> {
         if !E::USUAL {
             return self.update_inline(s);
         }
-        let usual = (self.policy == 0)
-            & (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED);
-        if let Some(u) = if usual { self.usual(s) } else { None } {
+        if let Some(u) = if self.usual_state() { self.usual(s) } else { None } {
             if let Some(flags) = self.core.update_usual(&u) {
-                if let Some(a) = u.accel {
-                    self.last_accel = a.v;
-                    self.bits |= Self::HAS_ACCEL;
-                }
-                self.flags = flags;
+                self.stepped(flags, u.accel.map(|a| a.v));
                 return Ok(());
             }
         }
         self.update_general(s)
+    }
+
+    /// The state the usual step is for: initialised, nothing pending, no policy or kind
+    /// option.
+    #[inline(always)]
+    fn usual_state(&self) -> bool {
+        (self.policy == 0)
+            & (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED)
     }
 
     /// [`Runner::update_inline`] out of line: every case [`Runner::update_outline`] leaves.
@@ -509,14 +511,15 @@ impl<E: Estimator> Runner<E> {
         self.update_inline(s)
     }
 
-    /// What a usual step leaves besides the core's state.
+    /// What a step past initialisation with no gap leaves besides the core's state: its
+    /// `flags` ([`Step::flags`]) and the accelerometer reading.
     #[inline(always)]
-    fn stepped(&mut self, step: Step, accel: Option<Vec3>, mag: Option<Vec3>) {
+    fn stepped(&mut self, flags: u32, accel: Option<Vec3>) {
         if let Some(a) = accel {
             self.last_accel = a;
             self.bits |= Self::HAS_ACCEL;
         }
-        self.flags = step.flags(accel.is_some(), mag.is_some());
+        self.flags = flags;
     }
 
     /// One step. On error nothing changes: the state is bit-identical to before.
@@ -582,7 +585,7 @@ impl<E: Estimator> Runner<E> {
         if (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED) & !gap {
             return match self.core.update(dt, gyro, accel, mag) {
                 Some(step) => {
-                    self.stepped(step, accel, mag);
+                    self.stepped(step.flags(accel.is_some(), mag.is_some()), accel);
                     Ok(())
                 }
                 None => Err(Error::Numeric),
@@ -736,9 +739,7 @@ impl<E: Estimator> Runner<E> {
     /// passes with no gap), and an accelerometer reading.
     #[inline(always)]
     pub(crate) fn lane_usual<S: SampleView>(&self, s: &S) -> Option<Usual> {
-        let usual = (self.policy == 0)
-            & (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED);
-        if !usual {
+        if !self.usual_state() {
             return None;
         }
         self.usual(s).filter(|u| u.accel.is_some())
@@ -746,9 +747,7 @@ impl<E: Estimator> Runner<E> {
 
     /// What a lane step with the sample `u` leaves besides the core's state.
     pub(crate) fn lane_done(&mut self, u: &Usual, step: Step) {
-        self.flags = step.flags(true, u.mag.is_some());
-        self.last_accel = u.accel.map_or(Vec3::ZERO, |a| a.v);
-        self.bits |= Self::HAS_ACCEL;
+        self.stepped(step.flags(true, u.mag.is_some()), u.accel.map(|a| a.v));
     }
 
     pub(crate) fn diagnostic_fields(&self) -> u32 {
