@@ -334,7 +334,14 @@ fn correct_of<T: Real>(
 /// where it is `√x · (1/x)`.
 #[inline(always)]
 fn inv_sqrt_lanes(x: Lane) -> Option<Lane> {
-    (x.decide(|v| v > 1e-300 && v < 1e300) == Some(true)).then(|| x.sqrt() * (Lane::of(1.0) / x))
+    (x.decide(|v| v > 1e-300 && v < 1e300) == Some(true)).then(|| inv_sqrt_in_range_lanes(x))
+}
+
+/// [`crate::math::inv_sqrt_in_range`] on every lane, `√x · (1/x)`: for values a check
+/// already found in `(1e-300, 1e300)`.
+#[inline(always)]
+fn inv_sqrt_in_range_lanes(x: Lane) -> Lane {
+    x.sqrt() * (Lane::of(1.0) / x)
 }
 
 /// The number of filters [`Madgwick::update_lanes`] steps at once.
@@ -411,7 +418,7 @@ impl Madgwick {
         // norm n² taken by the quick check (in inv_sqrt's fast range).
         let unit = |c: &dyn Fn(usize) -> Option<Checked>| {
             let n2 = lane(&|i| c(i).map_or(1.0, Checked::norm_squared));
-            let r = n2.sqrt() * (Lane::of(1.0) / n2);
+            let r = inv_sqrt_in_range_lanes(n2);
             vector(&|i| c(i).map_or(Vec3::ZERO, |c| c.v)).map(|x| x * r)
         };
         let q = [lane(&|i| fs[i].q.w), lane(&|i| fs[i].q.x), lane(&|i| fs[i].q.y), lane(&|i| fs[i].q.z)];

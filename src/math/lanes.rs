@@ -10,6 +10,10 @@
 //! Values are made from a [`Lanes::Token`]: `()` for `f64x4`, and for `Avx4` a token
 //! that only exists on a CPU with AVX. Code with a value at hand takes the token from it
 //! ([`Lanes::token`]).
+//!
+//! [`Real`] is the other use of lanes here: what a step written once for one filter
+//! (`f64`) and for two filters side by side ([`F64x2`]) asks of its number type
+//! (Madgwick's update and the rig's pairs).
 
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Sub, SubAssign};
 use wide::{f64x2, f64x4};
