@@ -174,28 +174,31 @@ pub unsafe extern "C" fn orient_filters_update(
                 }
                 let ptrs: [*mut OrientFilter; LANES] = core::array::from_fn(|k| group[k]);
                 let mut fs = ptrs.map(|p| &mut (*p).filter);
+                // Every filter the group updates has its output written, also when a
+                // later one in the group refuses its sample.
+                let write = |k: usize, q: Quat| {
+                    if !quaternions.is_null() {
+                        quaternions.add(i + k).write(quat_to(q));
+                    }
+                };
                 let result = match bad {
                     None => {
                         let views = views.map(|v| v.expect("every sample viewed"));
                         let refs = core::array::from_fn(|k| &views[k]);
-                        Filter::update_group_view(&mut fs, refs).map_err(|(k, e)| (k, from_core(e)))
+                        Filter::update_group_view(&mut fs, refs, write).map_err(|(k, e)| (k, from_core(e)))
                     }
                     // The ones before the bad sample still get their update.
                     Some((k, status)) => (0..k)
                         .try_for_each(|j| match &views[j] {
-                            Some(v) => fs[j].update_inline(v).map_err(|e| (j, from_core(e))),
+                            Some(v) => {
+                                fs[j].update_inline(v).map_err(|e| (j, from_core(e)))?;
+                                write(j, fs[j].quaternion());
+                                Ok(())
+                            }
                             None => unreachable!("viewed before the refused one"),
                         })
                         .and(Err((k, status))),
                 };
-                // Every filter the group updated has its output written, also when a
-                // later one in the group refused its sample.
-                let updated = result.map_or_else(|(k, _)| k, |()| LANES);
-                if !quaternions.is_null() {
-                    for (k, f) in fs[..updated].iter().enumerate() {
-                        quaternions.add(i + k).write(quat_to(f.quaternion()));
-                    }
-                }
                 result.map_err(|(k, status)| failed(i + k, status))?;
                 i += LANES;
                 continue;

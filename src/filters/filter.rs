@@ -179,14 +179,18 @@ impl Filter {
         filters: &mut [&mut Filter; N],
         samples: [&Sample; N],
     ) -> Result<(), (usize, Error)> {
-        Filter::update_group_view(filters, samples)
+        Filter::update_group_view(filters, samples, |_, _| ())
     }
 
     /// [`Filter::update_group`] for any [`SampleView`] (the C call passes the host's
-    /// structs, read in place).
+    /// structs, read in place), calling `out(i, q)` with each filter's
+    /// [`Filter::quaternion`] right after its update succeeds (the lanes read it from the
+    /// Madgwick runners directly, without the kind's dispatch).
+    #[inline(always)]
     pub(crate) fn update_group_view<S: SampleView, const N: usize>(
         filters: &mut [&mut Filter; N],
         samples: [&S; N],
+        mut out: impl FnMut(usize, Quat),
     ) -> Result<(), (usize, Error)> {
         let mut start = 0;
         while start < N {
@@ -196,13 +200,14 @@ impl Filter {
                 <[&S; LANES]>::try_from(&samples[start..end]),
             );
             if let (true, Ok(fs), Ok(ss)) = (LANES_PAY, lanes.0, lanes.1) {
-                if Filter::try_lanes(fs, ss).is_some() {
+                if Filter::try_lanes(fs, ss, |k, q| out(start + k, q)).is_some() {
                     start = end;
                     continue;
                 }
             }
             for (i, (f, s)) in filters[start..end].iter_mut().zip(&samples[start..end]).enumerate() {
                 f.update_inline(*s).map_err(|e| (start + i, e))?;
+                out(start + i, f.quaternion());
             }
             start = end;
         }
@@ -217,10 +222,12 @@ impl Filter {
     /// every filter is a Madgwick filter whose usual step takes its sample
     /// ([`Runner::lane_usual`]) and the samples all have a magnetometer reading or none
     /// has. Anything else (a sample the rules refuse, a gap, a policy) goes one filter at
-    /// a time, which gives the same result and reports the same error.
+    /// a time, which gives the same result and reports the same error. After the step,
+    /// `out(k, q)` with each filter's [`Filter::quaternion`].
     pub(crate) fn try_lanes<S: SampleView>(
         filters: &mut [&mut Filter; LANES],
         samples: [&S; LANES],
+        mut out: impl FnMut(usize, Quat),
     ) -> Option<()> {
         let mut runners = filters.each_mut().map(|f| match &mut f.0 {
             Inner::Madgwick(r) => Some(r),
@@ -240,8 +247,9 @@ impl Filter {
             let mut cores = runners.each_mut().map(|r| &mut r.core);
             Madgwick::update_lanes(&mut cores, &usual)?
         };
-        for (r, u) in runners.iter_mut().zip(&usual) {
+        for (k, (r, u)) in runners.iter_mut().zip(&usual).enumerate() {
             r.lane_done(u, step);
+            out(k, r.output());
         }
         Some(())
     }

@@ -408,7 +408,10 @@ impl Madgwick {
     /// each, since both are [`predict_of`] and [`correct_of`]. The samples are those the
     /// usual step takes (`Runner::lane_usual`). `None`, with nothing changed, when a lane
     /// meets an edge case (a squared norm outside [`inv_sqrt`]'s fast range, or lanes that
-    /// differ on whether the field has a horizontal part).
+    /// differ on whether the field has a horizontal part). Inlined into the group's loop:
+    /// called, it took the checked samples through a copy on the stack
+    /// (docs/PERFORMANCE.md).
+    #[inline(always)]
     pub(crate) fn update_lanes(fs: &mut [&mut Madgwick; LANES], u: &[Usual; LANES]) -> Option<Step> {
         // Runner::lane_usual takes no filter with a kind option (the rest-bias learner).
         debug_assert!(fs.iter().all(|f| f.usual_settings()));

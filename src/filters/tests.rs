@@ -259,7 +259,7 @@ fn a_group_update_is_bit_identical_to_single_updates() {
                     for (k, (chunk, ss)) in fs.chunks_mut(LANES).zip(refs.chunks(LANES)).enumerate() {
                         let chunk = <&mut [&mut Filter; LANES]>::try_from(chunk).unwrap();
                         let ss = <[&Sample; LANES]>::try_from(ss).unwrap();
-                        assert_eq!(Filter::try_lanes(chunk, ss), Some(()), "step {i} group {k}");
+                        assert_eq!(Filter::try_lanes(chunk, ss, |_, _| ()), Some(()), "step {i} group {k}");
                     }
                 }
             }
@@ -654,7 +654,7 @@ fn a_pair_keeps_the_sign_of_zero_like_single_updates() {
         let s = Sample { dt: 0.01, gyro: Some(Vec3::ZERO), accel: Some(Vec3::new(1.0, 0.0, -9.7)), mag };
         let mut fs: Vec<&mut Filter> = pair.iter_mut().collect();
         let fs = <&mut [&mut Filter; LANES]>::try_from(&mut fs[..]).unwrap();
-        assert_eq!(Filter::try_lanes(fs, [&s; LANES]), Some(()), "{mag:?}");
+        assert_eq!(Filter::try_lanes(fs, [&s; LANES], |_, _| ()), Some(()), "{mag:?}");
         for (g, f) in pair.iter().zip(&mut single) {
             f.update(&s).unwrap();
             let (a, b) = (g.quaternion(), f.quaternion());

@@ -546,6 +546,7 @@ fn multi_sensor(rounds: usize, rec: &Recording) {
         (0..FRAMES).map(|f| core::array::from_fn(|i| samples[f + i])).collect();
     let rig_a: Vec<*mut OrientFilter> = (0..RIG).map(|_| new_c_filter(Kind::Madgwick)).collect();
     let rig_b: Vec<*mut OrientFilter> = (0..RIG).map(|_| new_c_filter(Kind::Madgwick)).collect();
+    let rig_c: Vec<*mut OrientFilter> = (0..RIG).map(|_| new_c_filter(Kind::Madgwick)).collect();
     let mut rig_r: Vec<Filter> =
         (0..RIG).map(|_| Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap()).collect();
     let rust_frames: Vec<[Sample; RIG]> =
@@ -553,7 +554,10 @@ fn multi_sensor(rounds: usize, rec: &Recording) {
     let multi = black_box(orient_filters_update);
     let single: unsafe extern "C" fn(*mut OrientFilter, *const OrientSample) -> OrientStatus =
         black_box(orient_filter_update);
+    let read: unsafe extern "C" fn(*const OrientFilter, *mut OrientQuaternion) -> OrientStatus =
+        black_box(orient_filter_quaternion);
     let mut out = [OrientQuaternion::default(); RIG];
+    let mut out_c = [OrientQuaternion::default(); RIG];
     let m = {
         let mut variants: Vec<Box<dyn FnMut() + '_>> = vec![
             Box::new(|| {
@@ -570,6 +574,15 @@ fn multi_sensor(rounds: usize, rec: &Recording) {
                     }
                 }
             }),
+            // Like for like with the multi-sensor call: each sensor's quaternion read out.
+            Box::new(|| {
+                for fr in &frames {
+                    for ((h, s), q) in rig_c.iter().zip(fr).zip(out_c.iter_mut()) {
+                        black_box(unsafe { single(*h, s) });
+                        black_box(unsafe { read(*h, q) });
+                    }
+                }
+            }),
             Box::new(|| {
                 for fr in &rust_frames {
                     for (f, s) in rig_r.iter_mut().zip(fr) {
@@ -580,16 +593,19 @@ fn multi_sensor(rounds: usize, rec: &Recording) {
         ];
         time_interleaved(rounds, FRAMES, &mut variants)
     };
-    for h in rig_a.into_iter().chain(rig_b) {
+    for h in rig_a.into_iter().chain(rig_b).chain(rig_c) {
         unsafe { orient_filter_free(h) };
     }
     println!(
         "\n{RIG}-sensor Madgwick MARG frame (ns per frame): orient_filters_update {:.0} (with quaternions out), \
-         {RIG} x orient_filter_update {:.0} ({:.2}x), Rust loop {:.0} ({:.2}x)",
+         {RIG} x orient_filter_update {:.0} ({:.2}x), {RIG} x (orient_filter_update + orient_filter_quaternion) {:.0} \
+         ({:.2}x), Rust loop {:.0} ({:.2}x)",
         m[0],
         m[1],
         m[0] / m[1],
         m[2],
-        m[0] / m[2]
+        m[0] / m[2],
+        m[3],
+        m[0] / m[3]
     );
 }
