@@ -102,8 +102,8 @@ pub(crate) struct Runner<E: Estimator> {
     /// words.
     bits: u8,
     /// Issue 20's policies that are on ([`Runner::RECOVER`], [`Runner::SAME_INSTANT`],
-    /// [`Runner::MODELS`]) and [`Runner::KIND_OPTION`] (the kind's settings keep it from
-    /// its usual step): the usual update tests this byte alone.
+    /// [`Runner::MODELS`]), [`Runner::KIND_OPTION`] (the kind's settings keep it from
+    /// its usual step) and [`Runner::UNSETTLED`]: the usual update tests this byte alone.
     policy: u8,
     pub(crate) common: Common,
     pub(crate) last_accel: Vec3,
@@ -170,7 +170,7 @@ impl<E: Estimator> Runner<E> {
     const HOSTED: u8 = 64;
     /// The filter has no orientation yet ([`flags::INITIALIZED`] clear), kept beside
     /// [`Runner::RELATIVE`] and [`Runner::HOSTED`] so that the read tests all three with
-    /// one instruction. [`Runner::sync_uninit`] sets it wherever `INITIALIZED` may change;
+    /// one instruction. [`Runner::sync_state`] sets it wherever `INITIALIZED` may change;
     /// the usual step and the lane step find it clear and leave it so.
     const UNINIT: u8 = 128;
     /// `saturation_recovery`: readings beyond the ranges are clipped and recovered from.
@@ -181,6 +181,12 @@ impl<E: Estimator> Runner<E> {
     const MODELS: u8 = 4;
     /// The kind's settings keep it from its usual step ([`Estimator::usual_settings`]).
     const KIND_OPTION: u8 = 8;
+    /// No orientation yet or a re-acquisition pending ([`flags::INITIALIZED`] clear or
+    /// [`flags::REACQUIRE_PENDING`] set). Not a policy: kept in [`Runner::policy`] so that
+    /// the usual update's state test is that byte's one test. [`Runner::sync_state`] sets
+    /// it wherever either flag may change; the usual step and the lane step find it clear
+    /// and leave it so.
+    const UNSETTLED: u8 = 16;
 
     pub(crate) fn new(config: &Config) -> Result<Runner<E>, Error> {
         debug_assert_eq!(config.kind(), E::KIND);
@@ -219,7 +225,7 @@ impl<E: Estimator> Runner<E> {
         let recover = if slots[id::SATURATION_RECOVERY as usize] != 0.0 { Self::RECOVER } else { 0 };
         let same_instant = if slots[id::SAME_INSTANT as usize] != 0.0 { Self::SAME_INSTANT } else { 0 };
         let option = if self.core.usual_settings() { 0 } else { Self::KIND_OPTION };
-        self.policy = (self.policy & Self::MODELS) | recover | same_instant | option;
+        self.policy = (self.policy & (Self::MODELS | Self::UNSETTLED)) | recover | same_instant | option;
         if self.same_instant() {
             self.extras_mut();
         } else if let Some(x) = &mut self.extras.0 {
@@ -333,7 +339,7 @@ impl<E: Estimator> Runner<E> {
         self.last_accel = Vec3::ZERO;
         self.set_has_accel(false);
         self.flags = 0;
-        self.sync_uninit();
+        self.sync_state();
         match self.init() {
             // From the first sample, or the core's own start-up period.
             Init::AccMag => {}
@@ -376,13 +382,22 @@ impl<E: Estimator> Runner<E> {
         };
         self.core.set_quaternion(native);
         self.flags |= flags::INITIALIZED;
-        self.sync_uninit();
+        self.sync_state();
     }
 
-    /// [`Runner::UNINIT`] from [`flags::INITIALIZED`], after any write that may change it.
-    fn sync_uninit(&mut self) {
+    /// [`Runner::UNINIT`] and [`Runner::UNSETTLED`] from [`flags::INITIALIZED`] and
+    /// [`flags::REACQUIRE_PENDING`], after any write that may change them.
+    fn sync_state(&mut self) {
         let uninit = if self.flags & flags::INITIALIZED == 0 { Self::UNINIT } else { 0 };
         self.bits = (self.bits & !Self::UNINIT) | uninit;
+        let unsettled = if self.settled() { 0 } else { Self::UNSETTLED };
+        self.policy = (self.policy & !Self::UNSETTLED) | unsettled;
+    }
+
+    /// Initialised, no re-acquisition pending.
+    #[inline(always)]
+    fn settled(&self) -> bool {
+        self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED
     }
 
     /// The quick test on the sample where it lies, the exact rules (on a copy) only when
@@ -497,8 +512,8 @@ impl<E: Estimator> Runner<E> {
     /// option.
     #[inline(always)]
     fn usual_state(&self) -> bool {
-        (self.policy == 0)
-            & (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED)
+        debug_assert_eq!(self.policy & Self::UNSETTLED == 0, self.settled());
+        self.policy == 0
     }
 
     /// [`Runner::update_inline`] out of line: every case [`Runner::update_outline`] leaves.
@@ -528,7 +543,7 @@ impl<E: Estimator> Runner<E> {
         // Issue 20's policies, out of line behind one test of the byte that says which
         // are on (the kind's option bit needs nothing here: the plain update takes the
         // kind's own update).
-        if self.policy & !Self::KIND_OPTION != 0 {
+        if self.policy & !(Self::KIND_OPTION | Self::UNSETTLED) != 0 {
             return self.update_with_policies(s);
         }
         self.update_plain(s)
@@ -539,16 +554,19 @@ impl<E: Estimator> Runner<E> {
     #[cold]
     #[inline(never)]
     fn update_with_policies<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
-        if self.same_instant() && (s.dt() == 0.0 || self.burst().1 != 0) {
-            return self.update_same_instant(s);
-        }
-        if self.recover() && self.saturated(s) {
-            return self.update_saturated(s);
-        }
-        if self.policy & Self::MODELS != 0 {
-            return self.update_calibrated(s);
-        }
-        self.update_plain(s)
+        let result = if self.same_instant() && (s.dt() == 0.0 || self.burst().1 != 0) {
+            self.update_same_instant(s)
+        } else if self.recover() && self.saturated(s) {
+            self.update_saturated(s)
+        } else if self.policy & Self::MODELS != 0 {
+            self.update_calibrated(s)
+        } else {
+            self.update_plain(s)
+        };
+        // The policies write the flags themselves (a clipped gyroscope reading leaves a
+        // re-acquisition pending).
+        self.sync_state();
+        result
     }
 
     /// The update without the policies: the quick check, then the step; a sample the quick
@@ -582,7 +600,7 @@ impl<E: Estimator> Runner<E> {
     ) -> Result<(), Error> {
         let gap = dt > self.common.gap_limit;
         // The usual step: initialised, nothing pending, no gap.
-        if (self.flags & (flags::INITIALIZED | flags::REACQUIRE_PENDING) == flags::INITIALIZED) & !gap {
+        if self.settled() & !gap {
             return match self.core.update(dt, gyro, accel, mag) {
                 Some(step) => {
                     self.stepped(step.flags(accel.is_some(), mag.is_some()), accel);
@@ -614,6 +632,7 @@ impl<E: Estimator> Runner<E> {
                     // Nothing to re-acquire from: hold the orientation until a sample
                     // with an accelerometer reading.
                     self.flags = flags::INITIALIZED | flags::GAP | flags::REACQUIRE_PENDING;
+                    self.sync_state();
                     return Ok(());
                 }
                 // Gyroscope only while pending: integrate as usual, still pending.
@@ -683,14 +702,14 @@ impl<E: Estimator> Runner<E> {
                 } else {
                     step.flags(accel.is_some(), mag.is_some()) | if gap { flags::GAP } else { 0 }
                 };
-                self.sync_uninit();
+                self.sync_state();
                 Ok(())
             }
             None => {
                 if let Some(flags) = saved {
                     self.core.restart(*self.core.settings());
                     self.flags = flags;
-                    self.sync_uninit();
+                    self.sync_state();
                 }
                 Err(Error::Numeric)
             }
@@ -730,6 +749,7 @@ impl<E: Estimator> Runner<E> {
                 (false, false) => 0,
             }
             | if gap { flags::GAP } else { 0 };
+        self.sync_state();
         Ok(())
     }
 
@@ -814,7 +834,7 @@ impl<E: Estimator> Runner<E> {
         let config = head.config(E::KIND).filter(|_| r.ok).ok_or(StateError::Corrupt)?;
         let mut fresh = Runner::<E>::new(&config).map_err(|_| StateError::Corrupt)?;
         r.u32(&mut fresh.flags);
-        fresh.sync_uninit();
+        fresh.sync_state();
         let mut last = None;
         r.opt_vec3(&mut last);
         fresh.set_has_accel(last.is_some());
@@ -865,6 +885,7 @@ impl<E: Estimator> Runner<E> {
     pub(crate) fn output(&self) -> Quat {
         debug_assert_eq!(self.bits & Self::HOSTED != 0, self.extras.0.is_some());
         debug_assert_eq!(self.bits & Self::UNINIT != 0, self.flags & flags::INITIALIZED == 0);
+        debug_assert_eq!(self.policy & Self::UNSETTLED == 0, self.settled());
         if self.bits & (Self::RELATIVE | Self::HOSTED | Self::UNINIT) != 0 {
             return self.output_hosted();
         }

@@ -471,6 +471,50 @@ fn the_read_is_the_identity_exactly_until_initialisation() {
     }
 }
 
+/// A pending re-acquisition keeps every kind off its usual step (`Runner::UNSETTLED`)
+/// through each way it can be left pending: a gap without an accelerometer reading, a
+/// snapshot of that state loaded into a fresh filter, and a clipped gyroscope reading
+/// whose policy is then turned off. The next sample with an accelerometer reading
+/// re-acquires, and the one after it is a usual step again.
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn a_pending_reacquisition_is_never_skipped() {
+    let settled = |f: &Filter| f.flags() & (flags::REACQUIRED | flags::REACQUIRE_PENDING);
+    let still = Sample { gyro: Some(Vec3::new(0.001, -0.002, 0.001)), ..good() };
+    for kind in Kind::ALL {
+        let mut c = Config::new(kind).unwrap();
+        c.init = Init::Identity;
+        c.set_param(id::GYRO_RANGE, 10.0).unwrap();
+        // Past any start-up period.
+        let mut f = Filter::new(&c).unwrap();
+        for _ in 0..400 {
+            f.update(&still).unwrap();
+        }
+        assert_eq!(settled(&f), 0, "{kind:?}");
+        let mut blob = vec![0u8; f.state_size()];
+        // A gap ending on a gyroscope-only sample; then a snapshot, loaded into a fresh
+        // filter.
+        let mut gapped = f.clone();
+        gapped.update(&Sample { dt: 5.0, accel: None, mag: None, ..still }).unwrap();
+        assert_eq!(settled(&gapped), flags::REACQUIRE_PENDING, "{kind:?}");
+        gapped.save(&mut blob).unwrap();
+        let mut loaded = Filter::new(&c).unwrap();
+        loaded.load(&blob).unwrap();
+        // A clipped gyroscope reading under the recovery policy, then the policy off.
+        let mut clipped = f.clone();
+        clipped.set_param(id::SATURATION_RECOVERY, 1.0).unwrap();
+        clipped.update(&Sample { gyro: Some(Vec3::new(12.0, 0.0, 0.0)), ..still }).unwrap();
+        assert_eq!(settled(&clipped), flags::REACQUIRE_PENDING, "{kind:?}");
+        clipped.set_param(id::SATURATION_RECOVERY, 0.0).unwrap();
+        for (how, g) in [("gap", &mut gapped), ("loaded", &mut loaded), ("clipped", &mut clipped)] {
+            g.update(&still).unwrap();
+            assert_eq!(settled(g), flags::REACQUIRED, "{kind:?} {how}");
+            g.update(&still).unwrap();
+            assert_eq!(settled(g), 0, "{kind:?} {how}");
+        }
+    }
+}
+
 #[test]
 fn reset_returns_to_the_fresh_state_and_keeps_settings() {
     let mut f = madgwick();
