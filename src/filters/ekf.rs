@@ -306,7 +306,7 @@ type Cols<const C: usize, V = f64x4> = [V; C];
 /// `f64x4`), so that a product is a sum of column multiples and the rank-one
 /// corrections a few vector operations per column. Explicit because this crate's build
 /// turns LLVM's SLP vectoriser off (`.cargo/config.toml`): it slowed the small filters'
-/// dependent chains by 7-24 %.
+/// dependent chains (docs/PERFORMANCE.md).
 #[derive(Clone, Debug, PartialEq)]
 struct Cov<V = f64x4> {
     qq: Cols<4, V>,

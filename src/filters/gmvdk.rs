@@ -183,8 +183,8 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
 /// within 120° of the prediction), where that is a few ulp; the SLERPs that take Δq
 /// normalise their results. Readings farther off (the last of them pointing opposite,
 /// with no unique axis), or so small or large that `|Δq|²` leaves `inv_sqrt`'s fast
-/// range, go to `from_two_vectors`, out of line. The product cut GMVDK's MARG update by
-/// about 18 instructions (docs/PERFORMANCE.md).
+/// range, go to `from_two_vectors`, out of line. The product costs GMVDK's MARG update
+/// fewer instructions (docs/PERFORMANCE.md).
 #[inline(always)]
 pub fn eq10_to_12(v0: Vec3, v: Vec3) -> Quat {
     eq10_to_12_with_norms(v0, v0.norm(), v, v.norm())
@@ -1237,7 +1237,7 @@ mod estimator_impl {
 /// caller save six registers and set up the frame before any work. One copy per case:
 /// each is compiled for its own path, so the magnetometer pipeline's code does not shape
 /// the registers of the accelerometer-only step (a change to the first moved the
-/// second's count by 10 instructions when they shared a function).
+/// second's count when they shared a function).
 #[inline(never)]
 fn gmvdk_update_without_mag(f: &mut Gmvdk, dt: f64, gyro: Vec3, accel: Option<Vec3>) -> Option<Step> {
     crate::isa::widest(

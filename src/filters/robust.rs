@@ -289,8 +289,8 @@ fn exp_turn(x: f64) -> (f64, f64) {
 /// [`exp_turn`] for `0 ≤ x < 1/32` by the series of `exp((−1 + i) x) = Σ (−1 + i)ⁿ xⁿ / n!`
 /// (real part `E C`, imaginary part `E S`) through x⁹: the first term left out is below
 /// 2⁻⁶⁰ of the sum there. `None` beyond. dt jitters on every host, so the coefficients
-/// are recomputed at nearly every step; in place of libm's `exp` and `sincos` the series
-/// saved the robust update 58 instructions (callgrind, docs/PERFORMANCE.md).
+/// are recomputed at nearly every step; the series costs the robust update fewer
+/// instructions than libm's `exp` and `sincos` (docs/PERFORMANCE.md).
 #[inline(always)]
 fn exp_turn_series(x: f64) -> Option<(f64, f64)> {
     if !(0.0..1.0 / 32.0).contains(&x) {

@@ -518,8 +518,7 @@ impl<E: Estimator> Runner<E> {
 
     /// [`Runner::update_inline`] out of line: every case [`Runner::update_outline`] leaves.
     /// Marked cold although a rest-bias filter or a gyroscope-only sample takes it on every
-    /// update: without the mark LLVM laid the usual path out worse (Madgwick 292 / 502 →
-    /// 299 / 559 instructions).
+    /// update: without the mark LLVM laid the usual path out worse (docs/PERFORMANCE.md).
     #[cold]
     #[inline(never)]
     fn update_general<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {

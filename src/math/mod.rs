@@ -23,7 +23,7 @@ pub use vec3::Vec3;
 /// `x² ≤ 1/256` the remainders are below 2.6e-19, under half an ulp of either value;
 /// callers check that range (outside it, use `libm::sincos`). No root, no division and
 /// no range reduction: for the small angles of one filter step it replaces a `sincos`
-/// (about 65 instructions) and the root and division that find `x`.
+/// and the root and division that find `x` (their cost: docs/PERFORMANCE.md).
 #[inline(always)]
 pub fn cos_and_sinc(x2: f64) -> (f64, f64) {
     let c = 1.0 + x2 * (-1.0 / 2.0 + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0 + x2 * (1.0 / 40320.0))));
@@ -36,10 +36,10 @@ pub fn cos_and_sinc(x2: f64) -> (f64, f64) {
 /// by the series
 /// `x − x²/2! + x³/3! − … + x¹¹/11!`: the first term left out is below 2⁻⁶¹ of the sum.
 /// Elsewhere [`one_minus_exp_neg_libm`], the readable form the series is tested against.
-/// dt jitters on every host, so a memo of the last dt rarely spares the call; in place
-/// of `1 − libm::exp(−x)` the series saved GMVDK's update 18 instructions (callgrind),
-/// and it keeps the bits that `1 − exp(−x)` loses to cancellation (that form's relative
-/// error grows as 2⁻⁵³/x).
+/// dt jitters on every host, so a memo of the last dt rarely spares the call; the series
+/// costs fewer instructions than `1 − libm::exp(−x)` (docs/PERFORMANCE.md), and it keeps
+/// the bits that `1 − exp(−x)` loses to cancellation (that form's relative error grows
+/// as 2⁻⁵³/x).
 #[inline(always)]
 pub fn one_minus_exp_neg(x: f64) -> f64 {
     if !(0.0..1.0 / 8.0).contains(&x) {
