@@ -155,8 +155,10 @@ pub unsafe extern "C" fn orient_filters_update(
         let mut i = 0;
         while i < n {
             let group = &handles[i..n.min(i + LANES)];
-            let distinct =
-                group.len() == LANES && (0..LANES).all(|a| (a + 1..LANES).all(|b| group[a] != group[b]));
+            // Where the lanes do not pay (Filter::LANES_PAY), one filter at a time.
+            let distinct = Filter::LANES_PAY
+                && group.len() == LANES
+                && (0..LANES).all(|a| (a + 1..LANES).all(|b| group[a] != group[b]));
             if distinct {
                 // Different filters, LANES of them: their steps may run side by side.
                 // The host's samples, read in place (see SampleView), up to the first

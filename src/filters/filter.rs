@@ -218,6 +218,9 @@ impl Filter {
     /// aarch64).
     pub const GROUP_LANES: usize = LANES;
 
+    /// Whether [`Filter::update_group`] takes the lanes on this target at all.
+    pub(crate) const LANES_PAY: bool = LANES_PAY;
+
     /// The lane path of [`Filter::update_group`]: `None`, with nothing changed, unless
     /// every filter is a Madgwick filter whose usual step takes its sample
     /// ([`Runner::lane_usual`]) and the samples all have a magnetometer reading or none
