@@ -307,14 +307,33 @@ mod tests {
     fn a_rig_call_writes_the_output_of_every_filter_it_updated() {
         // Four distinct Madgwick filters (two lane pairs) whose third or fourth sample (the
         // first or the second of a pair) is refused, once by the flag check and once by
-        // the reading checks.
+        // the reading checks. Past initialisation and with a different sample each, so
+        // that the first pair takes the lanes and each output is its own filter's.
         let unwritten = OrientQuaternion { w: f64::NAN, x: 7.0, y: 7.0, z: 7.0 };
         let spoil: [fn(&mut OrientSample); 2] = [|s| s.reserved = 1, |s| s.gyro.y = f64::NAN];
+        let sample = |k: usize| {
+            let mut s = moving_sample();
+            s.gyro.x += 0.05 * k as f64;
+            s
+        };
         for (spoil, bad) in spoil.into_iter().flat_map(|f| [(f, 2), (f, 3)]) {
             unsafe {
                 let hs: Vec<*mut OrientFilter> = (0..4).map(|_| new_madgwick()).collect();
                 let twins: Vec<*mut OrientFilter> = (0..4).map(|_| new_madgwick()).collect();
-                let mut frame = [moving_sample(); 4];
+                let mut frame: [OrientSample; 4] = core::array::from_fn(sample);
+                for _ in 0..3 {
+                    let status = orient_filters_update(
+                        hs.as_ptr(),
+                        frame.as_ptr(),
+                        4,
+                        core::ptr::null_mut(),
+                        core::ptr::null_mut(),
+                    );
+                    assert_eq!(status, OrientStatus::Ok);
+                    for (t, s) in twins.iter().zip(&frame) {
+                        assert_eq!(orient_filter_update(*t, s), OrientStatus::Ok);
+                    }
+                }
                 spoil(&mut frame[bad]);
                 let mut out = [unwritten; 4];
                 let mut n = 99;

@@ -155,8 +155,8 @@ pub unsafe extern "C" fn orient_filters_update(
         let mut i = 0;
         while i < n {
             let group = &handles[i..n.min(i + LANES)];
-            // Where the lanes do not pay (Filter::LANES_PAY), one filter at a time.
-            let distinct = Filter::LANES_PAY
+            // Where the lanes do not pay (LANES_PAY), one filter at a time.
+            let distinct = crate::filters::LANES_PAY
                 && group.len() == LANES
                 && (0..LANES).all(|a| (a + 1..LANES).all(|b| group[a] != group[b]));
             if distinct {
@@ -187,7 +187,13 @@ pub unsafe extern "C" fn orient_filters_update(
                     None => {
                         let views = views.map(|v| v.expect("every sample viewed"));
                         let refs = core::array::from_fn(|k| &views[k]);
-                        Filter::update_group_view(&mut fs, refs, write).map_err(|(k, e)| (k, from_core(e)))
+                        // The outputs read only when they are wanted.
+                        if quaternions.is_null() {
+                            Filter::update_group_view::<_, LANES, false>(&mut fs, refs, |_, _| ())
+                        } else {
+                            Filter::update_group_view::<_, LANES, true>(&mut fs, refs, write)
+                        }
+                        .map_err(|(k, e)| (k, from_core(e)))
                     }
                     // The ones before the bad sample still get their update.
                     Some((k, status)) => (0..k)

@@ -86,8 +86,9 @@ pub struct Filter(Inner);
 /// two where it was measured to pay, and where two f64 lanes are one register (x86-64's
 /// SSE2, aarch64's NEON). On armv7, without f64 SIMD, the `wide` crate's lanes are arrays,
 /// and the 20-sensor frame took more guest instructions in lanes than one filter at a
-/// time (9,725 against 7,895, docs/PERFORMANCE.md); other targets were not measured.
-const LANES_PAY: bool = cfg!(any(target_arch = "x86_64", target_arch = "aarch64"));
+/// time (docs/PERFORMANCE.md); other targets were not measured. The C rig call takes
+/// its pairs only where this holds.
+pub(crate) const LANES_PAY: bool = cfg!(any(target_arch = "x86_64", target_arch = "aarch64"));
 
 impl Filter {
     pub fn new(config: &Config) -> Result<Filter, Error> {
@@ -179,15 +180,15 @@ impl Filter {
         filters: &mut [&mut Filter; N],
         samples: [&Sample; N],
     ) -> Result<(), (usize, Error)> {
-        Filter::update_group_view(filters, samples, |_, _| ())
+        Filter::update_group_view::<_, N, false>(filters, samples, |_, _| ())
     }
 
     /// [`Filter::update_group`] for any [`SampleView`] (the C call passes the host's
-    /// structs, read in place), calling `out(i, q)` with each filter's
+    /// structs, read in place). With `OUT`, calls `out(i, q)` with each filter's
     /// [`Filter::quaternion`] right after its update succeeds (the lanes read it from the
-    /// Madgwick runners directly, without the kind's dispatch).
+    /// Madgwick runners directly, without the kind's dispatch); without, reads none.
     #[inline(always)]
-    pub(crate) fn update_group_view<S: SampleView, const N: usize>(
+    pub(crate) fn update_group_view<S: SampleView, const N: usize, const OUT: bool>(
         filters: &mut [&mut Filter; N],
         samples: [&S; N],
         mut out: impl FnMut(usize, Quat),
@@ -200,14 +201,16 @@ impl Filter {
                 <[&S; LANES]>::try_from(&samples[start..end]),
             );
             if let (true, Ok(fs), Ok(ss)) = (LANES_PAY, lanes.0, lanes.1) {
-                if Filter::try_lanes(fs, ss, |k, q| out(start + k, q)).is_some() {
+                if Filter::try_lanes::<S, OUT>(fs, ss, |k, q| out(start + k, q)).is_some() {
                     start = end;
                     continue;
                 }
             }
             for (i, (f, s)) in filters[start..end].iter_mut().zip(&samples[start..end]).enumerate() {
                 f.update_inline(*s).map_err(|e| (start + i, e))?;
-                out(start + i, f.quaternion());
+                if OUT {
+                    out(start + i, f.quaternion());
+                }
             }
             start = end;
         }
@@ -218,16 +221,13 @@ impl Filter {
     /// aarch64).
     pub const GROUP_LANES: usize = LANES;
 
-    /// Whether [`Filter::update_group`] takes the lanes on this target at all.
-    pub(crate) const LANES_PAY: bool = LANES_PAY;
-
     /// The lane path of [`Filter::update_group`]: `None`, with nothing changed, unless
     /// every filter is a Madgwick filter whose usual step takes its sample
     /// ([`Runner::lane_usual`]) and the samples all have a magnetometer reading or none
     /// has. Anything else (a sample the rules refuse, a gap, a policy) goes one filter at
     /// a time, which gives the same result and reports the same error. After the step,
-    /// `out(k, q)` with each filter's [`Filter::quaternion`].
-    pub(crate) fn try_lanes<S: SampleView>(
+    /// with `OUT`, `out(k, q)` with each filter's [`Filter::quaternion`].
+    pub(crate) fn try_lanes<S: SampleView, const OUT: bool>(
         filters: &mut [&mut Filter; LANES],
         samples: [&S; LANES],
         mut out: impl FnMut(usize, Quat),
@@ -252,7 +252,9 @@ impl Filter {
         };
         for (k, (r, u)) in runners.iter_mut().zip(&usual).enumerate() {
             r.lane_done(u, step);
-            out(k, r.output());
+            if OUT {
+                out(k, r.output());
+            }
         }
         Some(())
     }

@@ -183,8 +183,8 @@ pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
 /// within 120° of the prediction), where that is a few ulp; the SLERPs that take Δq
 /// normalise their results. Readings farther off (the last of them pointing opposite,
 /// with no unique axis), or so small or large that `|Δq|²` leaves `inv_sqrt`'s fast
-/// range, go to `from_two_vectors`, out of line. The product costs GMVDK's MARG update
-/// fewer instructions (docs/PERFORMANCE.md).
+/// range, go to `from_two_vectors`, out of line. Taking the product costs GMVDK's MARG
+/// update fewer instructions than normalising by the four squares (docs/PERFORMANCE.md).
 #[inline(always)]
 pub fn eq10_to_12(v0: Vec3, v: Vec3) -> Quat {
     eq10_to_12_with_norms(v0, v0.norm(), v, v.norm())

@@ -42,6 +42,7 @@ pub(crate) use estimator::twist_about;
 pub(crate) use estimator::Reacquisition;
 pub use estimator::Step;
 pub use filter::Filter;
+pub(crate) use filter::LANES_PAY;
 pub use host::RigHeading;
 pub use kind::Kind;
 pub(crate) use sample::{check_quaternion, SampleView};

@@ -541,7 +541,8 @@ impl<E: Estimator> Runner<E> {
     pub(crate) fn update_inline<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
         // Issue 20's policies, out of line behind one test of the byte that says which
         // are on (the kind's option bit needs nothing here: the plain update takes the
-        // kind's own update).
+        // kind's own update; nor does UNSETTLED: the plain update tests the flags
+        // themselves).
         if self.policy & !(Self::KIND_OPTION | Self::UNSETTLED) != 0 {
             return self.update_with_policies(s);
         }

@@ -259,7 +259,11 @@ fn a_group_update_is_bit_identical_to_single_updates() {
                     for (k, (chunk, ss)) in fs.chunks_mut(LANES).zip(refs.chunks(LANES)).enumerate() {
                         let chunk = <&mut [&mut Filter; LANES]>::try_from(chunk).unwrap();
                         let ss = <[&Sample; LANES]>::try_from(ss).unwrap();
-                        assert_eq!(Filter::try_lanes(chunk, ss, |_, _| ()), Some(()), "step {i} group {k}");
+                        assert_eq!(
+                            Filter::try_lanes::<_, false>(chunk, ss, |_, _| ()),
+                            Some(()),
+                            "step {i} group {k}"
+                        );
                     }
                 }
             }
@@ -479,7 +483,7 @@ fn the_read_is_the_identity_exactly_until_initialisation() {
 #[test]
 #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
 fn a_pending_reacquisition_is_never_skipped() {
-    let settled = |f: &Filter| f.flags() & (flags::REACQUIRED | flags::REACQUIRE_PENDING);
+    let reacquisition = |f: &Filter| f.flags() & (flags::REACQUIRED | flags::REACQUIRE_PENDING);
     let still = Sample { gyro: Some(Vec3::new(0.001, -0.002, 0.001)), ..good() };
     for kind in Kind::ALL {
         let mut c = Config::new(kind).unwrap();
@@ -490,13 +494,13 @@ fn a_pending_reacquisition_is_never_skipped() {
         for _ in 0..400 {
             f.update(&still).unwrap();
         }
-        assert_eq!(settled(&f), 0, "{kind:?}");
+        assert_eq!(reacquisition(&f), 0, "{kind:?}");
         let mut blob = vec![0u8; f.state_size()];
         // A gap ending on a gyroscope-only sample; then a snapshot, loaded into a fresh
         // filter.
         let mut gapped = f.clone();
         gapped.update(&Sample { dt: 5.0, accel: None, mag: None, ..still }).unwrap();
-        assert_eq!(settled(&gapped), flags::REACQUIRE_PENDING, "{kind:?}");
+        assert_eq!(reacquisition(&gapped), flags::REACQUIRE_PENDING, "{kind:?}");
         gapped.save(&mut blob).unwrap();
         let mut loaded = Filter::new(&c).unwrap();
         loaded.load(&blob).unwrap();
@@ -504,13 +508,17 @@ fn a_pending_reacquisition_is_never_skipped() {
         let mut clipped = f.clone();
         clipped.set_param(id::SATURATION_RECOVERY, 1.0).unwrap();
         clipped.update(&Sample { gyro: Some(Vec3::new(12.0, 0.0, 0.0)), ..still }).unwrap();
-        assert_eq!(settled(&clipped), flags::REACQUIRE_PENDING, "{kind:?}");
+        assert_eq!(reacquisition(&clipped), flags::REACQUIRE_PENDING, "{kind:?}");
         clipped.set_param(id::SATURATION_RECOVERY, 0.0).unwrap();
+        // The rig's group step (the lanes, for Madgwick) re-acquires too.
+        let (mut a, mut b) = (gapped.clone(), loaded.clone());
+        Filter::update_group(&mut [&mut a, &mut b], [&still, &still]).unwrap();
+        assert_eq!([reacquisition(&a), reacquisition(&b)], [flags::REACQUIRED; 2], "{kind:?} group");
         for (how, g) in [("gap", &mut gapped), ("loaded", &mut loaded), ("clipped", &mut clipped)] {
             g.update(&still).unwrap();
-            assert_eq!(settled(g), flags::REACQUIRED, "{kind:?} {how}");
+            assert_eq!(reacquisition(g), flags::REACQUIRED, "{kind:?} {how}");
             g.update(&still).unwrap();
-            assert_eq!(settled(g), 0, "{kind:?} {how}");
+            assert_eq!(reacquisition(g), 0, "{kind:?} {how}");
         }
     }
 }
@@ -698,7 +706,7 @@ fn a_pair_keeps_the_sign_of_zero_like_single_updates() {
         let s = Sample { dt: 0.01, gyro: Some(Vec3::ZERO), accel: Some(Vec3::new(1.0, 0.0, -9.7)), mag };
         let mut fs: Vec<&mut Filter> = pair.iter_mut().collect();
         let fs = <&mut [&mut Filter; LANES]>::try_from(&mut fs[..]).unwrap();
-        assert_eq!(Filter::try_lanes(fs, [&s; LANES], |_, _| ()), Some(()), "{mag:?}");
+        assert_eq!(Filter::try_lanes::<_, false>(fs, [&s; LANES], |_, _| ()), Some(()), "{mag:?}");
         for (g, f) in pair.iter().zip(&mut single) {
             f.update(&s).unwrap();
             let (a, b) = (g.quaternion(), f.quaternion());
