@@ -347,8 +347,7 @@ private:
 /// One frame of a rig in one call: `handles[i]` (from Filter::native()) takes
 /// `samples[i]`, and `out[i]` (when given) receives its orientation. On x86-64 and
 /// aarch64 two consecutive distinct Madgwick filters may run side by side; the results
-/// equal separate updates bit
-/// for bit. Stops at the first bad sample, its index in *processed. Keep the handles in
+/// equal separate updates bit for bit. Stops at the first bad sample, its index in *processed. Keep the handles in
 /// an array you reuse across frames: the call allocates nothing.
 inline OrientStatus update_rig(OrientFilter* const* handles, const OrientSample* samples, std::size_t n,
                                OrientQuaternion* out = nullptr, std::size_t* processed = nullptr) noexcept {

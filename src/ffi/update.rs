@@ -151,7 +151,7 @@ pub unsafe extern "C" fn orient_filters_update(
         }
         // Reports a bad sample at `i`: its index in `*processed`, the detail prefixed.
         let failed = |i: usize, status: OrientStatus| fail_item(processed, "filter", i, status);
-        use crate::filters::madgwick::LANES;
+        const LANES: usize = Filter::GROUP_LANES;
         let mut i = 0;
         while i < n {
             let group = &handles[i..n.min(i + LANES)];

@@ -185,8 +185,10 @@ impl Filter {
 
     /// [`Filter::update_group`] for any [`SampleView`] (the C call passes the host's
     /// structs, read in place). With `OUT`, calls `out(i, q)` with each filter's
-    /// [`Filter::quaternion`] right after its update succeeds (the lanes read it from the
-    /// Madgwick runners directly, without the kind's dispatch); without, reads none.
+    /// [`Filter::quaternion`] once its update has succeeded: a filter updated alone right
+    /// after its update, a pair in lanes after their shared step (read from the Madgwick
+    /// runners directly, without the kind's dispatch), in both cases before the next
+    /// filter's update; without `OUT`, reads none.
     #[inline(always)]
     pub(crate) fn update_group_view<S: SampleView, const N: usize, const OUT: bool>(
         filters: &mut [&mut Filter; N],

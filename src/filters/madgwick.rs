@@ -413,8 +413,11 @@ impl Madgwick {
     /// (docs/PERFORMANCE.md).
     #[inline(always)]
     pub(crate) fn update_lanes(fs: &mut [&mut Madgwick; LANES], u: &[Usual; LANES]) -> Option<Step> {
-        // Runner::lane_usual takes no filter with a kind option (the rest-bias learner).
+        // Runner::lane_usual takes no filter with a kind option (the rest-bias learner);
+        // Filter::try_lanes pairs samples with an accelerometer reading each and the same
+        // magnetometer presence.
         debug_assert!(fs.iter().all(|f| f.usual_settings()));
+        debug_assert!(u.iter().all(|v| v.accel.is_some() && v.mag.is_some() == u[0].mag.is_some()));
         let lane = |g: &dyn Fn(usize) -> f64| Lane::new(core::array::from_fn(g));
         let vector = |v: &dyn Fn(usize) -> Vec3| [lane(&|i| v(i).x), lane(&|i| v(i).y), lane(&|i| v(i).z)];
         // A reading's direction as `Checked::unit` gives it: v √n² (1/n²), its squared

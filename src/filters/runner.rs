@@ -525,8 +525,10 @@ impl<E: Estimator> Runner<E> {
         self.update_inline(s)
     }
 
-    /// What a step past initialisation with no gap leaves besides the core's state: its
-    /// `flags` ([`Step::flags`]) and the accelerometer reading.
+    /// What a successful step leaves besides the core's state: its `flags` and the
+    /// accelerometer reading (the usual and lane steps, the general step, the start and
+    /// the re-acquisition; the start and the re-acquisition then synchronise the state
+    /// bits, which the others leave as they were).
     #[inline(always)]
     fn stepped(&mut self, flags: u32, accel: Option<Vec3>) {
         if let Some(a) = accel {
@@ -645,12 +647,8 @@ impl<E: Estimator> Runner<E> {
         let dt = if gap { self.common.gap_limit } else { dt };
         match self.core.update(dt, gyro, accel, mag) {
             Some(step) => {
-                if let Some(a) = accel {
-                    self.last_accel = a;
-                    self.bits |= Self::HAS_ACCEL;
-                }
-                self.flags =
-                    step.flags(accel.is_some(), mag.is_some()) | if gap { flags::GAP } else { 0 } | pending;
+                let gap_flag = if gap { flags::GAP } else { 0 };
+                self.stepped(step.flags(accel.is_some(), mag.is_some()) | gap_flag | pending, accel);
                 Ok(())
             }
             None => Err(Error::Numeric),
@@ -693,15 +691,12 @@ impl<E: Estimator> Runner<E> {
         let dt = if gap { self.common.gap_limit } else { dt };
         match self.core.update(dt, gyro, accel, mag) {
             Some(step) => {
-                if let Some(a) = accel {
-                    self.last_accel = a;
-                    self.bits |= Self::HAS_ACCEL;
-                }
-                self.flags = if step.initializing {
+                let flags = if step.initializing {
                     0
                 } else {
                     step.flags(accel.is_some(), mag.is_some()) | if gap { flags::GAP } else { 0 }
                 };
+                self.stepped(flags, accel);
                 self.sync_state();
                 Ok(())
             }
@@ -738,9 +733,7 @@ impl<E: Estimator> Runner<E> {
         let with_mag = mag.and_then(|m| native.attitude_from(accel, Some(m)));
         let r = Reacquisition { keep, with_mag, dt, gyro, accel, mag };
         let used_mag = self.core.reacquire(&r);
-        self.last_accel = accel;
-        self.bits |= Self::HAS_ACCEL;
-        self.flags = flags::INITIALIZED
+        let flags = flags::INITIALIZED
             | flags::ACCEL_USED
             | flags::REACQUIRED
             | match (used_mag, mag.is_some()) {
@@ -749,6 +742,7 @@ impl<E: Estimator> Runner<E> {
                 (false, false) => 0,
             }
             | if gap { flags::GAP } else { 0 };
+        self.stepped(flags, Some(accel));
         self.sync_state();
         Ok(())
     }
