@@ -139,15 +139,13 @@ impl Running {
     const INITIAL: Running =
         Running { q: Quat::IDENTITY, bias: Vec3::ZERO, g0: 0.0, b0: Vec3::ZERO, rest: false };
 
-    /// Stores `q` renormalised and `bias` (finite: only the rest branch changes it, and
-    /// checks it). `USUAL`: only when `q` is unit to 1e-8 (`None`, nothing stored,
-    /// otherwise).
+    /// Stores `q` renormalised. `USUAL`: only when `q` is unit to 1e-8 (`None`, nothing
+    /// stored, otherwise).
     #[inline(always)]
-    fn commit<const USUAL: bool>(&mut self, q: Quat, bias: Vec3, step: Step) -> Option<Step> {
+    fn commit<const USUAL: bool>(&mut self, q: Quat) -> Option<()> {
         // exp() is unit up to rounding; renormalise so it cannot drift over long runs.
         self.q = if USUAL { q.renormalized_usual()? } else { q.renormalized()? };
-        self.bias = bias;
-        Some(step)
+        Some(())
     }
 }
 
@@ -330,11 +328,9 @@ impl Complementary {
         };
         let Some(a) = accel else {
             // Gyroscope only: propagate with the bias-corrected rate (no rest test).
-            let committed = r.commit::<false>(r.q * rotation_of(gyro - r.bias, dt), r.bias, step);
-            if committed.is_some() {
-                r.rest = false;
-            }
-            return committed;
+            r.commit::<false>(r.q * rotation_of(gyro - r.bias, dt))?;
+            r.rest = false;
+            return Some(step);
         };
         Complementary::step::<false>(r, &self.settings, dt, gyro, || a.norm(), || a.normalized())
     }
@@ -346,8 +342,9 @@ impl Complementary {
     }
 
     /// [`Complementary::update`]'s usual case, which calls no function: past the start-up
-    /// period, an accelerometer reading, rotations within [`rotation_of_series`]'s range
-    /// and an estimate unit to 1e-8 before its renormalisation. The same result, or `None`
+    /// period with g₀ known, an accelerometer reading, rotations within
+    /// [`rotation_of_series`]'s range and an estimate unit to 1e-8 before its
+    /// renormalisation. The same result, or `None`
     /// with nothing changed otherwise.
     #[inline(always)]
     pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<u32> {
@@ -374,7 +371,11 @@ impl Complementary {
         let rotation =
             |omega: Vec3| if USUAL { rotation_of_series(omega, dt) } else { Some(rotation_of(omega, dt)) };
         // A known initial attitude skipped the start-up period: g₀ from the first reading.
-        // Kept local until the step commits: a refused step changes nothing.
+        // Kept local until the step commits: a refused step changes nothing. The usual
+        // step leaves that first reading to the general one, and stores nothing here.
+        if USUAL && r.g0 == 0.0 {
+            return None;
+        }
         let g0 = if r.g0 == 0.0 { a_norm() } else { r.g0 };
         // Rest: |ω_m| and |a_m| near their stationary values (the start-up means). It
         // depends on the readings alone, not on the estimate.
@@ -385,7 +386,7 @@ impl Complementary {
             && (a_norm() - g0).abs() < settings.accel_rest;
         let omega_tilde = gyro - r.bias; // (7)
         let q_tilde = r.q * rotation(omega_tilde)?;
-        let (q, bias) = if rest {
+        if rest {
             let g_a = g_a(); // (6)
             let g_omega = q_tilde.z_axis_in_body(); // (8)
             let theta_e = g_a.cross(g_omega); // (9)
@@ -393,19 +394,18 @@ impl Complementary {
             if !bias.is_finite() {
                 return None;
             }
-            let q = r.q * rotation(gyro - bias + theta_e * settings.kp)?; // (4)
-            (q, bias)
+            r.commit::<USUAL>(r.q * rotation(gyro - bias + theta_e * settings.kp)?)?; // (4)
+            r.bias = bias;
         } else {
             // In motion K_p = K_I = 0: (10) keeps the bias and (4) integrates ω̃, which
             // is the prediction q̃ itself; θ_e has no effect and is not computed.
-            (q_tilde, r.bias)
-        };
-        let committed = r.commit::<USUAL>(q, bias, step);
-        if committed.is_some() {
-            r.rest = rest;
+            r.commit::<USUAL>(q_tilde)?;
+        }
+        r.rest = rest;
+        if !USUAL {
             r.g0 = g0;
         }
-        committed
+        Some(step)
     }
 }
 
