@@ -12,10 +12,12 @@
 //! ```
 //!
 //! The directions are gravity's reaction `â` against `v̂ = R(q)ᵀ e_z` and, with a
-//! magnetometer, `m̂` against the estimated field `R(q)ᵀ [b_x 0 b_z]`, whose reference is
+//! magnetometer, `m̂` against the estimated field `R(q)ᵀ [0 b_y b_z]`, whose reference is
 //! taken from the measurement itself as in Madgwick's (31)-(32), so that magnetic
 //! inclination errors cannot tilt the estimate. The native frame is magnetic
-//! North-West-Up. Integration is first order followed by normalisation, as in the
+//! East-North-Up (Madgwick's `b_x`, north, is `b_y` here): orient's default frame, so
+//! that the default output needs no rotation. The equations do not depend on that choice
+//! (it turns the earth frame about the vertical) beyond rounding. Integration is first order followed by normalisation, as in the
 //! widely used implementation that produced the BROAD baseline numbers.
 
 use super::params::settings;
@@ -58,7 +60,7 @@ settings! {
     }
 }
 
-/// Mahony's filter: orientation (North-West-Up) and gyroscope bias.
+/// Mahony's filter: orientation (East-North-Up) and gyroscope bias.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mahony {
     pub settings: MahonySettings,
@@ -126,14 +128,14 @@ impl Mahony {
         let mut e = a.cross(up);
         let mut used_mag = false;
         if let Some(m) = m {
-            // h = q ⊗ m̂ ⊗ q* = R m̂; b = [√(h_x² + h_y²), 0, h_z] keeps the field's dip
-            // and drops its heading; ŵ = q* ⊗ b ⊗ q = Rᵀ b = b_x r0 + b_z r2.
+            // h = q ⊗ m̂ ⊗ q* = R m̂; b = [0, √(h_x² + h_y²), h_z] keeps the field's dip
+            // and drops its heading (north is y); ŵ = q* ⊗ b ⊗ q = Rᵀ b = b_y r1 + b_z r2.
             let h = Vec3::new(r0.dot(m), r1.dot(m), up.dot(m));
-            let bx = (h.x * h.x + h.y * h.y).sqrt();
-            if bx > 0.0 {
-                // m̂ × ŵ = b_x (m̂ × r0) + b_z (m̂ × r2): the two cross products do not
+            let by = (h.x * h.x + h.y * h.y).sqrt();
+            if by > 0.0 {
+                // m̂ × ŵ = b_y (m̂ × r1) + b_z (m̂ × r2): the two cross products do not
                 // wait for the square root.
-                e = e + (m.cross(r0) * bx + m.cross(up) * h.z);
+                e = e + (m.cross(r1) * by + m.cross(up) * h.z);
                 used_mag = true;
             }
         }
@@ -146,8 +148,12 @@ impl Mahony {
             return self.update_with_rest_bias(dt, gyro, accel, mag);
         }
         match (accel, mag) {
-            (Some(a), None) => self.update_with::<false, false>(dt, gyro, a.normalized(), Vec3::ZERO),
-            (Some(a), Some(m)) => self.update_with::<true, false>(dt, gyro, a.normalized(), m.normalized()),
+            (Some(a), None) => {
+                self.update_with::<false, false>(dt, gyro, a.normalized(), Vec3::ZERO, self.ki())
+            }
+            (Some(a), Some(m)) => {
+                self.update_with::<true, false>(dt, gyro, a.normalized(), m.normalized(), self.ki())
+            }
             (None, _) => self.update_gyro_only(dt, gyro, mag),
         }
     }
@@ -166,14 +172,28 @@ impl Mahony {
         debug_assert!(self.usual_settings());
         // The flags each case leaves are computed in its copy, before the copies join.
         match (s.accel, s.mag) {
-            (Some(a), None) => self
-                .update_with::<false, true>(s.dt, s.gyro, a.unit(), Vec3::ZERO)
-                .map(|st| st.flags(true, false)),
+            // Without a magnetometer, one copy with the integral term and one without (the
+            // default), with k_I tested once, here.
+            (Some(a), None) if self.ki() => self.update_usual_imu(s.dt, s.gyro, a.unit(), true),
+            (Some(a), None) => self.update_usual_imu(s.dt, s.gyro, a.unit(), false),
             (Some(a), Some(m)) => self
-                .update_with::<true, true>(s.dt, s.gyro, a.unit(), m.unit())
+                .update_with::<true, true>(s.dt, s.gyro, a.unit(), m.unit(), self.ki())
                 .map(|st| st.flags(true, true)),
             (None, _) => None,
         }
+    }
+
+    /// [`Mahony::update_usual`] without a magnetometer reading, with the integral term on
+    /// or off (`ki`, a constant in each copy).
+    #[inline(always)]
+    fn update_usual_imu(&mut self, dt: f64, gyro: Vec3, a: Vec3, ki: bool) -> Option<u32> {
+        self.update_with::<false, true>(dt, gyro, a, Vec3::ZERO, ki).map(|st| st.flags(true, false))
+    }
+
+    /// Whether the integral term is on (k_I > 0).
+    #[inline(always)]
+    fn ki(&self) -> bool {
+        self.settings.ki > 0.0
     }
 
     /// The update without the rest-bias option, with the normalised accelerometer reading
@@ -188,11 +208,12 @@ impl Mahony {
         gyro: Vec3,
         a: Vec3,
         m: Vec3,
+        ki: bool,
     ) -> Option<Step> {
-        let (q, bias, step) = self.step::<USUAL>(self.bias, dt, gyro, Some(a), MAG.then_some(m))?;
+        let (q, bias, step) = self.step::<USUAL>(self.bias, dt, gyro, Some(a), MAG.then_some(m), ki)?;
         self.q = q;
         // Without the integral term (k_I = 0, the default) the bias stays as it was.
-        if self.settings.ki > 0.0 {
+        if ki {
             self.bias = bias;
         }
         Some(step)
@@ -202,7 +223,7 @@ impl Mahony {
     /// bias does not change).
     #[inline(never)]
     fn update_gyro_only(&mut self, dt: f64, gyro: Vec3, mag: Option<Vec3>) -> Option<Step> {
-        let (q, _, step) = self.step::<false>(self.bias, dt, gyro, None, mag.map(Vec3::normalized))?;
+        let (q, _, step) = self.step::<false>(self.bias, dt, gyro, None, mag.map(Vec3::normalized), false)?;
         self.q = q;
         Some(step)
     }
@@ -222,7 +243,7 @@ impl Mahony {
             return None;
         }
         let (a, m) = (accel.map(Vec3::normalized), mag.map(Vec3::normalized));
-        let (q, bias, step) = self.step::<false>(bias, dt, gyro, a, m)?;
+        let (q, bias, step) = self.step::<false>(bias, dt, gyro, a, m, self.ki())?;
         self.q = q;
         self.bias = bias;
         self.rest.commit(detector);
@@ -230,10 +251,10 @@ impl Mahony {
     }
 
     /// One step from the current estimate with gyro bias `bias` and the normalised
-    /// readings `â` and `m̂`: the new estimate and bias, or `None` when either is not
-    /// finite. `USUAL`: the usual case, a sample the quick check accepted, which calls no
-    /// function: the new estimate's squared norm is in [`crate::math::inv_sqrt`]'s fast
-    /// range without a test (the bounds are below).
+    /// readings `â` and `m̂`, with the integral term when `ki` (k_I > 0): the new estimate
+    /// and bias, or `None` when either is not finite. `USUAL`: the usual case, a sample
+    /// the quick check accepted, which calls no function: the new estimate's squared norm
+    /// is in [`crate::math::inv_sqrt`]'s fast range without a test (the bounds are below).
     #[inline(always)]
     fn step<const USUAL: bool>(
         &self,
@@ -242,6 +263,7 @@ impl Mahony {
         gyro: Vec3,
         a: Option<Vec3>,
         m: Option<Vec3>,
+        ki: bool,
     ) -> Option<(Quat, Vec3, Step)> {
         let mut step = Step::default();
         let mut omega = gyro - bias;
@@ -249,7 +271,7 @@ impl Mahony {
             let (e, used_mag) = Mahony::correction_of_units(self.q, a, m);
             step.used_accel = true;
             step.used_mag = used_mag;
-            if self.settings.ki > 0.0 {
+            if ki {
                 bias = bias - e * (self.settings.ki * dt);
                 if !bias.is_finite() {
                     return None;
@@ -310,7 +332,8 @@ mod tests {
         let bias = Vec3::new(0.02, -0.03, 0.01);
         let truth = Quat::from_axis_angle(Vec3::new(0.3, 0.5, 0.1), 0.7);
         let accel = truth.rotate_inverse(Vec3::new(0.0, 0.0, 9.81));
-        let mag = truth.rotate_inverse(Vec3::new(20.0, 0.0, -40.0));
+        // North (y, East-North-Up) and down.
+        let mag = truth.rotate_inverse(Vec3::new(0.0, 20.0, -40.0));
         let mut f = Mahony::new(MahonySettings { kp: 1.0, ki: 0.3, ..Default::default() });
         f.set_quaternion(truth);
         // 240 s: the PI loop is underdamped with these gains and settles in about 200 s.
@@ -329,7 +352,7 @@ mod estimator_impl {
     use crate::filters::estimator::estimator;
     use crate::filters::Diagnostics;
 
-    estimator!(impl for Mahony { settings: MahonySettings, native: Nwu, own_startup: false, usual: true } {
+    estimator!(impl for Mahony { settings: MahonySettings, native: Enu, own_startup: false, usual: true } {
         fn configure(&mut self, settings: MahonySettings) {
             self.settings = settings;
             self.rest.prepare(settings.rest_bias_tau > 0.0);
