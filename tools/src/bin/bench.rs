@@ -251,6 +251,8 @@ fn run<T>(items: &[T], n: usize, mut f: impl FnMut(&T)) {
 }
 
 /// [`count`] for one of the `ahrs` crate's filters (f64); its update returns the orientation.
+/// Out of line, as [`orient_count`] is.
+#[inline(never)]
 fn ahrs_count<F: ahrs::Ahrs<f64>>(mut f: F, samples: &[Sample], mag: bool, n: usize) {
     run(samples, n, |s| {
         let (g, a) = (na(s.gyro.unwrap()), na(s.accel.unwrap()));
@@ -270,14 +272,7 @@ fn count(who: &str, mag: bool, n: usize, samples: &[Sample], c: bool) {
     match who {
         "ahrs-madgwick" => ahrs_count(ahrs::Madgwick::new(dt, 0.041), samples, mag, n),
         "ahrs-mahony" => ahrs_count(ahrs::Mahony::new(dt, 0.5, 0.0), samples, mag, n),
-        "vqf" => {
-            let mut f = vqf_rs::VQF::new(dt, None, None, None);
-            run(samples, n, |s| {
-                let v = |v: Vec3| [v.x, v.y, v.z];
-                f.update(v(s.gyro.unwrap()), v(s.accel.unwrap()), s.mag.map(v));
-                black_box(if mag { f.quat_9d() } else { f.quat_6d() });
-            });
-        }
+        "vqf" => vqf_count(dt, samples, mag, n),
         _ if c => {
             // The same through the C ABI, called through a pointer as a host calls it.
             let kind = Kind::from_name(who).expect("--count KIND|ANCHOR imu|marg N [c]");
@@ -294,22 +289,38 @@ fn count(who: &str, mag: bool, n: usize, samples: &[Sample], c: bool) {
             });
             unsafe { orient_filter_free(h) };
         }
-        _ => {
-            let kind = Kind::from_name(who).expect("--count KIND|ANCHOR imu|marg N [c]");
-            let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
-            // Inlined into the loop, as the anchors' closures are (LLVM left this one out
-            // of line, whose call and register saves then counted as orient's).
-            run(
-                samples,
-                n,
-                #[inline(always)]
-                |s| {
-                    let _ = black_box(f.update(s));
-                    black_box(f.quaternion());
-                },
-            );
-        }
+        _ => orient_count(Kind::from_name(who).expect("--count KIND|ANCHOR imu|marg N [c]"), samples, n),
     }
+}
+
+/// [`count`] for `vqf-rs`. Out of line, as [`orient_count`] is.
+#[inline(never)]
+fn vqf_count(dt: f64, samples: &[Sample], mag: bool, n: usize) {
+    let mut f = vqf_rs::VQF::new(dt, None, None, None);
+    run(samples, n, |s| {
+        let v = |v: Vec3| [v.x, v.y, v.z];
+        f.update(v(s.gyro.unwrap()), v(s.accel.unwrap()), s.mag.map(v));
+        black_box(if mag { f.quat_9d() } else { f.quat_6d() });
+    });
+}
+
+/// [`count`] for an orient kind through the Rust API. A function of its own, so that its
+/// loop's registers are allocated apart from `main`'s: inlined into `main`, the counts
+/// moved by a few instructions whenever unrelated code in `main` changed.
+#[inline(never)]
+fn orient_count(kind: Kind, samples: &[Sample], n: usize) {
+    let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
+    // Inlined into the loop, as the anchors' closures are (LLVM left this one out of
+    // line, whose call and register saves then counted as orient's).
+    run(
+        samples,
+        n,
+        #[inline(always)]
+        |s| {
+            let _ = black_box(f.update(s));
+            black_box(f.quaternion());
+        },
+    );
 }
 
 fn main() {
