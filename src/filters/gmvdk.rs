@@ -689,7 +689,7 @@ impl Gmvdk {
         // below 1e23: in the fast range, normalised without its test. A rate that
         // overflows it (a core driven directly with an absurd one) gives NaN, which the
         // test of q_out below refuses.
-        let q_g = (self.q + self.q.mul_pure(omega_b).scale(0.5 * dt)).normalized_in_range();
+        let q_g = self.q.plus_mul_pure_scaled(omega_b, 0.5 * dt).normalized_in_range();
 
         // α from stillness (Appendix B.1).
         let c = crate::math::one_minus_exp_neg(dt / st.activity_tau);

@@ -281,9 +281,9 @@ impl Mahony {
             omega = omega + e * self.settings.kp;
         }
         let h = 0.5 * dt;
-        let q = self.q + self.q.mul_pure(omega).scale(h);
-        // |q + h q⊗ω|² = |q|² (1 + h²|ω|²), as q⊗ω is orthogonal to q: the norm is known
-        // without waiting for the new quaternion.
+        let q = self.q.plus_mul_pure_scaled(omega, h); // q + h q⊗ω
+                                                       // |q + h q⊗ω|² = |q|² (1 + h²|ω|²), as q⊗ω is orthogonal to q: the norm is known
+                                                       // without waiting for the new quaternion.
         let n2 = self.q.norm_squared() * (1.0 + h * h * omega.norm_squared());
         // With n2 in inv_sqrt's fast range, h|ω| < 1e150 and the unit q bound every
         // component of the new q, so it and its scaled copy are finite (the bias was
