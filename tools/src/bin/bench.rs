@@ -198,8 +198,9 @@ mod floor {
         if marg {
             let m = s.mag.unwrap_or_default().normalized();
             let h = Vec3::new(r0.dot(m), r1.dot(m), up.dot(m));
-            let bx = (h.x * h.x + h.y * h.y).sqrt();
-            e = e + (m.cross(r0) * bx + m.cross(up) * h.z);
+            // East-North-Up: the reference [0, b_y, b_z].
+            let by = (h.x * h.x + h.y * h.y).sqrt();
+            e = e + (m.cross(r1) * by + m.cross(up) * h.z);
         }
         let omega = (gyro - Vec3::ZERO) + e * MahonySettings::default().kp;
         let h = 0.5 * dt;
