@@ -10,6 +10,8 @@
 //! medians over interleaved rounds and ratios measured in the same run.
 //!
 //!     cargo run --release --bin bench [-- --rounds N]
+//!     bench --check                      (only the check that each floor computes its
+//!                                        core's numbers, which the timing run also makes)
 //!     bench --count KIND imu|marg N [c] (N updates and orientation reads only, through the
 //!                                        Rust API or with `c` the C ABI; KIND may also be an
 //!                                        anchor, ahrs-madgwick, ahrs-mahony or vqf: for
@@ -208,6 +210,25 @@ mod floor {
         (q + q.mul_pure(omega).scale(h)).scale(inv_sqrt(n2))
     }
 
+    /// Panics unless the floor of `kind` (Madgwick, else Mahony) computes what the core
+    /// computes on `samples`, from the identity.
+    pub fn check(kind: Kind, marg: bool, samples: &[Sample]) {
+        let (mut a, mut b) =
+            (Madgwick::new(MadgwickSettings::default()), Mahony::new(MahonySettings::default()));
+        let mut q = Quat::IDENTITY;
+        for s in samples {
+            run(kind, marg, &mut q, std::slice::from_ref(s), false);
+            let core_q = if kind == Kind::Madgwick {
+                a.update(s.dt, s.gyro.unwrap(), s.accel, s.mag).unwrap();
+                a.quaternion()
+            } else {
+                b.update(s.dt, s.gyro.unwrap(), s.accel, s.mag).unwrap();
+                b.quaternion()
+            };
+            assert_eq!(q, core_q, "the floor of {kind:?} (MARG {marg}) must compute the core's numbers");
+        }
+    }
+
     /// Steps `q` through `samples` with the floor of `kind` (Madgwick, else Mahony): one
     /// loop per case, so that each is compiled with its update inlined. With `in_memory`
     /// every step reads the quaternion from memory and writes it back (`black_box` on its
@@ -336,6 +357,19 @@ fn main() {
         count_frame(&args[i + 1], args[i + 2].parse().expect("frames"), &marg_rec);
         return;
     }
+    if args.iter().any(|a| a == "--check") {
+        for kind in [Kind::Madgwick, Kind::Mahony] {
+            for marg in [false, true] {
+                let mut samples = marg_rec.samples();
+                if !marg {
+                    samples.iter_mut().for_each(|s| s.mag = None);
+                }
+                floor::check(kind, marg, &samples[..2000]);
+            }
+        }
+        println!("the floors compute the cores' numbers");
+        return;
+    }
     if let Some(i) = args.iter().position(|a| a == "--count") {
         let with_mag = args[i + 2] == "marg";
         let n: usize = args[i + 3].parse().expect("N");
@@ -369,19 +403,7 @@ fn main() {
             let mut mahony_core = Mahony::new(MahonySettings::default());
             // The floor (`floor`) computes what the core computes: checked on these samples.
             if matches!(kind, Kind::Madgwick | Kind::Mahony) {
-                let (mut a, mut b) = (Madgwick::new(MadgwickSettings::default()), mahony_core.clone());
-                let mut q = Quat::IDENTITY;
-                for s in &samples[..2000] {
-                    floor::run(kind, with_mag, &mut q, std::slice::from_ref(s), false);
-                    let core_q = if kind == Kind::Madgwick {
-                        a.update(s.dt, s.gyro.unwrap(), s.accel, s.mag).unwrap();
-                        a.quaternion()
-                    } else {
-                        b.update(s.dt, s.gyro.unwrap(), s.accel, s.mag).unwrap();
-                        b.quaternion()
-                    };
-                    assert_eq!(q, core_q, "the floor must compute the core's numbers");
-                }
+                floor::check(kind, with_mag, &samples[..2000]);
             }
             let (mut floor_mem, mut floor_reg) = (Quat::IDENTITY, Quat::IDENTITY);
             let mut filter = Filter::new(&Config::new(kind).unwrap()).unwrap();
