@@ -32,17 +32,17 @@ pub(crate) struct Common {
 }
 
 impl Common {
-    const GYRO_SET: u8 = 1;
-    const ACCEL_SET: u8 = 2;
+    const GYRO_SET: u16 = 1;
+    const ACCEL_SET: u16 = 2;
     /// `gap_dt` is set (not 0).
-    const GAP_SET: u8 = 32;
+    const GAP_SET: u16 = 32;
     /// The bits of [`Runner::bits`] that `from_slots` sets.
-    const RANGE_BITS: u8 = Common::GYRO_SET | Common::ACCEL_SET | Common::GAP_SET;
+    const RANGE_BITS: u16 = Common::GYRO_SET | Common::ACCEL_SET | Common::GAP_SET;
 
     /// The common settings, and which of the ranges and the gap dt are set
     /// ([`Common::GYRO_SET`], [`Common::ACCEL_SET`]: a range equal to the physical bound is
     /// a saturation, not a bound; [`Common::GAP_SET`]).
-    fn from_slots(s: &[f64; MAX_PARAMS]) -> (Common, u8) {
+    fn from_slots(s: &[f64; MAX_PARAMS]) -> (Common, u16) {
         let (gyro, accel, gap) =
             (s[id::GYRO_RANGE as usize], s[id::ACCEL_RANGE as usize], s[id::GAP_DT as usize]);
         let gyro_limit = if gyro > 0.0 { gyro.min(MAX_GYRO) } else { MAX_GYRO };
@@ -73,18 +73,18 @@ impl Common {
         self.accel_limit2.sqrt()
     }
 
-    fn write_slots(&self, set: u8, s: &mut [f64; MAX_PARAMS]) {
+    fn write_slots(&self, set: u16, s: &mut [f64; MAX_PARAMS]) {
         s[id::GRAVITY as usize] = self.gravity;
         s[id::GYRO_RANGE as usize] = if set & Common::GYRO_SET != 0 { self.gyro_limit() } else { 0.0 };
         s[id::ACCEL_RANGE as usize] = if set & Common::ACCEL_SET != 0 { self.accel_limit() } else { 0.0 };
         s[id::GAP_DT as usize] = if set & Common::GAP_SET != 0 { self.gap_limit } else { 0.0 };
     }
 
-    fn gyro_range(&self, set: u8) -> Option<f64> {
+    fn gyro_range(&self, set: u16) -> Option<f64> {
         (set & Common::GYRO_SET != 0).then(|| self.gyro_limit())
     }
 
-    fn accel_range(&self, set: u8) -> Option<f64> {
+    fn accel_range(&self, set: u16) -> Option<f64> {
         (set & Common::ACCEL_SET != 0).then(|| self.accel_limit())
     }
 }
@@ -98,9 +98,9 @@ pub(crate) struct Runner<E: Estimator> {
     /// Which sensor ranges and gap dt are set ([`Common::GYRO_SET`],
     /// [`Common::ACCEL_SET`], [`Common::GAP_SET`], see [`Common::from_slots`]),
     /// [`Runner::HAS_ACCEL`], [`Runner::RELATIVE`], [`Runner::IDENTITY_INIT`],
-    /// [`Runner::HOSTED`] and [`Runner::UNINIT`]: one byte, so that the head stays a few
-    /// words.
-    bits: u8,
+    /// [`Runner::HOSTED`], [`Runner::UNINIT`] and [`Runner::REFRAME`]: two bytes, so that
+    /// the head stays a few words.
+    bits: u16,
     /// Issue 20's policies that are on ([`Runner::RECOVER`], [`Runner::SAME_INSTANT`],
     /// [`Runner::MODELS`]), [`Runner::KIND_OPTION`] (the kind's settings keep it from
     /// its usual step) and [`Runner::UNSETTLED`]: the usual update tests this byte alone.
@@ -160,19 +160,28 @@ pub(crate) struct Extras {
 
 impl<E: Estimator> Runner<E> {
     /// `last_accel` holds a reading.
-    const HAS_ACCEL: u8 = 4;
+    const HAS_ACCEL: u16 = 4;
     /// GMVDK's relative output is on: no frame rotation applies.
-    const RELATIVE: u8 = 8;
+    const RELATIVE: u16 = 8;
     /// The configured initial orientation is [`Init::Identity`].
-    const IDENTITY_INIT: u8 = 16;
+    const IDENTITY_INIT: u16 = 16;
     /// The extras' box is made: the output goes through the host's frames. Kept beside
     /// [`Runner::RELATIVE`] so that the read tests both with one instruction.
-    const HOSTED: u8 = 64;
+    const HOSTED: u16 = 64;
     /// The filter has no orientation yet ([`flags::INITIALIZED`] clear), kept beside
     /// [`Runner::RELATIVE`] and [`Runner::HOSTED`] so that the read tests all three with
     /// one instruction. [`Runner::sync_state`] sets it wherever `INITIALIZED` may change;
     /// the usual step and the lane step find it clear and leave it so.
-    const UNINIT: u8 = 128;
+    const UNINIT: u16 = 128;
+    /// The configured frame is not the kind's native frame: the read rotates the
+    /// estimate ([`Frame::express`]). Set when the filter is made (the frame never
+    /// changes after), beside the read's other bits so that a kind whose native frame is
+    /// the default one, East-North-Up, reads it with one test in the default
+    /// configuration ([`Runner::output`]).
+    const REFRAME: u16 = 256;
+    /// Whether this kind's native frame is the default configured frame (East-North-Up,
+    /// [`Config::new`]).
+    const NATIVE_IS_DEFAULT: bool = matches!(E::NATIVE, Frame::Enu);
     /// `saturation_recovery`: readings beyond the ranges are clipped and recovered from.
     const RECOVER: u8 = 1;
     /// `same_instant`: dt = 0 is the same instant as the next step.
@@ -198,11 +207,12 @@ impl<E: Estimator> Runner<E> {
         let core = E::create(E::Settings::from_slots(config.slots()));
         let (common, ranges_set) = Common::from_slots(config.slots());
         let identity = if config.init == Init::Identity { Self::IDENTITY_INIT } else { 0 };
+        let reframe = if config.frame != E::NATIVE { Self::REFRAME } else { 0 };
         let mut r = Runner {
             core,
             flags: 0,
             frame: config.frame,
-            bits: ranges_set | identity,
+            bits: ranges_set | identity | reframe,
             policy: 0,
             common,
             last_accel: Vec3::ZERO,
@@ -880,7 +890,13 @@ impl<E: Estimator> Runner<E> {
         debug_assert_eq!(self.bits & Self::HOSTED != 0, self.extras.0.is_some());
         debug_assert_eq!(self.bits & Self::UNINIT != 0, self.flags & flags::INITIALIZED == 0);
         debug_assert_eq!(self.policy & Self::UNSETTLED == 0, self.settled());
-        if self.bits & (Self::RELATIVE | Self::HOSTED | Self::UNINIT) != 0 {
+        debug_assert_eq!(self.bits & Self::REFRAME != 0, self.frame != E::NATIVE);
+        let hosted = Self::RELATIVE | Self::HOSTED | Self::UNINIT;
+        if Self::NATIVE_IS_DEFAULT && self.bits & (hosted | Self::REFRAME) == 0 {
+            // Initialised, not relative, no host frames, and the native frame configured.
+            return self.core.quaternion();
+        }
+        if self.bits & hosted != 0 {
             return self.output_hosted();
         }
         // What `quaternion` gives when initialised and not relative.
