@@ -125,21 +125,19 @@ impl Mahony {
     fn correction_of_units(q: Quat, a: Vec3, m: Option<Vec3>) -> (Vec3, bool) {
         // The rows of R(q): v̂ is the third, the earth's z axis in the sensor frame.
         let [r0, r1, up] = q.rows();
-        let mut e = a.cross(up);
-        let mut used_mag = false;
         if let Some(m) = m {
             // h = q ⊗ m̂ ⊗ q* = R m̂; b = [0, √(h_x² + h_y²), h_z] keeps the field's dip
             // and drops its heading (north is y); ŵ = q* ⊗ b ⊗ q = Rᵀ b = b_y r1 + b_z r2.
             let h = Vec3::new(r0.dot(m), r1.dot(m), up.dot(m));
             let by = (h.x * h.x + h.y * h.y).sqrt();
             if by > 0.0 {
-                // m̂ × ŵ = b_y (m̂ × r1) + b_z (m̂ × r2): the two cross products do not
-                // wait for the square root.
-                e = e + (m.cross(r1) * by + m.cross(up) * h.z);
-                used_mag = true;
+                // â × v̂ + m̂ × ŵ = â × r2 + b_y (m̂ × r1) + b_z (m̂ × r2)
+                //               = (â + b_z m̂) × r2 + b_y (m̂ × r1),
+                // one cross product fewer; m̂ × r1 does not wait for the square root.
+                return ((a + m * h.z).cross(up) + m.cross(r1) * by, true);
             }
         }
-        (e, used_mag)
+        (a.cross(up), false)
     }
 
     #[inline(always)]
@@ -324,6 +322,24 @@ mod tests {
         let before = f.quaternion().angle_to(truth);
         f.update(0.1, Vec3::ZERO, Some(accel), None).unwrap();
         assert!(f.quaternion().angle_to(truth) < before);
+    }
+
+    /// The correction with one cross product, `(â + b_z m̂) × r2 + b_y (m̂ × r1)`, is the
+    /// readable `â × v̂ + m̂ × ŵ` with `ŵ = Rᵀ [0 b_y b_z]` to rounding.
+    #[test]
+    fn the_correction_is_the_sum_of_both_cross_products() {
+        let mut r = crate::math::test_uniform(11);
+        for _ in 0..10_000 {
+            let q = Quat::new(r(), r(), r(), r()).normalized();
+            let a = Vec3::new(r(), r(), r()).normalized();
+            let m = Vec3::new(r(), r(), r()).normalized();
+            let (e, used) = Mahony::correction_of_units(q, a, Some(m));
+            let h = q.rotate(m);
+            let w = q.rotate_inverse(Vec3::new(0.0, (h.x * h.x + h.y * h.y).sqrt(), h.z));
+            let readable = a.cross(q.rotate_inverse(Vec3::new(0.0, 0.0, 1.0))) + m.cross(w);
+            assert!(used);
+            assert!((e - readable).norm() < 1e-14, "{e:?} {readable:?}");
+        }
     }
 
     #[test]

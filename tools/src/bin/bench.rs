@@ -196,14 +196,15 @@ mod floor {
     pub fn mahony(q: Quat, s: &Sample, marg: bool) -> Quat {
         let (dt, gyro, a) = (s.dt, s.gyro.unwrap_or_default(), s.accel.unwrap_or_default().normalized());
         let [r0, r1, up] = q.rows();
-        let mut e = a.cross(up);
-        if marg {
+        let e = if marg {
             let m = s.mag.unwrap_or_default().normalized();
             let h = Vec3::new(r0.dot(m), r1.dot(m), up.dot(m));
             // East-North-Up: the reference [0, b_y, b_z].
             let by = (h.x * h.x + h.y * h.y).sqrt();
-            e = e + (m.cross(r1) * by + m.cross(up) * h.z);
-        }
+            (a + m * h.z).cross(up) + m.cross(r1) * by
+        } else {
+            a.cross(up)
+        };
         let omega = (gyro - Vec3::ZERO) + e * MahonySettings::default().kp;
         let h = 0.5 * dt;
         let n2 = q.norm_squared() * (1.0 + h * h * omega.norm_squared());
