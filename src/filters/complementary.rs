@@ -344,8 +344,7 @@ impl Complementary {
     /// [`Complementary::update`]'s usual case, which calls no function: past the start-up
     /// period with g₀ known, an accelerometer reading, rotations within
     /// [`rotation_of_series`]'s range and an estimate unit to 1e-8 before its
-    /// renormalisation. The same result, or `None`
-    /// with nothing changed otherwise.
+    /// renormalisation. The same result, or `None` with nothing changed otherwise.
     #[inline(always)]
     pub(crate) fn update_usual(&mut self, s: &Usual) -> Option<u32> {
         let (Phase::Running(r), Some(a)) = (&mut self.phase, s.accel) else {

@@ -17,8 +17,9 @@
 //! inclination errors cannot tilt the estimate. The native frame is magnetic
 //! East-North-Up (Madgwick's `b_x`, north, is `b_y` here): orient's default frame, so
 //! that the default output needs no rotation. The equations do not depend on that choice
-//! (it turns the earth frame about the vertical) beyond rounding. Integration is first order followed by normalisation, as in the
-//! widely used implementation that produced the BROAD baseline numbers.
+//! (it turns the earth frame about the vertical) beyond rounding. Integration is first
+//! order followed by normalisation, as in the widely used implementation that produced
+//! the BROAD baseline numbers.
 
 use super::params::settings;
 use super::rest::RestBias;
@@ -198,7 +199,8 @@ impl Mahony {
     /// `â` and with (`MAG`) or without a magnetometer reading `m̂`: one copy per case,
     /// each with its step and correction inlined, inlined in turn into the kind's update
     /// function (`Runner::update_outline`, the `USUAL` copies; the others into
-    /// `Runner::update_general`). `USUAL`: see [`Mahony::step`].
+    /// `Runner::update_general`). `ki`: the integral term is on (k_I > 0), a constant in
+    /// the usual IMU copies. `USUAL`: see [`Mahony::step`].
     #[inline(always)]
     fn update_with<const MAG: bool, const USUAL: bool>(
         &mut self,
@@ -279,9 +281,9 @@ impl Mahony {
             omega = omega + e * self.settings.kp;
         }
         let h = 0.5 * dt;
-        let q = self.q.plus_mul_pure_scaled(omega, h); // q + h q⊗ω
-                                                       // |q + h q⊗ω|² = |q|² (1 + h²|ω|²), as q⊗ω is orthogonal to q: the norm is known
-                                                       // without waiting for the new quaternion.
+        // q + h q⊗ω. |q + h q⊗ω|² = |q|² (1 + h²|ω|²), as q⊗ω is orthogonal to q: the norm
+        // is known without waiting for the new quaternion.
+        let q = self.q.plus_mul_pure_scaled(omega, h);
         let n2 = self.q.norm_squared() * (1.0 + h * h * omega.norm_squared());
         // With n2 in inv_sqrt's fast range, h|ω| < 1e150 and the unit q bound every
         // component of the new q, so it and its scaled copy are finite (the bias was

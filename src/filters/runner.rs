@@ -174,10 +174,10 @@ impl<E: Estimator> Runner<E> {
     /// the usual step and the lane step find it clear and leave it so.
     const UNINIT: u16 = 128;
     /// The configured frame is not the kind's native frame: the read rotates the
-    /// estimate ([`Frame::express`]). Set when the filter is made (the frame never
-    /// changes after), beside the read's other bits so that a kind whose native frame is
-    /// the default one, East-North-Up, reads it with one test in the default
-    /// configuration ([`Runner::output`]).
+    /// estimate ([`Frame::express`]). Set where the frame is, in [`Runner::new`] (a
+    /// snapshot's frame is loaded by making a new runner), beside the read's other bits so
+    /// that a kind whose native frame is the default one, East-North-Up, reads it with one
+    /// test in the default configuration ([`Runner::output`]).
     const REFRAME: u16 = 256;
     /// Whether this kind's native frame is the default configured frame (East-North-Up,
     /// [`Config::new`]).

@@ -493,38 +493,42 @@ fn frames_differ_by_their_constant_rotation() {
 }
 
 /// The read's quick path (one test of `Runner::UNINIT` with the relative and hosted
-/// bits) gives what the orientation in the configured frame gives, the identity exactly
-/// before initialisation, through every way in and out of it: the first samples (and
-/// start-up periods), `set_quaternion`, `reset`, and snapshots of either state.
+/// bits, and `Runner::REFRAME` for a kind native in the default frame) gives what the
+/// orientation in the configured frame gives, the identity exactly before
+/// initialisation, in every frame and through every way in and out of it: the first
+/// samples (and start-up periods), `set_quaternion`, `reset`, and snapshots of either
+/// state.
 #[test]
 #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
 fn the_read_is_the_identity_exactly_until_initialisation() {
     let q0 = Quat::from_axis_angle(Vec3::new(0.3, -0.2, 1.0), 0.8);
-    for kind in Kind::ALL {
-        let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
+    for (kind, frame) in Kind::ALL.into_iter().flat_map(|k| Frame::ALL.map(|f| (k, f))) {
+        let mut config = Config::new(kind).unwrap();
+        config.frame = frame;
+        let mut f = Filter::new(&config).unwrap();
         let same = |f: &Filter| f.quaternion() == f.frame_quaternion();
         let mut blob = vec![0u8; f.state_size()];
         f.save(&mut blob).unwrap();
         let fresh_blob = blob.clone();
-        assert!(!f.is_initialized() && f.quaternion() == Quat::IDENTITY, "{kind:?}");
+        assert!(!f.is_initialized() && f.quaternion() == Quat::IDENTITY, "{kind:?} {frame:?}");
         // Still samples, so that the kinds with a start-up period (a still period for
         // the complementary filter) finish it.
         let still = Sample { gyro: Some(Vec3::new(0.001, -0.002, 0.001)), ..good() };
         for i in 0..400 {
             f.update(&still).unwrap();
-            assert!(same(&f), "{kind:?} {i}");
-            assert!(f.is_initialized() || f.quaternion() == Quat::IDENTITY, "{kind:?} {i}");
+            assert!(same(&f), "{kind:?} {frame:?} {i}");
+            assert!(f.is_initialized() || f.quaternion() == Quat::IDENTITY, "{kind:?} {frame:?} {i}");
         }
-        assert!(f.is_initialized(), "{kind:?}");
+        assert!(f.is_initialized(), "{kind:?} {frame:?}");
         f.load(&fresh_blob).unwrap();
-        assert!(!f.is_initialized() && f.quaternion() == Quat::IDENTITY && same(&f), "{kind:?}");
+        assert!(!f.is_initialized() && f.quaternion() == Quat::IDENTITY && same(&f), "{kind:?} {frame:?}");
         f.set_quaternion(q0).unwrap();
-        assert!(f.is_initialized() && f.quaternion().angle_to(q0) < 1e-12 && same(&f), "{kind:?}");
+        assert!(f.is_initialized() && f.quaternion().angle_to(q0) < 1e-12 && same(&f), "{kind:?} {frame:?}");
         f.save(&mut blob).unwrap();
         f.reset();
-        assert!(!f.is_initialized() && f.quaternion() == Quat::IDENTITY && same(&f), "{kind:?}");
+        assert!(!f.is_initialized() && f.quaternion() == Quat::IDENTITY && same(&f), "{kind:?} {frame:?}");
         f.load(&blob).unwrap();
-        assert!(f.is_initialized() && f.quaternion().angle_to(q0) < 1e-12 && same(&f), "{kind:?}");
+        assert!(f.is_initialized() && f.quaternion().angle_to(q0) < 1e-12 && same(&f), "{kind:?} {frame:?}");
     }
 }
 

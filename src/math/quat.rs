@@ -315,8 +315,8 @@ impl Quat {
     }
 
     /// `self + self.mul_pure(v).scale(h)` with the scalar part's negation taken into its
-    /// subtraction (`−a − b = −(a + b)` and `w + (−s) h = w − s h`): two instructions fewer
-    /// where the negation is a sign mask (docs/PERFORMANCE.md). The same bits, but for the
+    /// subtraction (`−a − b = −(a + b)` and `w + (−s) h = w − s h`): one negation fewer
+    /// (docs/PERFORMANCE.md has what it saves). The same bits, but for the
     /// sign of a zero scalar part (`w = −0` and an exactly cancelling `x v_x + (y v_y +
     /// z v_z)`, where this gives −0 and the readable form +0).
     #[inline(always)]
