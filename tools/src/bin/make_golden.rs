@@ -192,6 +192,18 @@ fn main() {
             vec![(id::ROBUST_BIAS_TAU_MOTION, 5.0)],
             motion(11, 300, |_| imu),
         ),
+        // Mahony's default (k_I = 0) IMU step in a frame other than its native one.
+        case("mahony_imu_ned", Kind::Mahony, Frame::Ned, 0, Quat::IDENTITY, vec![], motion(12, 300, |_| imu)),
+        // A given attitude: no start-up period, g0 from the first reading.
+        case(
+            "complementary_marg_enu_given",
+            Kind::Complementary,
+            Frame::Enu,
+            2,
+            q0,
+            vec![],
+            motion(13, 300, |_| marg),
+        ),
     ];
     let out = std::env::args().nth(1).unwrap_or_else(|| {
         concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/golden/filters.golden").to_string()
