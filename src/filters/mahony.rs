@@ -329,6 +329,7 @@ mod tests {
     /// The correction with one cross product, `(â + b_z m̂) × r2 + b_y (m̂ × r1)`, is the
     /// readable `â × v̂ + m̂ × ŵ` with `ŵ = Rᵀ [0 b_y b_z]` to rounding.
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn the_correction_is_the_sum_of_both_cross_products() {
         let mut r = crate::math::test_uniform(11);
         for _ in 0..10_000 {

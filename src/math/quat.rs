@@ -421,6 +421,7 @@ mod tests {
     }
 
     #[test]
+    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn plus_mul_pure_scaled_is_the_readable_form() {
         let mut r = crate::math::test_uniform(7);
         let bits = |q: Quat| [q.w, q.x, q.y, q.z].map(f64::to_bits);
