@@ -320,7 +320,7 @@ impl Quat {
     /// sign of a zero scalar part (`w = −0` and an exactly cancelling `x v_x + (y v_y +
     /// z v_z)`, where this gives −0 and the readable form +0).
     #[inline(always)]
-    pub(crate) fn plus_mul_pure_scaled(self, v: Vec3, h: f64) -> Quat {
+    pub fn plus_mul_pure_scaled(self, v: Vec3, h: f64) -> Quat {
         let p = self;
         Quat::new(
             p.w - (p.x * v.x + (p.y * v.y + p.z * v.z)) * h,

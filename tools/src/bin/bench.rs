@@ -208,15 +208,7 @@ mod floor {
         let omega = (gyro - Vec3::ZERO) + e * MahonySettings::default().kp;
         let h = 0.5 * dt;
         let n2 = q.norm_squared() * (1.0 + h * h * omega.norm_squared());
-        // q + h q⊗ω with the scalar part's negation in its subtraction, as the core.
-        let v = omega;
-        let p = Quat::new(
-            q.w - (q.x * v.x + (q.y * v.y + q.z * v.z)) * h,
-            q.x + (q.w * v.x + (q.y * v.z - q.z * v.y)) * h,
-            q.y + ((q.w * v.y - q.x * v.z) + q.z * v.x) * h,
-            q.z + ((q.w * v.z + q.x * v.y) - q.y * v.x) * h,
-        );
-        p.scale(inv_sqrt(n2))
+        q.plus_mul_pure_scaled(omega, h).scale(inv_sqrt(n2))
     }
 
     /// Panics unless the floor of `kind` (Madgwick, else Mahony) computes what the core
