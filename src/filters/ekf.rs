@@ -64,7 +64,7 @@ use super::params::settings;
 use super::rest::{lp_gain, RestDetector, RestThresholds};
 use super::Step;
 use crate::math::lanes::Lanes;
-use crate::math::one_minus_exp_neg;
+use crate::math::{cos_and_sinc, cos_minus_sinc_over_x2, one_minus_exp_neg};
 use crate::math::{Quat, Vec3};
 use nalgebra::{Matrix3, Matrix3x4, Matrix4, Matrix4x3, SMatrix, Vector3};
 use wide::f64x4;
@@ -350,6 +350,15 @@ fn entries<V: Lanes, const C: usize>(c: &Cols<C, V>) -> [[f64; 4]; C] {
     c.map(|v| v.to_array())
 }
 
+/// The entries of stored columns, read where they are: `[column][row]`.
+#[inline(always)]
+fn in_place<const C: usize>(c: &Cols<C>) -> [&[f64; 4]; C] {
+    array(
+        #[inline(always)]
+        |j| c[j].as_array_ref(),
+    )
+}
+
 /// `A B` for `A` given by its columns (4×K) and `B` (K×C) by its entries `b(k, j)`:
 /// column `j` is `Σ_k a_k b(k, j)`, summed in k order (nalgebra's order).
 #[inline(always)]
@@ -629,35 +638,45 @@ pub fn exp_and_jacobian(omega: Vec3, h: f64) -> (Quat, Matrix4x3<f64>) {
 /// J that function's Jacobian) by its columns, multiplied out: with `n = |ω|`, `u = ω/n`,
 /// `θ = n h`, `(s, c) = (sin θ, cos θ)` and `L_v` the last three columns of `L(q)`
 /// (`q ⊗ i`, `q ⊗ j`, `q ⊗ k`),
-/// `D = (s/n) L_v + w uᵀ` with `w = (c h − s/n) q ⊗ (0, u) − s h q`; below `θ = 1e-8`,
-/// `D = h L_v − h² q ωᵀ`. Three columns of a rank-one update instead of a 4×4 by 4×3
-/// product (a test compares the two).
+/// `D = (s/n) L_v + w uᵀ` with `w = (c h − s/n) q ⊗ (0, u) − s h q`. Three columns of a
+/// rank-one update instead of a 4×4 by 4×3 product (a test compares the two).
+///
+/// For the usual step, `θ² ≤ 1/256`, the same in `θ²` alone, with `A = sin θ/θ`,
+/// `C = cos θ` ([`cos_and_sinc`]) and `B = (cos θ − sin θ/θ)/θ²`
+/// ([`cos_minus_sinc_over_x2`]): `e = (C, h A ω)` and
+/// `D = h A L_v + (h³ B q ⊗ (0, ω) − h² A q) ωᵀ` (`s/n = h A`, `(c h − s/n)/n² = h³ B`):
+/// no root, no division and no `sincos`, and no branch for `θ → 0`. Larger angles take
+/// the sine and cosine.
 #[inline(always)]
 fn exp_and_d<V: Lanes>(t: V::Token, q: Quat, omega: Vec3, h: f64) -> (Quat, Cols<3, V>) {
-    let n = omega.norm();
-    let theta = n * h;
+    let theta2 = omega.norm_squared() * (h * h);
     let l_v = [
         V::new(t, [-q.x, q.w, q.z, -q.y]),
         V::new(t, [-q.y, -q.z, q.w, q.x]),
         V::new(t, [-q.z, q.y, -q.x, q.w]),
     ];
-    let (e, a, w, u) = if theta < 1e-8 {
-        let e = Quat::new(1.0 - 0.5 * theta * theta, h * omega.x, h * omega.y, h * omega.z);
-        (e.normalized(), h, vector_of::<V>(t, q) * V::splat(t, -(h * h)), omega)
+    // D = a L_v + w vᵀ.
+    let (e, a, w, v) = if theta2 <= 1.0 / 256.0 {
+        let ((c, sinc), b) = (cos_and_sinc(theta2), cos_minus_sinc_over_x2(theta2));
+        let ha = h * sinc;
+        let w = vector_of::<V>(t, q.mul_pure(omega)) * V::splat(t, h * h * h * b)
+            - vector_of::<V>(t, q) * V::splat(t, h * ha);
+        (Quat::new(c, ha * omega.x, ha * omega.y, ha * omega.z), ha, w, omega)
     } else {
-        let (s, c) = libm::sincos(theta); // sin's and cos's bits (a test in `math` checks it)
+        let n = omega.norm();
+        let (s, c) = libm::sincos(n * h); // sin's and cos's bits (a test in `math` checks it)
         let u = Vec3::new(omega.x / n, omega.y / n, omega.z / n);
         let sn = s / n;
         let w = vector_of::<V>(t, q.mul_pure(u)) * V::splat(t, c * h - sn)
             - vector_of::<V>(t, q) * V::splat(t, s * h);
         (Quat::new(c, s * u.x, s * u.y, s * u.z), sn, w, u)
     };
-    let (a, u) = (V::splat(t, a), [u.x, u.y, u.z]);
+    let (a, v) = (V::splat(t, a), [v.x, v.y, v.z]);
     (
         e,
         array(
             #[inline(always)]
-            |j| l_v[j] * a + w * V::splat(t, u[j]),
+            |j| l_v[j] * a + w * V::splat(t, v[j]),
         ),
     )
 }
@@ -925,8 +944,8 @@ impl Ekf {
         let a = dq_dw.map(|c| c * V::splat(tk, a_w)); // a_ω D
                                                       // P as stored, read in place: entries as arrays, columns loaded where used.
         let p0 = &self.p;
-        let (qq0, qw0, qd0) = (entries(&p0.qq), entries(&p0.qw), entries(&p0.qd));
-        let (ww0, wd0) = (entries(&p0.ww), entries(&p0.wd));
+        let (qq0, qw0, qd0) = (in_place(&p0.qq), in_place(&p0.qw), in_place(&p0.qd));
+        let (ww0, wd0) = (in_place(&p0.ww), in_place(&p0.wd));
         // (A B)(k, j) reads B's column j, row k; (A Bᵀ) reads B's column k, row j.
         let t: Cols<4, V> = add_cols(mul_cols(&rc, |k, j| qq0[j][k]), mul_cols(&a, |k, j| qw0[k][j]));
         let b: Cols<3, V> = add_cols(mul_cols(&rc, |k, j| qw0[j][k]), mul_cols(&a, |k, j| ww0[j][k]));
@@ -1067,7 +1086,7 @@ impl Ekf {
             let horizontal = (me.x * me.x + me.y * me.y).sqrt();
             if horizontal > 1e-6 * m.norm() {
                 step.used_mag = true;
-                let innovation = -libm::atan2(me.y, me.x);
+                let innovation = -crate::math::atan2(me.y, me.x);
                 // Direction of a heading change in q: ∂q/∂ψ = ½ ẑ ⊗ q.
                 let dq: V = vector_of(tk, Quat::new(0.0, 0.0, 0.0, 0.5) * q);
                 let hq = dq * V::splat(tk, 4.0);
@@ -1084,7 +1103,8 @@ impl Ekf {
                     r_psi = r_psi.max(adapt_h * colour_psi);
                 }
                 let k_psi = p_psi / (p_psi + r_psi);
-                let turn = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), k_psi * innovation);
+                let (c, s) = crate::math::cos_sin(0.5 * (k_psi * innovation));
+                let turn = Quat::new(c, 0.0, 0.0, s); // exp(k_ψ ν ẑ/2)
                 x.q = vector_of(tk, turn * q);
                 // The gain k = [dq k_ψ; 0; 0] is restricted, not optimal, so the full
                 // Joseph form applies: with v = P hᵀ,
@@ -1311,9 +1331,10 @@ mod tests {
     }
 
     /// `exp_and_d`'s multiplied-out D against `L(q) J` with J from `exp_and_jacobian` (the
-    /// readable form), on both sides of the small-angle branch and at large angles: each
-    /// entry within 4ε h (D's entries are at most h, so 4 to 8 units in the last place of
-    /// h), and the same exponential.
+    /// readable form), on both sides of that function's small-angle branch, of the series'
+    /// range and at large angles: each entry within 4ε h (D's entries are at most h, so 4
+    /// to 8 units in the last place of h); the same exponential beyond the series' range,
+    /// within 3 ulp inside it.
     #[test]
     #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
     fn exp_and_d_is_left_of_q_times_the_jacobian() {
@@ -1322,6 +1343,8 @@ mod tests {
             (Vec3::new(0.3, -1.2, 0.8), 0.0025),
             (Vec3::new(5.0, 2.0, -7.0), 0.01),
             (Vec3::new(40.0, -30.0, 10.0), 0.05),
+            (Vec3::new(3.0, -4.0, 12.0), 0.0048), // θ² just under 1/256
+            (Vec3::new(3.0, -4.0, 12.0), 0.0049), // and just over
             (Vec3::new(1e-7, 0.0, 2e-7), 0.005),
             (Vec3::new(3e-6, -1e-6, 2e-6), 0.005),
             (Vec3::ZERO, 0.005),
@@ -1329,7 +1352,17 @@ mod tests {
         for (omega, h) in cases {
             let (e0, j) = exp_and_jacobian(omega, h);
             let (e, d) = exp_and_d::<f64x4>((), q, omega, h);
-            assert_eq!([e.w, e.x, e.y, e.z].map(f64::to_bits), [e0.w, e0.x, e0.y, e0.z].map(f64::to_bits));
+            if omega.norm_squared() * h * h > 1.0 / 256.0 {
+                assert_eq!(
+                    [e.w, e.x, e.y, e.z].map(f64::to_bits),
+                    [e0.w, e0.x, e0.y, e0.z].map(f64::to_bits)
+                );
+            } else {
+                // The series against the sine and cosine: 3 ulp, as in `complementary`.
+                for (a, b) in [(e.w, e0.w), (e.x, e0.x), (e.y, e0.y), (e.z, e0.z)] {
+                    assert!((a - b).abs() <= 3.0 * f64::EPSILON * b.abs(), "{omega:?} {h}: {e:?} vs {e0:?}");
+                }
+            }
             let dense = left(q) * j;
             for (c, col) in d.iter().enumerate() {
                 for (r, v) in col.to_array().into_iter().enumerate() {

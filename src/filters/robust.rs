@@ -501,12 +501,7 @@ impl Turn {
         let (cos_d, sin_d) = (self.c * self.c - self.s * self.s, 2.0 * self.c * self.s);
         let x = f_e.x * cos_d - f_e.y * sin_d;
         let y = f_e.x * sin_d + f_e.y * cos_d;
-        // Strict: it holds only for y > 0, where atan2(x, y) = atan(x / y).
-        if 4.0 * x.abs() < y {
-            let t = x / y;
-            return t * crate::math::atan_over(t * t);
-        }
-        libm::atan2(x, y)
+        crate::math::atan2(x, y)
     }
 
     /// The turn followed by a further `φ` about the vertical (rad, |φ| ≤ π), with `c ≥ 0`
@@ -514,13 +509,7 @@ impl Turn {
     #[inline(always)]
     fn turned(self, phi: f64) -> Turn {
         let h = 0.5 * phi;
-        let (ch, sh) = if h * h < 1.0 / 256.0 {
-            let (c, sinc) = crate::math::cos_and_sinc(h * h);
-            (c, sinc * h)
-        } else {
-            let (s, c) = libm::sincos(h);
-            (c, s)
-        };
+        let (ch, sh) = crate::math::cos_sin(h);
         let (c, s) = (self.c * ch - self.s * sh, self.s * ch + self.c * sh);
         // Both factors are unit to rounding: one Newton step for 1/√(c² + s²) from 1.
         let n = 1.5 - 0.5 * (c * c + s * s);

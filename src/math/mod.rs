@@ -31,6 +31,41 @@ pub fn cos_and_sinc(x2: f64) -> (f64, f64) {
     (c, sinc)
 }
 
+/// `(cos x, sin x)`: by [`cos_and_sinc`] for `x² < 1/256` (the small turns of one filter
+/// step: no range reduction), by `libm::sincos` beyond.
+#[inline(always)]
+pub fn cos_sin(x: f64) -> (f64, f64) {
+    if x * x < 1.0 / 256.0 {
+        let (c, sinc) = cos_and_sinc(x * x);
+        (c, sinc * x)
+    } else {
+        let (s, c) = libm::sincos(x);
+        (c, s)
+    }
+}
+
+/// `atan2(y, x)`: by [`atan_over`] for `4|y| < x` (small angles: no division by π's
+/// quadrants, no range reduction), by `libm::atan2` elsewhere. Strict: the series holds
+/// only for `x > 0`, where `atan2(y, x) = atan(y / x)`.
+#[inline(always)]
+pub fn atan2(y: f64, x: f64) -> f64 {
+    if 4.0 * y.abs() < x {
+        let t = y / x;
+        return t * atan_over(t * t);
+    }
+    libm::atan2(y, x)
+}
+
+/// `(cos x − sin x / x) / x²` from `x²` alone, by its Taylor series to the 8th power:
+/// `Σ_{k≥1} (−1)ᵏ 2k x²ᵏ⁻² / (2k + 1)!` = `−1/3 + x²/30 − x⁴/840 + x⁶/45360 − x⁸/3991680`.
+/// For `x² ≤ 1/256` the first term left out, `x¹⁰/518918400`, is below 1.8e-21, under a
+/// ten-thousandth of an ulp of the value (about −1/3); callers check that range. The
+/// exponential map's Jacobian needs it beside [`cos_and_sinc`] (the EKF's predict).
+#[inline(always)]
+pub fn cos_minus_sinc_over_x2(x2: f64) -> f64 {
+    -1.0 / 3.0 + x2 * (1.0 / 30.0 + x2 * (-1.0 / 840.0 + x2 * (1.0 / 45360.0 + x2 * (-1.0 / 3991680.0))))
+}
+
 /// `1 − e^{−x}`, the weight a first-order low-pass with time constant τ gives a new
 /// sample over a step dt (`x = dt/τ`). For `0 ≤ x < 1/8` (every step shorter than τ/8)
 /// by the series
@@ -186,7 +221,74 @@ pub(crate) fn test_uniform(seed: u64) -> impl FnMut() -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{atan_over, inv_sqrt, one_minus_exp_neg, one_minus_exp_neg_libm};
+    use super::{
+        atan2, atan_over, cos_and_sinc, cos_minus_sinc_over_x2, cos_sin, inv_sqrt, one_minus_exp_neg,
+        one_minus_exp_neg_libm,
+    };
+
+    /// [`cos_sin`] and [`atan2`] on both sides of their series' ranges: within 2ε relative
+    /// (cosine and sine) or 2ε of the angle (atan2) of libm's, and libm's bits beyond.
+    #[test]
+    #[cfg_attr(miri, ignore = "long loops: too slow under Miri")]
+    fn cos_sin_and_atan2_are_libms() {
+        let mut u = super::test_uniform(53);
+        for _ in 0..20000 {
+            let x = u() * 10f64.powf(-9.0 + 9.5 * 0.5 * (u() + 1.0));
+            let ((c, s), (s0, c0)) = (cos_sin(x), libm::sincos(x));
+            if x * x < 1.0 / 256.0 {
+                assert!((c - c0).abs() <= 2.0 * f64::EPSILON * c0.abs(), "cos {x:e}");
+                assert!((s - s0).abs() <= 2.0 * f64::EPSILON * s0.abs(), "sin {x:e}");
+            } else {
+                assert_eq!((c.to_bits(), s.to_bits()), (c0.to_bits(), s0.to_bits()), "{x:e}");
+            }
+            let (y, xx) = (x, 10f64.powf(u()));
+            let (a, a0) = (atan2(y, xx), libm::atan2(y, xx));
+            if 4.0 * y.abs() < xx {
+                assert!((a - a0).abs() <= 2.0 * f64::EPSILON * a0.abs(), "atan2 {y:e} {xx:e}");
+            } else {
+                assert_eq!(a.to_bits(), a0.to_bits(), "{y:e} {xx:e}");
+            }
+        }
+        assert_eq!(atan2(1.0, -4.0).to_bits(), libm::atan2(1.0, -4.0).to_bits());
+        assert_eq!(atan2(-0.0, 1.0).to_bits(), (-0.0f64).to_bits());
+    }
+
+    /// The series for `(cos x − sin x / x) / x²` over its range (x² from 1e-12 to 1/256):
+    /// within 2ε of the same series to the 38th power, summed from its smallest term
+    /// up (the terms it leaves out are below 1.8e-21); within 4ε/x² of libm's
+    /// `(cos x − sin x / x) / x²`, whose cancellation leaves about that (x² ≥ 1/1024, where
+    /// the bound is under 1e-12); `C − A = B x²` with [`cos_and_sinc`]; and −1/3 at 0.
+    #[test]
+    #[cfg_attr(miri, ignore = "long loops: too slow under Miri")]
+    fn cos_minus_sinc_over_x2_series() {
+        let mut u = super::test_uniform(47);
+        for i in 0..20000 {
+            let x2 = if i == 0 {
+                1.0 / 256.0
+            } else {
+                10f64.powf(-12.0 + (12.0 - 256f64.log10()) * 0.5 * (u() + 1.0))
+            };
+            let b = cos_minus_sinc_over_x2(x2);
+            // Σ_{k=1..20} (−1)ᵏ 2k x²⁽ᵏ⁻¹⁾ / (2k + 1)!, smallest term first.
+            let terms: Vec<f64> = (1..=20)
+                .scan(1.0 / 6.0, |f, k| {
+                    let term = (-1f64).powi(k) * 2.0 * k as f64 * *f * x2.powi(k - 1);
+                    *f /= ((2 * k + 2) * (2 * k + 3)) as f64;
+                    Some(term)
+                })
+                .collect();
+            let long = terms.iter().rev().sum::<f64>();
+            assert!((b - long).abs() <= 2.0 * f64::EPSILON * long.abs(), "{x2:e}: {b:e} vs {long:e}");
+            if x2 >= 1.0 / 1024.0 {
+                let x = x2.sqrt();
+                let direct = (libm::cos(x) - libm::sin(x) / x) / x2;
+                let (c, sinc) = cos_and_sinc(x2);
+                assert!((b - direct).abs() <= 4.0 * f64::EPSILON / x2, "{x2:e}: {b:e} vs {direct:e}");
+                assert!((c - sinc - b * x2).abs() <= 2.0 * f64::EPSILON, "{x2:e}");
+            }
+        }
+        assert_eq!(cos_minus_sinc_over_x2(0.0), -1.0 / 3.0);
+    }
 
     /// The series for `atan t / t` against libm's `atan2(t, 1)`, over its range
     /// (|t| ≤ 1/4, log-uniform, and the ends): within 2ε relative (2 to 4 ulp).
