@@ -330,22 +330,8 @@ fn correct_of<T: Real>(
     Corrected::Slow(p, gradient, gg, k, used_mag)
 }
 
-/// [`crate::math::inv_sqrt`] on every lane, or `None` when a lane is outside the range
-/// where it is `√x · (1/x)`.
-#[inline(always)]
-fn inv_sqrt_lanes(x: Lane) -> Option<Lane> {
-    (x.decide(|v| v > 1e-300 && v < 1e300) == Some(true)).then(|| inv_sqrt_in_range_lanes(x))
-}
-
-/// [`crate::math::inv_sqrt_in_range`] on every lane, `√x · (1/x)`: for values a check
-/// already found in `(1e-300, 1e300)`.
-#[inline(always)]
-fn inv_sqrt_in_range_lanes(x: Lane) -> Lane {
-    x.sqrt() * (Lane::of(1.0) / x)
-}
-
 /// The number of filters [`Madgwick::update_lanes`] steps at once.
-pub(crate) const LANES: usize = 2;
+pub(crate) const LANES: usize = Lane::LANES;
 
 /// Madgwick's filter. Its state is the orientation alone, in its native North-West-Up frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -424,7 +410,7 @@ impl Madgwick {
         // norm n² taken by the quick check (in inv_sqrt's fast range).
         let unit = |c: &dyn Fn(usize) -> Option<Checked>| {
             let n2 = lane(&|i| c(i).map_or(1.0, Checked::norm_squared));
-            let r = inv_sqrt_in_range_lanes(n2);
+            let r = crate::math::inv_sqrt_in_range(n2);
             vector(&|i| c(i).map_or(Vec3::ZERO, |c| c.v)).map(|x| x * r)
         };
         let q = [lane(&|i| fs[i].q.w), lane(&|i| fs[i].q.x), lane(&|i| fs[i].q.y), lane(&|i| fs[i].q.z)];
@@ -435,7 +421,9 @@ impl Madgwick {
         let a = unit(&|i| u[i].accel);
         let m = u[0].mag.is_some().then(|| unit(&|i| u[i].mag));
         let betas = (lane(&|i| fs[i].settings.beta_imu), lane(&|i| fs[i].settings.beta_marg));
-        let Corrected::Next(out, used_mag) = correct_of(q, p, a, m, dt, betas, inv_sqrt_lanes) else {
+        let Corrected::Next(out, used_mag) =
+            correct_of(q, p, a, m, dt, betas, crate::math::inv_sqrt_fast_lanes)
+        else {
             return None;
         };
         let out = out.map(Lane::to_array);

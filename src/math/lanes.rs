@@ -120,12 +120,15 @@ impl Real for f64 {
 pub(crate) struct F64x2(f64x2);
 
 impl F64x2 {
+    /// The number of lanes.
+    pub(crate) const LANES: usize = 2;
+
     #[inline(always)]
-    pub(crate) fn new(v: [f64; 2]) -> F64x2 {
+    pub(crate) fn new(v: [f64; Self::LANES]) -> F64x2 {
         F64x2(f64x2::new(v))
     }
     #[inline(always)]
-    pub(crate) fn to_array(self) -> [f64; 2] {
+    pub(crate) fn to_array(self) -> [f64; Self::LANES] {
         self.0.to_array()
     }
 }

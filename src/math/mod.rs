@@ -168,11 +168,24 @@ pub(crate) fn try_inv_sqrt(x: f64) -> Option<f64> {
 /// `√x · (1/x)` when `x` lies in `[1e-300, 1e300]`, the range where it is used.
 #[inline(always)]
 pub(crate) fn inv_sqrt_fast(x: f64) -> Option<f64> {
-    if x > 1e-300 && x < 1e300 {
+    if in_fast_range(x) {
         Some(inv_sqrt_in_range(x))
     } else {
         None
     }
+}
+
+/// [`inv_sqrt_fast`] on every lane of `x` (one filter's `f64`, or filters side by side):
+/// `None` unless every lane is in the range.
+#[inline(always)]
+pub(crate) fn inv_sqrt_fast_lanes<T: lanes::Real>(x: T) -> Option<T> {
+    (x.decide(in_fast_range) == Some(true)).then(|| inv_sqrt_in_range(x))
+}
+
+/// The range `(1e-300, 1e300)` of [`inv_sqrt_fast`].
+#[inline(always)]
+fn in_fast_range(x: f64) -> bool {
+    x > 1e-300 && x < 1e300
 }
 
 /// [`inv_sqrt_fast`] for an `x` the caller knows to be below 1e300 (a squared norm that
@@ -189,10 +202,10 @@ pub(crate) fn inv_sqrt_fast_bounded(x: f64) -> Option<f64> {
 }
 
 /// [`inv_sqrt`] for an `x` the caller has already found in `(1e-300, 1e300)`: the same
-/// bits, without the test.
+/// bits, without the test; on every lane for filters side by side.
 #[inline(always)]
-pub(crate) fn inv_sqrt_in_range(x: f64) -> f64 {
-    x.sqrt() * (1.0 / x)
+pub(crate) fn inv_sqrt_in_range<T: lanes::Real>(x: T) -> T {
+    x.sqrt() * (T::of(1.0) / x)
 }
 
 #[cold]
