@@ -44,9 +44,9 @@ pub fn cos_sin(x: f64) -> (f64, f64) {
     }
 }
 
-/// `atan2(y, x)`: by [`atan_over`] for `4|y| < x` (small angles: no division by π's
-/// quadrants, no range reduction), by `libm::atan2` elsewhere. Strict: the series holds
-/// only for `x > 0`, where `atan2(y, x) = atan(y / x)`.
+/// `atan2(y, x)`: by [`atan_over`] for `4|y| < x` (angles under atan(1/4), about 14°:
+/// no quadrant tests, no range reduction), by `libm::atan2` elsewhere. The test is
+/// strict, so `x > 0` there, where `atan2(y, x) = atan(y / x)`.
 #[inline(always)]
 pub fn atan2(y: f64, x: f64) -> f64 {
     if 4.0 * y.abs() < x {
