@@ -3,20 +3,21 @@
 //! do not edit. Regenerate: ORIENT_BLESS=1 cargo test -p orient --lib param_ids
 
 /// Parameter slot (every kind): Gravity magnitude for the gravity and linear-acceleration
-/// outputs; default: standard gravity 9.80665 (CGPM 1901).
+/// outputs; default 9.80665 (orient: standard gravity, CGPM 1901).
 ///
 /// Unit m/s^2; range 0.001 to 1000; default 9.80665.
 pub const ORIENT_PARAM_GRAVITY: u32 = 0;
 
 /// Parameter slot (every kind): Gyroscope full scale: a sample with any axis at or beyond
-/// it is rejected as saturated; 0 turns the check off (default, since the range is the
-/// sensor's).
+/// it is rejected as saturated; 0 turns the check off (default; orient: the range is the
+/// sensor's, which a configuration has to give).
 ///
 /// Unit rad/s; range 0 (off) or 0.1 to 10000; default 0.
 pub const ORIENT_PARAM_GYRO_RANGE: u32 = 1;
 
 /// Parameter slot (every kind): Accelerometer full scale: a sample with any axis at or
-/// beyond it is rejected as saturated; 0 turns the check off (default).
+/// beyond it is rejected as saturated; 0 turns the check off (default; orient: as
+/// gyro_range).
 ///
 /// Unit m/s^2; range 0 (off) or 1 to 100000; default 0.
 pub const ORIENT_PARAM_ACCEL_RANGE: u32 = 2;
@@ -32,28 +33,30 @@ pub const ORIENT_PARAM_ACCEL_RANGE: u32 = 2;
 pub const ORIENT_PARAM_GAP_DT: u32 = 3;
 
 /// Parameter slot (every kind): What a reading at or beyond gyro_range or accel_range
-/// does: 0 (default) rejects the sample as saturated; 1 uses it clipped (a gyroscope
-/// reading clipped just under the range, a saturated accelerometer reading left out),
-/// sets the SATURATED flag, and after gyroscope saturation re-acquires the orientation
-/// from the next unsaturated sample with an accelerometer reading (x-io Fusion's
-/// angular-rate recovery). The physical bounds stay errors.
+/// does: 0 (default; orient: a clipped reading is wrong, so by default it is refused)
+/// rejects the sample as saturated; 1 uses it clipped (a gyroscope reading clipped just
+/// under the range, a saturated accelerometer reading left out), sets the SATURATED flag,
+/// and after gyroscope saturation re-acquires the orientation from the next unsaturated
+/// sample with an accelerometer reading (x-io Fusion's angular-rate recovery). The
+/// physical bounds stay errors.
 ///
 /// Unit 1; range 0 (off) or 1 to 1; default 0.
 pub const ORIENT_PARAM_SATURATION_RECOVERY: u32 = 4;
 
 /// Parameter slot (every kind): What a sample with dt = 0 does (bursts of packets with
-/// one timestamp): 0 (default) rejects it as an invalid dt; 1 takes it as the same
-/// instant as the next sample with dt > 0: nothing is integrated then, its gyroscope
-/// reading is averaged with the following ones up to and including that sample, which
-/// integrates the average over its dt, so no rotation is lost (the SAME_INSTANT flag is
-/// set). Its accelerometer and magnetometer readings are not used.
+/// one timestamp): 0 (default; orient: dt = 0 is an error unless the host says its sensor
+/// sends bursts) rejects it as an invalid dt; 1 takes it as the same instant as the next
+/// sample with dt > 0: nothing is integrated then, its gyroscope reading is averaged with
+/// the following ones up to and including that sample, which integrates the average over
+/// its dt, so no rotation is lost (the SAME_INSTANT flag is set). Its accelerometer and
+/// magnetometer readings are not used.
 ///
 /// Unit 1; range 0 (off) or 1 to 1; default 0.
 pub const ORIENT_PARAM_SAME_INSTANT: u32 = 5;
 
 /// Parameter slot (madgwick): Gradient step beta for steps without magnetometer, eq.
-/// (30); default 0.041 (Madgwick 2010, section V, optimum of the IMU implementation).
-/// beta = sqrt(3/4) * max gyro error, eq. (33).
+/// (30); default 0.041 (paper: Madgwick 2010, section V, optimum of the IMU
+/// implementation). beta = sqrt(3/4) * max gyro error, eq. (33).
 ///
 /// Unit rad/s; range 0 to 100; default 0.041.
 pub const ORIENT_PARAM_MADGWICK_BETA_IMU: u32 = 8;
@@ -135,24 +138,29 @@ pub const ORIENT_PARAM_COMPLEMENTARY_INIT_DURATION: u32 = 28;
 pub const ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING: u32 = 29;
 
 /// Parameter slot (ekf): Correlation time of the angular-rate Markov process, eq. (9)
-/// (stable -1/tau form); default 0.2 (motion bandwidth of a few Hz).
+/// (stable -1/tau form); default 0.2 (orient: the paper sets it from the motion's
+/// bandwidth without a value; a few Hz for hand and body motion).
 ///
 /// Unit s; range 0.0001 to 1000000; default 0.2.
 pub const ORIENT_PARAM_EKF_TAU_OMEGA: u32 = 40;
 
 /// Parameter slot (ekf): Stationary standard deviation of the angular rate ('limit of the
-/// magnitude of the motion', section III.A); default 3.
+/// magnitude of the motion', section III.A); default 3 (orient: the paper gives no value;
+/// about 170 deg/s, the scale of hand and body rotation).
 ///
 /// Unit rad/s; range 0.001 to 1000; default 3.
 pub const ORIENT_PARAM_EKF_OMEGA_STD: u32 = 41;
 
 /// Parameter slot (ekf): Correlation time of the gyro drift Markov process, eq. (10)
-/// (stable -1/tau form); default 100 (slow drift).
+/// (stable -1/tau form); default 100 (orient: the paper gives no value; MEMS drift
+/// changes over minutes).
 ///
 /// Unit s; range 0.001 to 1000000000; default 100.
 pub const ORIENT_PARAM_EKF_TAU_DRIFT: u32 = 42;
 
-/// Parameter slot (ekf): Stationary standard deviation of the gyro drift; default 0.02.
+/// Parameter slot (ekf): Stationary standard deviation of the gyro drift; default 0.02
+/// (orient: the paper gives no value; about 1 deg/s covers consumer MEMS gyroscopes'
+/// typical zero-rate offset, 0.5 deg/s in the BMI270 and LSM6DSO datasheets).
 ///
 /// Unit rad/s; range 0.000001 to 10; default 0.02.
 pub const ORIENT_PARAM_EKF_DRIFT_STD: u32 = 43;
@@ -170,27 +178,29 @@ pub const ORIENT_PARAM_EKF_GYRO_NOISE: u32 = 44;
 pub const ORIENT_PARAM_EKF_ACCEL_NOISE: u32 = 45;
 
 /// Parameter slot (ekf): Standing allowance for linear acceleration added to the
-/// accelerometer noise (plus (|f|-g)^2 per sample); default 0.5.
+/// accelerometer noise (plus (|f|-g)^2 per sample); default 0.5 (orient: the paper's
+/// model has none and tolerates 'a modicum'; real recordings need it, BROAD trial 15).
 ///
 /// Unit m/s^2; range 0 to 1000; default 0.5.
 pub const ORIENT_PARAM_EKF_ACCEL_MOTION: u32 = 46;
 
 /// Parameter slot (ekf): Standard deviation of the magnetometer heading measurement (the
-/// paper's proposed extension); default 0.1.
+/// paper's proposed extension); default 0.1 (orient: about 6 deg for a clean field;
+/// heading_tau and heading_adapt_tau raise it when it is not).
 ///
 /// Unit rad; range 0.0001 to 10; default 0.1.
 pub const ORIENT_PARAM_EKF_HEADING_STD: u32 = 47;
 
 /// Parameter slot (ekf): Correlation time of linear acceleration: its variance is counted
-/// once per 2*motion_tau/dt samples (coloured, not white, noise); default 0.5 (hand
-/// motion); 0 treats it as white.
+/// once per 2*motion_tau/dt samples (coloured, not white, noise); default 0.5 (orient:
+/// the length of a hand movement); 0 treats it as white, as the paper does.
 ///
 /// Unit s; range 0 to 100; default 0.5.
 pub const ORIENT_PARAM_EKF_MOTION_TAU: u32 = 48;
 
 /// Parameter slot (ekf): Correlation time of magnetic heading errors: the heading
-/// variance is counted once per 2*heading_tau/dt samples; default 1 (disturbances change
-/// as the sensor moves through a room's field); 0 treats them as white.
+/// variance is counted once per 2*heading_tau/dt samples; default 1 (orient: disturbances
+/// change as the sensor moves through a room's field); 0 treats them as white.
 ///
 /// Unit s; range 0 to 1000; default 1.
 pub const ORIENT_PARAM_EKF_HEADING_TAU: u32 = 49;
@@ -213,7 +223,8 @@ pub const ORIENT_PARAM_EKF_ACCEL_ADAPT_TAU: u32 = 51;
 
 /// Parameter slot (ekf): Time constant of the heading innovation's running power, which
 /// likewise bounds the heading variance from below, so a disturbed field is trusted less;
-/// default 2; 0 = off.
+/// default 2 (orient: as accel_adapt_tau; BROAD trial 32 goes from 25.3 to 2.8 deg); 0 =
+/// off.
 ///
 /// Unit s; range 0 (off) or 0.001 to 1000; default 2.
 pub const ORIENT_PARAM_EKF_HEADING_ADAPT_TAU: u32 = 52;
@@ -237,37 +248,43 @@ pub const ORIENT_PARAM_GMVDK_SLOPE_MUK: u32 = 57;
 pub const ORIENT_PARAM_GMVDK_MU_WINDOW: u32 = 58;
 
 /// Parameter slot (gmvdk): Static start-up period averaging A_init, M_init and the first
-/// gyro bias; default 1.
+/// gyro bias; default 1 (orient: the paper averages a static start-up period without
+/// giving its length).
 ///
 /// Unit s; range 0 to 3600; default 1.
 pub const ORIENT_PARAM_GMVDK_INIT_DURATION: u32 = 59;
 
 /// Parameter slot (gmvdk): Time constant of the mean-square activity averages behind
-/// stillness; default 0.1.
+/// stillness; default 0.1 (orient: the paper reads Stillness from its sensor module; with
+/// 0.1 s, alpha falls within a tenth of a second of the start of motion).
 ///
 /// Unit s; range 0.0001 to 100; default 0.1.
 pub const ORIENT_PARAM_GMVDK_ACTIVITY_TAU: u32 = 60;
 
 /// Parameter slot (gmvdk): Gyro activity scale: RMS de-biased rate at which stillness
-/// reaches 0 (with no accelerometer activity, at sqrt(2) times it); default 0.5.
+/// reaches 0 (with no accelerometer activity, at sqrt(2) times it); default 0.5 (orient:
+/// about 30 deg/s, slow deliberate motion).
 ///
 /// Unit rad/s; range 0.000001 to 100; default 0.5.
 pub const ORIENT_PARAM_GMVDK_GYRO_ACTIVITY: u32 = 61;
 
 /// Parameter slot (gmvdk): Accelerometer activity scale: RMS deviation of |a| from its
-/// start-up value at which stillness reaches 0 (alone: sqrt(2) times it); default 1.0.
+/// start-up value at which stillness reaches 0 (alone: sqrt(2) times it); default 1.0
+/// (orient: about 0.1 g of linear acceleration).
 ///
 /// Unit m/s^2; range 0.000001 to 1000; default 1.
 pub const ORIENT_PARAM_GMVDK_ACCEL_ACTIVITY: u32 = 62;
 
 /// Parameter slot (gmvdk): Static run length for the linear-regression gyro de-biasing of
-/// step [1]; default 1.0.
+/// step [1]; default 1.0 (orient: the paper's 'window of consecutive samples' has no
+/// length).
 ///
 /// Unit s; range 0.001 to 3600; default 1.
 pub const ORIENT_PARAM_GMVDK_BIAS_WINDOW: u32 = 63;
 
 /// Parameter slot (gmvdk): alpha at or above which the sensor counts as static for
-/// de-biasing; default 0.95.
+/// de-biasing; default 0.95 (orient: the paper says 'estimated to be static' without a
+/// threshold).
 ///
 /// Unit 1; range 0 to 1; default 0.95.
 pub const ORIENT_PARAM_GMVDK_STATIC_ALPHA: u32 = 64;
@@ -340,7 +357,7 @@ pub const ORIENT_PARAM_ROBUST_BIAS_TAU_REST: u32 = 86;
 pub const ORIENT_PARAM_ROBUST_BIAS_TAU_MOTION: u32 = 87;
 
 /// Parameter slot (robust): Largest bias norm the motion estimate may reach; default
-/// 0.0349 (2 deg/s, the rest threshold: a larger bias would also hide rest).
+/// 0.0349 (orient: 2 deg/s, the rest threshold: a larger bias would also hide rest).
 ///
 /// Unit rad/s; range 0 to 10; default 0.03490658503988659.
 pub const ORIENT_PARAM_ROBUST_BIAS_LIMIT: u32 = 88;
@@ -365,8 +382,8 @@ pub const ORIENT_PARAM_ROBUST_MAG_DIP_TH: u32 = 90;
 pub const ORIENT_PARAM_ROBUST_HARD_IRON_TIME: u32 = 91;
 
 /// Parameter slot (robust): Gyroscope rate noise density, for the heading uncertainty
-/// only (eq. H1); default 1.745e-4 (0.01 deg/s/sqrt(Hz), the MPU-9250 datasheet's, the
-/// largest of common MEMS gyroscopes: BMI270 0.007, LSM6DSO 0.0038).
+/// only (eq. H1); default 1.745e-4 (orient: 0.01 deg/s/sqrt(Hz), the MPU-9250
+/// datasheet's, the largest of common MEMS gyroscopes: BMI270 0.007, LSM6DSO 0.0038).
 ///
 /// Unit rad/s/sqrt(Hz); range 0 to 1; default 0.00017453292519943296.
 pub const ORIENT_PARAM_ROBUST_GYRO_NOISE: u32 = 93;

@@ -79,7 +79,8 @@ settings! {
             max: 1e6,
             zero_off: false,
             doc: "Correlation time of the angular-rate Markov process, eq. (9) (stable -1/tau form); \
-                 default 0.2 (motion bandwidth of a few Hz).",
+                 default 0.2 (orient: the paper sets it from the motion's bandwidth without a \
+                 value; a few Hz for hand and body motion).",
         },
         omega_std: f64 = EKF_OMEGA_STD 41 {
             unit: "rad/s",
@@ -88,7 +89,8 @@ settings! {
             max: 1e3,
             zero_off: false,
             doc: "Stationary standard deviation of the angular rate ('limit of the magnitude of the \
-                 motion', section III.A); default 3.",
+                 motion', section III.A); default 3 (orient: the paper gives no value; about 170 deg/s, \
+                 the scale of hand and body rotation).",
         },
         tau_drift: f64 = EKF_TAU_DRIFT 42 {
             unit: "s",
@@ -97,7 +99,7 @@ settings! {
             max: 1e9,
             zero_off: false,
             doc: "Correlation time of the gyro drift Markov process, eq. (10) (stable -1/tau form); \
-                 default 100 (slow drift).",
+                 default 100 (orient: the paper gives no value; MEMS drift changes over minutes).",
         },
         drift_std: f64 = EKF_DRIFT_STD 43 {
             unit: "rad/s",
@@ -105,7 +107,9 @@ settings! {
             min: 1e-6,
             max: 10.0,
             zero_off: false,
-            doc: "Stationary standard deviation of the gyro drift; default 0.02.",
+            doc: "Stationary standard deviation of the gyro drift; default 0.02 (orient: the paper \
+                 gives no value; about 1 deg/s covers consumer MEMS gyroscopes' typical zero-rate \
+                 offset, 0.5 deg/s in the BMI270 and LSM6DSO datasheets).",
         },
         gyro_noise: f64 = EKF_GYRO_NOISE 44 {
             unit: "rad/s/sqrt(Hz)",
@@ -130,7 +134,8 @@ settings! {
             max: 1e3,
             zero_off: false,
             doc: "Standing allowance for linear acceleration added to the accelerometer noise \
-                 (plus (|f|-g)^2 per sample); default 0.5.",
+                 (plus (|f|-g)^2 per sample); default 0.5 (orient: the paper's model has none and \
+                 tolerates 'a modicum'; real recordings need it, BROAD trial 15).",
         },
         heading_std: f64 = EKF_HEADING_STD 47 {
             unit: "rad",
@@ -139,7 +144,8 @@ settings! {
             max: 10.0,
             zero_off: false,
             doc: "Standard deviation of the magnetometer heading measurement (the paper's proposed \
-                 extension); default 0.1.",
+                 extension); default 0.1 (orient: about 6 deg \
+                 for a clean field; heading_tau and heading_adapt_tau raise it when it is not).",
         },
         motion_tau: f64 = EKF_MOTION_TAU 48 {
             unit: "s",
@@ -148,8 +154,8 @@ settings! {
             max: 100.0,
             zero_off: false,
             doc: "Correlation time of linear acceleration: its variance is counted once per \
-                 2*motion_tau/dt samples (coloured, not white, noise); default 0.5 (hand motion); \
-                 0 treats it as white.",
+                 2*motion_tau/dt samples (coloured, not white, noise); default 0.5 (orient: the length of a hand \
+                 movement); 0 treats it as white, as the paper does.",
         },
         heading_tau: f64 = EKF_HEADING_TAU 49 {
             unit: "s",
@@ -158,8 +164,8 @@ settings! {
             max: 1000.0,
             zero_off: false,
             doc: "Correlation time of magnetic heading errors: the heading variance is counted once \
-                 per 2*heading_tau/dt samples; default 1 (disturbances change as the sensor moves \
-                 through a room's field); 0 treats them as white.",
+                 per 2*heading_tau/dt samples; default 1 (orient: disturbances change as the sensor \
+                 moves through a room's field); 0 treats them as white.",
         },
         rest_rate_std: f64 = EKF_REST_RATE_STD 50 {
             unit: "rad/s",
@@ -189,8 +195,8 @@ settings! {
             max: 1000.0,
             zero_off: true,
             doc: "Time constant of the heading innovation's running power, which likewise bounds \
-                 the heading variance from below, so a disturbed field is trusted less; default 2; \
-                 0 = off.",
+                 the heading variance from below, so a disturbed field is trusted less; default 2 (orient: as accel_adapt_tau; BROAD \
+                 trial 32 goes from 25.3 to 2.8 deg); 0 = off.",
         },
     }
     shared { gravity: f64 = GRAVITY }

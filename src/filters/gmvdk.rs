@@ -88,7 +88,8 @@ settings! {
             min: 0.0,
             max: 3600.0,
             zero_off: false,
-            doc: "Static start-up period averaging A_init, M_init and the first gyro bias; default 1.",
+            doc: "Static start-up period averaging A_init, M_init and the first gyro bias; default 1 \
+                 (orient: the paper averages a static start-up period without giving its length).",
         },
         activity_tau: f64 = GMVDK_ACTIVITY_TAU 60 {
             unit: "s",
@@ -96,7 +97,9 @@ settings! {
             min: 1e-4,
             max: 100.0,
             zero_off: false,
-            doc: "Time constant of the mean-square activity averages behind stillness; default 0.1.",
+            doc: "Time constant of the mean-square activity averages behind stillness; default 0.1 \
+                 (orient: the paper reads Stillness from its sensor module; with 0.1 s, alpha falls \
+                 within a tenth of a second of the start of motion).",
         },
         gyro_activity: f64 = GMVDK_GYRO_ACTIVITY 61 {
             unit: "rad/s",
@@ -105,7 +108,8 @@ settings! {
             max: 100.0,
             zero_off: false,
             doc: "Gyro activity scale: RMS de-biased rate at which stillness reaches 0 (with no \
-                 accelerometer activity, at sqrt(2) times it); default 0.5.",
+                 accelerometer activity, at sqrt(2) times it); default 0.5 (orient: about 30 deg/s, \
+                 slow deliberate motion).",
         },
         accel_activity: f64 = GMVDK_ACCEL_ACTIVITY 62 {
             unit: "m/s^2",
@@ -114,7 +118,8 @@ settings! {
             max: 1000.0,
             zero_off: false,
             doc: "Accelerometer activity scale: RMS deviation of |a| from its start-up value at \
-                 which stillness reaches 0 (alone: sqrt(2) times it); default 1.0.",
+                 which stillness reaches 0 (alone: sqrt(2) times it); default 1.0 (orient: about 0.1 g \
+                 of linear acceleration).",
         },
         bias_window: f64 = GMVDK_BIAS_WINDOW 63 {
             unit: "s",
@@ -123,7 +128,7 @@ settings! {
             max: 3600.0,
             zero_off: false,
             doc: "Static run length for the linear-regression gyro de-biasing of step [1]; \
-                 default 1.0.",
+                 default 1.0 (orient: the paper's 'window of consecutive samples' has no length).",
         },
         static_alpha: f64 = GMVDK_STATIC_ALPHA 64 {
             unit: "1",
@@ -131,7 +136,8 @@ settings! {
             min: 0.0,
             max: 1.0,
             zero_off: false,
-            doc: "alpha at or above which the sensor counts as static for de-biasing; default 0.95.",
+            doc: "alpha at or above which the sensor counts as static for de-biasing; default 0.95 \
+                 (orient: the paper says 'estimated to be static' without a threshold).",
         },
         relative_output: Switch = GMVDK_RELATIVE_OUTPUT 65 {
             unit: "1",

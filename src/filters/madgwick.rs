@@ -77,7 +77,7 @@ settings! {
             max: 100.0,
             zero_off: false,
             doc: "Gradient step beta for steps without magnetometer, eq. (30); default 0.041 \
-                 (Madgwick 2010, section V, optimum of the IMU implementation). \
+                 (paper: Madgwick 2010, section V, optimum of the IMU implementation). \
                  beta = sqrt(3/4) * max gyro error, eq. (33).",
         },
         beta_marg: f64 = MADGWICK_BETA_MARG 9 {

@@ -81,8 +81,8 @@ pub const COMMON: [ParamSpec; 6] = [
         id: id::GRAVITY,
         name: "gravity",
         unit: "m/s^2",
-        doc: "Gravity magnitude for the gravity and linear-acceleration outputs; default: \
-              standard gravity 9.80665 (CGPM 1901).",
+        doc: "Gravity magnitude for the gravity and linear-acceleration outputs; default \
+              9.80665 (orient: standard gravity, CGPM 1901).",
         default: 9.80665,
         min: 1e-3,
         max: 1e3,
@@ -93,7 +93,8 @@ pub const COMMON: [ParamSpec; 6] = [
         name: "gyro_range",
         unit: "rad/s",
         doc: "Gyroscope full scale: a sample with any axis at or beyond it is rejected as \
-              saturated; 0 turns the check off (default, since the range is the sensor's).",
+              saturated; 0 turns the check off (default; orient: the range is the sensor's, which a \
+              configuration has to give).",
         default: 0.0,
         min: 0.1,
         max: 1e4,
@@ -104,7 +105,7 @@ pub const COMMON: [ParamSpec; 6] = [
         name: "accel_range",
         unit: "m/s^2",
         doc: "Accelerometer full scale: a sample with any axis at or beyond it is rejected as \
-              saturated; 0 turns the check off (default).",
+              saturated; 0 turns the check off (default; orient: as gyro_range).",
         default: 0.0,
         min: 1.0,
         max: 1e5,
@@ -128,8 +129,9 @@ pub const COMMON: [ParamSpec; 6] = [
         id: id::SATURATION_RECOVERY,
         name: "saturation_recovery",
         unit: "1",
-        doc: "What a reading at or beyond gyro_range or accel_range does: 0 (default) rejects the \
-              sample as saturated; 1 uses it clipped (a gyroscope reading clipped just under \
+        doc: "What a reading at or beyond gyro_range or accel_range does: 0 (default; orient: a \
+              clipped reading is wrong, so by default it is refused) rejects the sample as \
+              saturated; 1 uses it clipped (a gyroscope reading clipped just under \
               the range, a saturated accelerometer reading left out), sets the SATURATED flag, \
               and after gyroscope saturation re-acquires the orientation from the next \
               unsaturated sample with an accelerometer reading (x-io Fusion's angular-rate \
@@ -144,7 +146,8 @@ pub const COMMON: [ParamSpec; 6] = [
         name: "same_instant",
         unit: "1",
         doc: "What a sample with dt = 0 does (bursts of packets with one timestamp): 0 \
-              (default) rejects it as an invalid dt; 1 takes it as the same instant as the \
+              (default; orient: dt = 0 is an error unless the host says its sensor sends bursts) \
+              rejects it as an invalid dt; 1 takes it as the same instant as the \
               next sample with dt > 0: nothing is integrated then, its gyroscope reading is \
               averaged with the following ones up to and including that sample, which \
               integrates the average over its dt, so no rotation is lost (the SAME_INSTANT \

@@ -184,8 +184,8 @@ settings! {
             min: 0.0,
             max: 10.0,
             zero_off: false,
-            doc: "Largest bias norm the motion estimate may reach; default 0.0349 (2 deg/s, the \
-                 rest threshold: a larger bias would also hide rest).",
+            doc: "Largest bias norm the motion estimate may reach; default 0.0349 (orient: 2 deg/s, \
+                 the rest threshold: a larger bias would also hide rest).",
         },
         mag_norm_th: f64 = ROBUST_MAG_NORM_TH 89 {
             unit: "1",
@@ -221,7 +221,7 @@ settings! {
             max: 1.0,
             zero_off: false,
             doc: "Gyroscope rate noise density, for the heading uncertainty only (eq. H1); default \
-                 1.745e-4 (0.01 deg/s/sqrt(Hz), the MPU-9250 datasheet's, the largest of common \
+                 1.745e-4 (orient: 0.01 deg/s/sqrt(Hz), the MPU-9250 datasheet's, the largest of common \
                  MEMS gyroscopes: BMI270 0.007, LSM6DSO 0.0038).",
         },
         bias_sigma: f64 = ROBUST_BIAS_SIGMA 94 {

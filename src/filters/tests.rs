@@ -394,13 +394,26 @@ fn good() -> Sample {
     }
 }
 
+/// Whether a parameter's sentence names where its default comes from: the paper (or VQF,
+/// robust's reference), or orient, as a word ("orientation" does not count).
+fn names_a_source(doc: &str) -> bool {
+    let orient_word = doc.match_indices("orient").any(|(i, w)| {
+        let before = doc[..i].chars().next_back().map_or(true, |c| !c.is_alphanumeric());
+        let after = doc[i + w.len()..].chars().next().map_or(true, |c| !c.is_alphanumeric());
+        before && after
+    });
+    doc.contains("paper") || doc.contains("VQF") || orient_word
+}
+
 #[test]
 fn every_kind_is_built_and_has_documented_parameters() {
+    assert!(!names_a_source("the orientation, default 1") && names_a_source("default 1 (orient: x)"));
     for k in Kind::ALL {
         assert!(Config::new(k).is_ok());
         for p in k.params() {
             assert!(p.accepts(p.default), "{k:?} {}", p.name);
             assert!(p.doc.contains("default") || p.doc.contains("Default"), "{k:?} {}", p.name);
+            assert!(names_a_source(p.doc), "{k:?} {}: the default's source (paper, VQF or orient)", p.name);
             assert_eq!(k.param_by_name(p.name).map(|q| q.id), Some(p.id), "duplicate name {}", p.name);
         }
     }
