@@ -27,6 +27,11 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     fn configure(&mut self, settings: Self::Settings) {
         *self.settings_mut() = settings;
     }
+    /// Bytes of the heap blocks the state holds besides itself (its boxes), for
+    /// [`crate::Filter::memory`]: none unless a kind says so.
+    fn heap_bytes(&self) -> usize {
+        0
+    }
     /// Back to the state of [`Estimator::create`] with these settings (kinds with boxed
     /// state override it to keep their boxes).
     fn restart(&mut self, settings: Self::Settings) {

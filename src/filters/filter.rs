@@ -112,11 +112,11 @@ impl Filter {
         each!(&self.0, r => kind_of(r))
     }
 
-    /// Bytes this filter occupies: the value itself and its kind's boxed state (heap
-    /// blocks outside it, GMVDK's μ window, not counted). Constant per kind.
+    /// Bytes this filter occupies: the value itself, its kind's boxed state, and the heap
+    /// blocks that state holds (GMVDK's μ window). Constant per kind.
     pub fn memory(&self) -> usize {
-        fn size_of<E: Estimator>(_: &Runner<E>) -> usize {
-            core::mem::size_of::<Runner<E>>()
+        fn size_of<E: Estimator>(r: &Runner<E>) -> usize {
+            core::mem::size_of::<Runner<E>>() + r.core.heap_bytes()
         }
         core::mem::size_of::<Filter>() + each!(&self.0, r => size_of(r))
     }

@@ -1201,6 +1201,10 @@ mod estimator_impl {
     use crate::filters::Diagnostics;
 
     estimator!(impl for Gmvdk { settings: GmvdkSettings, native: Enu, own_startup: true } {
+        fn heap_bytes(&self) -> usize {
+            core::mem::size_of::<MinWindow>()
+        }
+
         fn restart(&mut self, settings: GmvdkSettings) {
             // Keeps the boxed μ window: no allocation.
             self.settings = settings;
