@@ -146,7 +146,8 @@ public static class OrientTests
         Check(settings.Parameters.Count == 9, "parameter list");
         Check(settings.Gravity == 9.80665, "gravity default");
 
-        foreach (Kind kind in new[] { Kind.Madgwick, Kind.Mahony, Kind.Complementary, Kind.Ekf, Kind.Gmvdk })
+        // Every kind the generated enum has, so a new kind is tested here too.
+        foreach (Kind kind in (Kind[])Enum.GetValues(typeof(Kind)))
         {
             using (var f = new OrientFilter(kind))
             {

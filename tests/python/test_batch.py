@@ -16,7 +16,9 @@ DT = 0.01 + rng.uniform(-0.002, 0.002, N)
 GYR[:250] = rng.normal(0.0, 0.002, (250, 3))
 ACC[:250] = np.array([0.3, -0.2, 9.8]) + rng.normal(0.0, 0.01, (250, 3))
 
-KINDS = [orient.Madgwick, orient.Mahony, orient.Complementary, orient.Ekf, orient.Gmvdk, orient.Robust]
+# Every kind of the enum (generated from the header), by its class: a new kind without
+# a class fails here.
+KINDS = [getattr(orient, k.name.capitalize()) for k in orient.Kind]
 
 
 def u64(a):
