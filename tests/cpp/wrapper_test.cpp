@@ -374,11 +374,40 @@ static void uncertainty() {
     CHECK(f.uncertainty(u) == ORIENT_STATUS_OK && u.present == ORIENT_UNCERTAINTY_HEADING && std::isnan(u.inclination));
 }
 
+// The wrapper's Kind names every kind the library makes: each kind the library accepts
+// must be one of the enumerators (a kind the library gains without one fails here), and
+// -Wswitch makes an enumerator added to the wrapper without a case here fail to compile.
+static bool wrapper_names(orient::Kind k) {
+    switch (k) {
+    case orient::Kind::Madgwick:
+    case orient::Kind::Mahony:
+    case orient::Kind::Complementary:
+    case orient::Kind::Ekf:
+    case orient::Kind::Gmvdk:
+    case orient::Kind::Robust:
+        return true;
+    }
+    return false;
+}
+
+static void kinds() {
+    int accepted = 0;
+    for (int32_t k = 0; k < 64; k++) {
+        OrientConfig c;
+        if (orient_config_default(static_cast<OrientKind>(k), &c) != ORIENT_STATUS_OK) continue;
+        accepted++;
+        CHECK(wrapper_names(static_cast<orient::Kind>(k)));
+        CHECK(orient::Config::defaults(static_cast<orient::Kind>(k)).ok());
+    }
+    CHECK(accepted > 0); // the loop checked something
+}
+
 int main(int argc, char** argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: %s GOLDEN_FILE\n", argv[0]);
         return 2;
     }
+    kinds();
     wrapper();
     rig();
     offline();
