@@ -32,6 +32,7 @@ pub mod offline;
 
 pub mod ffi;
 
+pub use filters::calibration::{MagCalibrator, MagFit, Model, Sensor};
 pub use filters::params::{ParamSpec, MAX_PARAMS};
-pub use filters::{flags, Config, Error, Field, Filter, Init, Kind, Sample, Uncertainty};
+pub use filters::{flags, Config, Error, Field, Filter, Init, Kind, RigHeading, Sample, Uncertainty};
 pub use math::{Euler, Frame, Quat, Vec3};
