@@ -416,8 +416,8 @@ typedef struct OrientFilter OrientFilter;
 
 /**
  * Parameter slot (gmvdk): Static run length for the linear-regression gyro de-biasing of
- * step [1]; default 1.0 (orient: the paper's 'window of consecutive samples' has no
- * length).
+ * the paper's step 1; default 1.0 (orient: the paper's 'window of consecutive samples'
+ * has no length).
  *
  * Unit s; range 0.001 to 3600; default 1.
  */

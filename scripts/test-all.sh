@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every test: setup, formatting, lints, the generated header and the exported
+# Every test: setup, formatting, lints, the API documentation's links, the generated header and the exported
 # symbols, the C# P/Invoke layer generated from the header, the ABI against its baseline, then cargo test: Rust unit and integration
 # tests, doc tests, the C test program against the .so and the .a, the C++ wrapper
 # (with and without exceptions), the C# binding under Mono and the Unity scripts
@@ -20,6 +20,8 @@ echo "== format"
 cargo fmt --all -- --check
 echo "== clippy"
 cargo clippy --workspace --all-targets --quiet -- -D warnings
+echo "== rustdoc (the library's API documentation, links included)"
+RUSTDOCFLAGS="-D warnings" cargo doc -p orient --no-deps --quiet
 echo "== header and exports"
 scripts/check-header.sh
 echo "== C# P/Invoke layer generated from the header"

@@ -2,7 +2,7 @@
 //! post-processing where every sample's future is known.
 //!
 //! Non-causal forward-backward smoothing through any filter kind (by default the
-//! recommended kind with a longer heading time constant, [`config`]):
+//! recommended kind with a longer heading time constant, [`config`](crate::offline::config)):
 //!
 //! 1. A priming forward pass over the recording finds the orientation at its end.
 //! 2. A backward pass runs a copy of that filter on the time-reversed recording

@@ -2,7 +2,7 @@
 //! core types, status codes, and a panic boundary inside every exported body.
 //!
 //! Handle checks look the address up in the registry of live handles
-//! ([`registry`]) before anything is read through it: a freed handle, a copy of a
+//! (`registry`) before anything is read through it: a freed handle, a copy of a
 //! handle's bytes and a pointer that never was a handle are refused without their
 //! memory being read.
 //!

@@ -276,8 +276,8 @@ pub const ORIENT_PARAM_GMVDK_GYRO_ACTIVITY: u32 = 61;
 pub const ORIENT_PARAM_GMVDK_ACCEL_ACTIVITY: u32 = 62;
 
 /// Parameter slot (gmvdk): Static run length for the linear-regression gyro de-biasing of
-/// step [1]; default 1.0 (orient: the paper's 'window of consecutive samples' has no
-/// length).
+/// the paper's step 1; default 1.0 (orient: the paper's 'window of consecutive samples'
+/// has no length).
 ///
 /// Unit s; range 0.001 to 3600; default 1.
 pub const ORIENT_PARAM_GMVDK_BIAS_WINDOW: u32 = 63;

@@ -16,7 +16,7 @@
 //! Choices where the paper is silent or loose:
 //! - `C_{G/I}` maps body to ground coordinates (from (1), `Ċ = C ω×`), so it is orient's
 //!   `R(q)`; the ground frame G has Ê₃ up. Each step's attitude change is the exact
-//!   rotation `exp(ω dt)` ("the numerical integration technique described in [1]" is
+//!   rotation `exp(ω dt)` ("the numerical integration technique described in \[1\]" is
 //!   not given; the exact rotation of a constant rate over dt is used).
 //! - Rest: `|ω_m − ω̄| < gyro_rest` and `| |a_m| − g₀ | < accel_rest`, where `ω̄` and `g₀`
 //!   are the mean gyroscope reading and accelerometer norm of the start-up period

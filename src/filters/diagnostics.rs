@@ -2,7 +2,7 @@
 
 use crate::math::Vec3;
 
-/// Bits of [`Diagnostics::present`] and [`Kind::diagnostics`].
+/// Bits of [`Diagnostics::present`] and [`Kind::diagnostics`](crate::Kind::diagnostics).
 pub mod diag {
     pub const GYRO_BIAS: u32 = 1;
     pub const REST: u32 = 2;

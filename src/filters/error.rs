@@ -36,12 +36,13 @@ pub enum Error {
     ParamOutOfRange { id: u32, value: f64 },
     /// A NaN or infinite value in a present field.
     NonFinite(Field),
-    /// dt is below 1 ns (zero, negative, subnormal), above [`MAX_DT`] or not finite.
+    /// dt is below 1 ns (zero, negative, subnormal), above [`MAX_DT`](crate::filters::MAX_DT) or not finite.
     InvalidDt(f64),
     /// A vector whose norm is zero or too small to normalise.
     ZeroVector(Field),
     /// A vector whose squared norm overflows, or a reading at or beyond its physical
-    /// bound ([`MAX_GYRO`], [`MAX_ACCEL`], [`MAX_MAG`]).
+    /// bound ([`MAX_GYRO`](crate::filters::MAX_GYRO), [`MAX_ACCEL`](crate::filters::MAX_ACCEL),
+    /// [`MAX_MAG`](crate::filters::MAX_MAG)).
     TooLarge(Field),
     /// A reading at or beyond the configured full-scale range.
     Saturated(Field),

@@ -127,7 +127,7 @@ settings! {
             min: 1e-3,
             max: 3600.0,
             zero_off: false,
-            doc: "Static run length for the linear-regression gyro de-biasing of step [1]; \
+            doc: "Static run length for the linear-regression gyro de-biasing of the paper's step 1; \
                  default 1.0 (orient: the paper's 'window of consecutive samples' has no length).",
         },
         static_alpha: f64 = GMVDK_STATIC_ALPHA 64 {
@@ -160,7 +160,7 @@ settings! {
 /// series in `sin²ω = (1 − cos ω)(1 + cos ω)` alone: `ω = sin ω · asin(s)/s`
 /// ([`asin_over`]), `sin(hω)/sin ω = h · asin(s)/s · sin(hω)/(hω)` and `cos(hω)`
 /// ([`cos_and_sinc`]), with no arccosine, sine, root or division. Larger angles take
-/// [`slerp_weights_by_acos`], the readable form, which a test compares the series with.
+/// `slerp_weights_by_acos`, the readable form, which a test compares the series with.
 #[inline(always)]
 pub fn slerp(q1: Quat, q2: Quat, h: f64) -> Quat {
     let mut cos = q1.dot(q2);

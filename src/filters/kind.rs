@@ -54,7 +54,7 @@ impl Kind {
         }
     }
 
-    /// Which [`Diagnostics`] fields this kind can report (an option that is off clears its
+    /// Which [`Diagnostics`](crate::filters::Diagnostics) fields this kind can report (an option that is off clears its
     /// bits in a filter's `present`: Madgwick's bias and rest, Mahony's and the EKF's rest,
     /// without their rest options).
     pub fn diagnostics(self) -> u32 {

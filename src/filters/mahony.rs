@@ -1,7 +1,7 @@
 //! Mahony's nonlinear complementary filter ("explicit complementary filter"), IMU and MARG.
 //!
 //! Source: R. Mahony, T. Hamel, J.-M. Pflimlin, "Nonlinear Complementary Filters on the
-//! Special Orthogonal Group", IEEE TAC 53(5), 2008 (reference [14] of the McGinnis paper;
+//! Special Orthogonal Group", IEEE TAC 53(5), 2008 (reference \[14\] of the McGinnis paper;
 //! the baseline of the GMVDK paper's comparison). With measured directions `v_i` and
 //! their estimates `v̂_i` in the sensor frame,
 //!

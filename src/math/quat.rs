@@ -135,7 +135,7 @@ impl Quat {
     ///
     /// The usual case, `n2` in [`super::inv_sqrt`]'s fast range, is tested first with two
     /// comparisons; a zero, non-finite or extreme `n2` goes out of line
-    /// ([`super::try_inv_sqrt`]).
+    /// (`math::try_inv_sqrt`).
     #[inline]
     pub fn normalized_with(self, n2: f64) -> Option<Quat> {
         Some(self.scale(super::try_inv_sqrt(n2)?)).filter(|q| q.is_finite())
