@@ -21,6 +21,12 @@
 
 use crate::math::lanes::Lanes;
 
+/// True where this build has an AVX copy for [`widest`] to take (x86-64 built for a
+/// baseline without AVX, outside Miri): code that must be written differently for it to
+/// be inlined there asks this, not the target itself.
+pub(crate) const HAS_AVX_COPY: bool =
+    cfg!(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)));
+
 /// Runs `f`, compiled for AVX when this CPU has it (see the module's documentation).
 /// Whatever should run in the wide encoding must be inlined into `f`: mark the closure
 /// and its callees `#[inline(always)]`; a function `f` calls out of line runs in the

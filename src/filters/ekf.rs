@@ -215,25 +215,21 @@ struct Blocks<V = f64x4> {
     d: V,
 }
 
-/// `[f(0), f(1), …]`. Where there is an AVX copy (`crate::isa`), always inlined:
-/// `core::array::from_fn` may stay out of line, and an out-of-line call from the AVX
-/// copy runs baseline code, where the lanes' operations are calls too.
-#[cfg(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri)))]
+/// `[f(0), f(1), …]`. Where there is an AVX copy (`crate::isa::HAS_AVX_COPY`), a loop
+/// that is always inlined: `core::array::from_fn` may stay out of line, and an
+/// out-of-line call from the AVX copy runs baseline code, where the lanes' operations are
+/// calls too. Everywhere else `core::array::from_fn`, where the loop costs more
+/// instructions (docs/PERFORMANCE.md).
 #[inline(always)]
 fn array<T: Copy, const N: usize>(mut f: impl FnMut(usize) -> T) -> [T; N] {
+    if !crate::isa::HAS_AVX_COPY {
+        return core::array::from_fn(f);
+    }
     let mut out = [f(0); N];
     for (i, o) in out.iter_mut().enumerate().skip(1) {
         *o = f(i);
     }
     out
-}
-
-/// `[f(0), f(1), …]`: `core::array::from_fn` everywhere else, where the loop above costs
-/// more instructions (docs/PERFORMANCE.md).
-#[cfg(not(all(target_arch = "x86_64", not(target_feature = "avx"), not(miri))))]
-#[inline(always)]
-fn array<T: Copy, const N: usize>(f: impl FnMut(usize) -> T) -> [T; N] {
-    core::array::from_fn(f)
 }
 
 /// A three-vector in four lanes, the fourth zero.
