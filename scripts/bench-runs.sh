@@ -2,9 +2,9 @@
 # Runs the bench tool (tools/src/bin/bench.rs) RUNS times (default 7), each in a fresh process, and prints per row
 # the median and the range over the runs of the Rust, C and batch times, of the first
 # anchor's ratio, and (Madgwick, Mahony) of the floor: their arithmetic alone with the
-# state in memory (tools/src/bin/bench.rs, module floor). One process's times are bimodal for the small filters (the same
-# binary gives Madgwick IMU 38-40 ns in most processes and 60-65 ns in some, while the
-# anchors in that process stay put; docs/PERFORMANCE.md), so a single run can mislead.
+# state in memory (tools/src/bin/bench.rs, module floor). The small filters' times can
+# differ between processes of the same binary while the anchors stay put
+# (docs/PERFORMANCE.md, "How to read the times"), so a single run can mislead.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RUNS=${RUNS:-7}
