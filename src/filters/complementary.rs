@@ -497,7 +497,7 @@ mod estimator_impl {
     use crate::filters::estimator::estimator;
     use crate::filters::Diagnostics;
 
-    estimator!(impl for Complementary { settings: ComplementarySettings, native: Enu, own_startup: true, usual: true } {
+    estimator!(impl for Complementary { settings: ComplementarySettings, native: Enu, own_startup: true, diagnostics: GYRO_BIAS | REST, usual: true } {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Complementary::update(self, dt, gyro, accel, mag)

@@ -1488,7 +1488,7 @@ mod estimator_impl {
     use crate::filters::estimator::estimator;
     use crate::filters::Diagnostics;
 
-    estimator!(impl for Ekf { settings: EkfSettings, native: Ned, own_startup: false } {
+    estimator!(impl for Ekf { settings: EkfSettings, native: Ned, own_startup: false, diagnostics: GYRO_BIAS | REST | RATE | COVARIANCE } {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Ekf::update(self, dt, gyro, accel, mag)

@@ -19,6 +19,9 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     const NATIVE: Frame;
     /// True for kinds that estimate their start from a period of samples themselves.
     const OWN_STARTUP: bool = false;
+    /// Which [`Diagnostics`](crate::filters::Diagnostics) fields this kind can report
+    /// (`diag` bits; an option that is off clears its bits in a filter's `present`).
+    const DIAGNOSTICS: u32;
 
     fn create(settings: Self::Settings) -> Self;
     fn settings(&self) -> &Self::Settings;
@@ -174,7 +177,8 @@ impl Step {
     }
 }
 
-/// An [`Estimator`] impl: the kind's identity and the items every kind writes the same
+/// An [`Estimator`] impl: the kind's identity (with the `diag` bits it can report, written
+/// with the bits' names) and the items every kind writes the same
 /// way (construction, settings, and the forwards to its inherent `quaternion`,
 /// `set_quaternion`, `reacquire`, `codec` and `valid`; with `usual: true`, also
 /// `update_usual` and `usual_settings`), then the kind's own items in braces (`update`,
@@ -182,8 +186,8 @@ impl Step {
 macro_rules! estimator {
     // A kind with a usual step: also the forwards to its inherent `update_usual` and
     // `usual_settings`.
-    (impl for $T:ident { settings: $S:ty, native: $frame:ident, own_startup: $own:expr, usual: true $(,)? } { $($item:tt)* }) => {
-        $crate::filters::estimator::estimator!(impl for $T { settings: $S, native: $frame, own_startup: $own } {
+    (impl for $T:ident { settings: $S:ty, native: $frame:ident, own_startup: $own:expr, diagnostics: $d:expr, usual: true $(,)? } { $($item:tt)* }) => {
+        $crate::filters::estimator::estimator!(impl for $T { settings: $S, native: $frame, own_startup: $own, diagnostics: $d } {
             const USUAL: bool = true;
 
             fn usual_settings(&self) -> bool {
@@ -198,12 +202,17 @@ macro_rules! estimator {
             $($item)*
         });
     };
-    (impl for $T:ident { settings: $S:ty, native: $frame:ident, own_startup: $own:expr $(,)? } { $($item:tt)* }) => {
+    (impl for $T:ident { settings: $S:ty, native: $frame:ident, own_startup: $own:expr, diagnostics: $d:expr $(,)? } { $($item:tt)* }) => {
         impl $crate::filters::estimator::Estimator for $T {
             type Settings = $S;
             const KIND: $crate::filters::Kind = $crate::filters::Kind::$T;
             const NATIVE: $crate::math::Frame = $crate::math::Frame::$frame;
             const OWN_STARTUP: bool = $own;
+            const DIAGNOSTICS: u32 = {
+                #[allow(unused_imports)]
+                use $crate::filters::diag::*;
+                $d
+            };
 
             fn create(settings: $S) -> Self {
                 $T::new(settings)

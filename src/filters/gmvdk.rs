@@ -1200,7 +1200,7 @@ mod estimator_impl {
     use crate::filters::estimator::estimator;
     use crate::filters::Diagnostics;
 
-    estimator!(impl for Gmvdk { settings: GmvdkSettings, native: Enu, own_startup: true } {
+    estimator!(impl for Gmvdk { settings: GmvdkSettings, native: Enu, own_startup: true, diagnostics: GYRO_BIAS | ALPHA | MU_KA | MU_KM | MU_K } {
         fn heap_bytes(&self) -> usize {
             core::mem::size_of::<MinWindow>()
         }

@@ -1,8 +1,8 @@
 //! The filter kinds and what each one has: parameters, diagnostics.
 
-use super::diag;
-use super::params::{ParamSpec, COMMON};
-use super::{complementary, ekf, gmvdk, madgwick, mahony, robust};
+use super::estimator::Estimator;
+use super::filter::with_kind;
+use super::params::{ParamSpec, Settings, COMMON};
 
 /// The filter kinds. Hosts swap filters by changing this value alone.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -42,31 +42,16 @@ impl Kind {
         Kind::ALL.into_iter().find(|k| k.name().eq_ignore_ascii_case(name))
     }
 
-    /// The settings this kind has beyond the common ones.
+    /// The settings this kind has beyond the common ones: its settings table's.
     fn own_params(self) -> &'static [ParamSpec] {
-        match self {
-            Kind::Madgwick => madgwick::PARAMS,
-            Kind::Mahony => mahony::PARAMS,
-            Kind::Complementary => complementary::PARAMS,
-            Kind::Ekf => ekf::PARAMS,
-            Kind::Gmvdk => gmvdk::PARAMS,
-            Kind::Robust => robust::PARAMS,
-        }
+        with_kind!(self, E => <<E as Estimator>::Settings as Settings>::PARAMS)
     }
 
-    /// Which [`Diagnostics`](crate::filters::Diagnostics) fields this kind can report (an option that is off clears its
-    /// bits in a filter's `present`: Madgwick's bias and rest, Mahony's and the EKF's rest,
-    /// without their rest options).
+    /// Which [`Diagnostics`](crate::filters::Diagnostics) fields this kind can report (an
+    /// option that is off clears its bits in a filter's `present`: Madgwick's bias and
+    /// rest, Mahony's and the EKF's rest, without their rest options).
     pub fn diagnostics(self) -> u32 {
-        use diag::*;
-        match self {
-            Kind::Madgwick => GYRO_BIAS | REST,
-            Kind::Mahony => GYRO_BIAS | REST,
-            Kind::Complementary => GYRO_BIAS | REST,
-            Kind::Ekf => GYRO_BIAS | REST | RATE | COVARIANCE,
-            Kind::Gmvdk => GYRO_BIAS | ALPHA | MU_KA | MU_KM | MU_K,
-            Kind::Robust => GYRO_BIAS | REST,
-        }
+        with_kind!(self, E => E::DIAGNOSTICS)
     }
 
     /// Every parameter of this kind: the common ones, then its own.

@@ -854,7 +854,7 @@ mod estimator_impl {
     use crate::filters::estimator::estimator;
     use crate::filters::Diagnostics;
 
-    estimator!(impl for Madgwick { settings: MadgwickSettings, native: Nwu, own_startup: false, usual: true } {
+    estimator!(impl for Madgwick { settings: MadgwickSettings, native: Nwu, own_startup: false, diagnostics: GYRO_BIAS | REST, usual: true } {
         fn configure(&mut self, settings: MadgwickSettings) {
             self.settings = settings;
             self.rest.prepare(settings.rest_bias_tau > 0.0);

@@ -205,6 +205,8 @@ impl SlotValue for Switch {
 /// The mapping between a kind's settings struct and a configuration's slots (made by
 /// `settings!`).
 pub trait Settings: Copy + core::fmt::Debug + PartialEq + Default + Send + Sync + 'static {
+    /// The kind's own parameters, the table `settings!` makes (`PARAMS`).
+    const PARAMS: &'static [ParamSpec];
     /// The settings held in a configuration's slots.
     fn from_slots(s: &[f64; MAX_PARAMS]) -> Self;
     /// Writes the settings into their slots (shared ones included).
@@ -304,6 +306,7 @@ macro_rules! settings {
         }
 
         impl $crate::filters::params::Settings for $name {
+            const PARAMS: &'static [$crate::filters::params::ParamSpec] = self::PARAMS;
             fn from_slots(s: &[f64; $crate::filters::params::MAX_PARAMS]) -> Self {
                 use $crate::filters::params::SlotValue;
                 $name {

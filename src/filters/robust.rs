@@ -1980,7 +1980,7 @@ mod estimator_impl {
     use crate::filters::estimator::estimator;
     use crate::filters::Diagnostics;
 
-    estimator!(impl for Robust { settings: RobustSettings, native: Enu, own_startup: false } {
+    estimator!(impl for Robust { settings: RobustSettings, native: Enu, own_startup: false, diagnostics: GYRO_BIAS | REST } {
         const FAILURE_RESTARTS: bool = true;
 
         #[inline(always)]
