@@ -154,8 +154,8 @@ settings! {
             max: 100.0,
             zero_off: false,
             doc: "Correlation time of linear acceleration: its variance is counted once per \
-                 2*motion_tau/dt samples (coloured, not white, noise); default 0.5 (orient: the length of a hand \
-                 movement); 0 treats it as white, as the paper does.",
+                 2*motion_tau/dt samples (coloured, not white, noise); default 0.5 (orient: the \
+                 length of a hand movement); 0 treats it as white, as the paper does.",
         },
         heading_tau: f64 = EKF_HEADING_TAU 49 {
             unit: "s",
@@ -195,8 +195,8 @@ settings! {
             max: 1000.0,
             zero_off: true,
             doc: "Time constant of the heading innovation's running power, which likewise bounds \
-                 the heading variance from below, so a disturbed field is trusted less; default 2 (orient: as accel_adapt_tau; BROAD \
-                 trial 32 goes from 25.3 to 2.8 deg); 0 = off.",
+                 the heading variance from below, so a disturbed field is trusted less; default 2 \
+                 (orient: as accel_adapt_tau; BROAD trial 32 goes from 25.3 to 2.8 deg); 0 = off.",
         },
     }
     shared { gravity: f64 = GRAVITY }

@@ -5,8 +5,9 @@
 //! Layout: each kind is one module (its `settings!` parameter table, its state and its
 //! update in the paper's terms) implementing `estimator::Estimator`; `runner` is the
 //! common lifecycle generic over the kind; [`Filter`] holds one runner of any kind.
-//! [`Kind`], [`Config`], [`Sample`], [`Error`], [`flags`], [`Diagnostics`](crate::filters::Diagnostics) and the
-//! snapshot format ([`state`](crate::filters::state), `holds`) are what every kind shares.
+//! [`Kind`], [`Config`], [`Sample`], [`Error`], [`flags`],
+//! [`Diagnostics`](crate::filters::Diagnostics) and the snapshot format
+//! ([`state`](crate::filters::state), `holds`) are what every kind shares.
 
 #![forbid(unsafe_code)]
 
