@@ -78,18 +78,19 @@ pub unsafe extern "C" fn orient_filter_update_arrays(
         if !processed.is_null() {
             processed.write(0);
         }
-        let h = handle_mut(filter)?;
-        if n == 0 {
-            return Ok(());
-        }
-        if gyro.is_null() || dt.is_null() {
+        // NULL pointers first, as for every call; then the handle and the counts.
+        if filter.is_null() || (n > 0 && (gyro.is_null() || dt.is_null())) {
             return Err(null());
         }
+        let h = handle_mut(filter)?;
         if dt_count != 1 && dt_count != n {
             return Err(fail(
                 OrientStatus::InvalidArgument,
                 format_args!("dt_count is {dt_count}: it must be 1 or n = {n}"),
             ));
+        }
+        if n == 0 {
+            return Ok(());
         }
         if n > isize::MAX as usize / (3 * core::mem::size_of::<f64>()) {
             return Err(fail(

@@ -89,6 +89,10 @@ pub unsafe extern "C" fn orient_filter_update_batch(
         if !processed.is_null() {
             processed.write(0);
         }
+        // NULL pointers first (the handle too), then the count, then the handle.
+        if filter.is_null() {
+            return Err(null());
+        }
         let samples = items(samples, n, "samples")?;
         let h = handle_mut(filter)?;
         if n == 0 {
@@ -138,6 +142,10 @@ pub unsafe extern "C" fn orient_filters_update(
         }
         if n == 0 {
             return Ok(());
+        }
+        // Both arrays' NULL before either count (items checks one array at a time).
+        if filters.is_null() || samples.is_null() {
+            return Err(null());
         }
         let samples = items(samples, n, "samples")?;
         let handles = items(filters, n, "filters")?;

@@ -796,6 +796,15 @@ static void bad_input(int32_t kind) {
         CHECK_STATUS(orient_filter_update_arrays(f, 0, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL, &processed),
                      ORIENT_STATUS_OK);
         CHECK(processed == 0);
+        /* dt_count is 1 or n, n = 0 included. */
+        CHECK_STATUS(orient_filter_update_arrays(f, 0, &dt, 7, gyro, NULL, NULL, NULL, NULL, NULL, NULL),
+                     ORIENT_STATUS_INVALID_ARGUMENT);
+        /* A NULL required pointer before the handle and the counts. */
+        CHECK_STATUS(orient_filter_update_arrays((OrientFilter *)&dt, 3, &dt, 1, NULL, NULL, NULL, NULL, NULL, NULL,
+                                                 NULL),
+                     ORIENT_STATUS_NULL_POINTER);
+        CHECK_STATUS(orient_filter_update_arrays(f, SIZE_MAX, NULL, 1, gyro, NULL, NULL, NULL, NULL, NULL, NULL),
+                     ORIENT_STATUS_NULL_POINTER);
         CHECK_STATUS(orient_filter_quaternion(f, &a), ORIENT_STATUS_OK);
         CHECK(same_quaternion(a, b));
     }
@@ -1054,6 +1063,10 @@ static void multi_sensor(void) {
     CHECK_STATUS(orient_filters_update(NULL, NULL, 0, NULL, &processed), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_filters_update(rig, NULL, 2, NULL, NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_filters_update(rig, frame, SIZE_MAX, NULL, NULL), ORIENT_STATUS_COUNT_TOO_LARGE);
+    /* A NULL array before any count. */
+    CHECK_STATUS(orient_filters_update(NULL, frame, SIZE_MAX, NULL, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filters_update(rig, NULL, SIZE_MAX, NULL, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_filter_update_batch(NULL, frame, SIZE_MAX, NULL, NULL), ORIENT_STATUS_NULL_POINTER);
     for (k = 0; k < 6; k++) {
         CHECK_STATUS(orient_filter_free(rig[k]), ORIENT_STATUS_OK);
         if (k != 4) CHECK_STATUS(orient_filter_free(twins[k]), ORIENT_STATUS_OK);
