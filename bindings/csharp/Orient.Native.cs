@@ -1708,7 +1708,9 @@ namespace Orient.Native
         /// packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
         /// ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
         /// magnetometer parallel to gravity gives no heading, so that step is an IMU update
-        /// (ORIENT_FLAG_MAG_USED clear). NUMERIC guards a step whose result would not be
+        /// (ORIENT_FLAG_MAG_USED clear), except in ORIENT_KIND_GMVDK once it runs: its
+        /// magnetometer pipeline aligns the whole field vector (the paper's eqs. 10-12), a
+        /// vertical one included. NUMERIC guards a step whose result would not be
         /// finite; the bounds on dt and on the readings keep every accepted sample from reaching
         /// it, and no test has found one that does.
         /// </summary>

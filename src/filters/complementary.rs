@@ -280,12 +280,13 @@ impl Complementary {
     }
 
     /// The attitude from the start-up means: Ê₃ up, Ê₂ from the sensor's y axis (or the
-    /// field), rows of R_ES = [Ê₁; Ê₂; Ê₃].
-    fn initial_attitude(settings: &ComplementarySettings, s: &StartupMeans) -> Quat {
+    /// field), rows of R_ES = [Ê₁; Ê₂; Ê₃]; and whether the field gave the heading (a
+    /// field parallel to gravity gives none).
+    fn initial_attitude(settings: &ComplementarySettings, s: &StartupMeans) -> (Quat, bool) {
         let accel = s.accel();
         if settings.align_heading.on() {
             if let Some(q) = s.mag().and_then(|m| Frame::Enu.attitude_from(accel, Some(m))) {
-                return q;
+                return (q, true);
             }
         }
         let e3 = accel.normalized();
@@ -298,7 +299,7 @@ impl Complementary {
         }
         let e2 = e2.normalized();
         let e1 = e2.cross(e3);
-        Quat::from_matrix([[e1.x, e1.y, e1.z], [e2.x, e2.y, e2.z], [e3.x, e3.y, e3.z]])
+        (Quat::from_matrix([[e1.x, e1.y, e1.z], [e2.x, e2.y, e2.z], [e3.x, e3.y, e3.z]]), false)
     }
 
     /// Out of line: inlined into the kind dispatch (`Core::update`), it gave that
@@ -319,9 +320,9 @@ impl Complementary {
                     return Some(step);
                 }
                 let bias = s.bias();
-                let q = Complementary::initial_attitude(&self.settings, s);
+                let (q, used_mag) = Complementary::initial_attitude(&self.settings, s);
                 step.used_accel = true;
-                step.used_mag = self.settings.align_heading.on() && s.mag().is_some();
+                step.used_mag = used_mag;
                 self.phase = Phase::Running(Running { q, bias, g0: s.accel_norm(), b0: bias, rest: false });
                 return Some(step);
             }

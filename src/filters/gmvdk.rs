@@ -652,19 +652,21 @@ impl Gmvdk {
         self.startup.is_some()
     }
 
-    fn finish_startup(&mut self, s: &StartupMeans) {
+    /// The start-up attitude and references from the still period's means. True when the
+    /// mean field gave the heading (a field parallel to gravity gives none: the attitude is
+    /// then the accelerometer's alone).
+    fn finish_startup(&mut self, s: &StartupMeans) -> bool {
         let accel = s.accel();
         let mag = s.mag();
-        let q = Frame::Enu
-            .attitude_from(accel, mag)
-            .or_else(|| Frame::Enu.attitude_from(accel, None))
-            .unwrap_or(Quat::IDENTITY);
+        let with_mag = mag.and_then(|m| Frame::Enu.attitude_from(accel, Some(m)));
+        let q = with_mag.or_else(|| Frame::Enu.attitude_from(accel, None)).unwrap_or(Quat::IDENTITY);
         self.q = q;
         self.q_start = q;
         self.bias = s.bias();
         self.a_init = Some(Reference::new(q.rotate(accel)));
         self.m_init = mag.map(|m| Reference::new(q.rotate(m)));
         self.g0 = accel.norm();
+        with_mag.is_some()
     }
 
     #[inline(always)]
@@ -680,10 +682,9 @@ impl Gmvdk {
                 step.initializing = true;
                 return Some(step);
             }
-            self.finish_startup(&s);
+            step.used_mag = self.finish_startup(&s);
             self.startup = None;
             step.used_accel = true;
-            step.used_mag = s.mag().is_some();
             return Some(step);
         }
         let st = &self.settings;

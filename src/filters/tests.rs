@@ -785,3 +785,38 @@ fn a_pair_keeps_the_sign_of_zero_like_single_updates() {
         }
     }
 }
+
+/// The header's "a magnetometer parallel to gravity gives no heading, so that step is an
+/// IMU update (ORIENT_FLAG_MAG_USED clear), except in GMVDK once it runs", for every
+/// kind: on the step that ends start-up (the still period's mean field vertical;
+/// McGinnis' filter taking its heading from the field) and on a step afterwards, where
+/// GMVDK's magnetometer pipeline aligns the whole field (eqs. 10-12) and uses it.
+#[test]
+#[cfg_attr(miri, ignore = "start-up periods of a few hundred samples per kind")]
+fn a_field_parallel_to_gravity_is_not_used_for_heading() {
+    let accel = Vec3::new(0.0, 0.0, 9.81);
+    let vertical = Sample {
+        dt: 0.01,
+        gyro: Some(Vec3::ZERO),
+        accel: Some(accel),
+        mag: Some(Vec3::new(0.0, 0.0, -45.0)),
+    };
+    for kind in Kind::ALL {
+        let mut config = Config::new(kind).unwrap();
+        if kind == Kind::Complementary {
+            config.set("align_heading", 1.0).unwrap().unwrap();
+        }
+        let mut f = Filter::new(&config).unwrap();
+        let mut n = 0;
+        while f.flags() & flags::INITIALIZED == 0 && n < 10_000 {
+            f.update(&vertical).unwrap();
+            n += 1;
+        }
+        assert!(f.flags() & flags::INITIALIZED != 0, "{kind:?}");
+        assert_eq!(f.flags() & flags::MAG_USED, 0, "{kind:?}: start-up with a vertical field");
+        f.update(&vertical).unwrap();
+        let used = if kind == Kind::Gmvdk { flags::MAG_USED } else { 0 };
+        assert_eq!(f.flags() & flags::MAG_USED, used, "{kind:?}: a step with a vertical field");
+        assert!(f.quaternion().is_finite(), "{kind:?}");
+    }
+}
