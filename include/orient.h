@@ -814,7 +814,8 @@ enum OrientStatus
    */
   ORIENT_STATUS_NON_FINITE = 7,
   /**
-   * dt is below 1e-9 s (zero, negative, subnormal), above 1e6 s, NaN or infinite.
+   * dt is below 1e-9 s (zero, negative, subnormal), above 1e6 s, NaN or infinite
+   * (a zero dt is a burst sample instead when ORIENT_PARAM_SAME_INSTANT is 1).
    */
   ORIENT_STATUS_INVALID_DT = 8,
   /**
@@ -829,7 +830,9 @@ enum OrientStatus
    */
   ORIENT_STATUS_TOO_LARGE = 10,
   /**
-   * A reading at or beyond the configured ORIENT_PARAM_*_RANGE.
+   * A reading at or beyond the configured ORIENT_PARAM_*_RANGE (with
+   * ORIENT_PARAM_SATURATION_RECOVERY set to 1 the sample is used clipped instead and
+   * ORIENT_FLAG_SATURATED is set).
    */
   ORIENT_STATUS_SATURATED = 11,
   /**
@@ -837,7 +840,8 @@ enum OrientStatus
    */
   ORIENT_STATUS_MISSING_SENSOR = 12,
   /**
-   * The filter waits for its first accelerometer sample (ORIENT_INIT_ACC_MAG).
+   * The filter waits for its first accelerometer sample (ORIENT_INIT_ACC_MAG); with
+   * ORIENT_PARAM_SAME_INSTANT set to 1, for its first sample with dt > 0 as well.
    */
   ORIENT_STATUS_NOT_INITIALIZED = 13,
   /**
@@ -1652,7 +1656,9 @@ OrientStatus orient_filter_save(const OrientFilter *filter,
 OrientStatus orient_filter_load(OrientFilter *filter, const uint8_t *buffer, size_t size);
 
 /**
- * Back to the state right after orient_filter_new(); parameters set since are kept.
+ * Back to the state right after orient_filter_new(); parameters set since are kept, and
+ * so are the mounting, heading offset, declination and sensor models set since (see
+ * their functions).
  */
 OrientStatus orient_filter_reset(OrientFilter *filter);
 
@@ -1666,9 +1672,11 @@ OrientStatus orient_filter_set_quaternion(OrientFilter *filter, const struct Ori
  * One update. On any status but OK the filter's state is exactly as before.
  *
  * Checks, in order: flags and reserved (INVALID_ARGUMENT); dt finite, at least 1e-9 s
- * and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards);
+ * and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards;
+ * ORIENT_PARAM_SAME_INSTANT makes dt = 0 a burst sample instead);
  * gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
- * ORIENT_PARAM_GYRO_RANGE (SATURATED), every component below 1e4 rad/s (TOO_LARGE);
+ * ORIENT_PARAM_GYRO_RANGE (SATURATED, unless ORIENT_PARAM_SATURATION_RECOVERY uses it
+ * clipped), every component below 1e4 rad/s (TOO_LARGE);
  * accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
  * below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
  * nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE

@@ -148,7 +148,13 @@ fn models_and_host_frames_survive_reset_and_snapshots() {
     f.set_sensor_model(Sensor::Mag, Some(mag)).unwrap();
     f.set_mounting(Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), 0.4)).unwrap();
     f.set_declination(0.1).unwrap();
+    f.set_heading(0.7).unwrap();
+    let (mounting, offset) = (f.mounting(), f.heading_offset());
+    assert!(offset != 0.0);
     f.reset();
+    // The header: reset keeps the parameters, the mounting, the heading offset, the
+    // declination and the sensor models.
+    assert_eq!((f.mounting(), f.heading_offset()), (mounting, offset));
     assert_eq!(f.sensor_model(Sensor::Gyro), Some(gyro));
     assert_eq!(f.sensor_model(Sensor::Mag), Some(mag));
     assert_eq!(f.sensor_model(Sensor::Accel), None);

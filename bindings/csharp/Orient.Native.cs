@@ -60,7 +60,8 @@ namespace Orient.Native
         /// </summary>
         NonFinite = 7,
         /// <summary>
-        /// dt is below 1e-9 s (zero, negative, subnormal), above 1e6 s, NaN or infinite.
+        /// dt is below 1e-9 s (zero, negative, subnormal), above 1e6 s, NaN or infinite
+        /// (a zero dt is a burst sample instead when ORIENT_PARAM_SAME_INSTANT is 1).
         /// </summary>
         InvalidDt = 8,
         /// <summary>
@@ -75,7 +76,9 @@ namespace Orient.Native
         /// </summary>
         TooLarge = 10,
         /// <summary>
-        /// A reading at or beyond the configured ORIENT_PARAM_*_RANGE.
+        /// A reading at or beyond the configured ORIENT_PARAM_*_RANGE (with
+        /// ORIENT_PARAM_SATURATION_RECOVERY set to 1 the sample is used clipped instead and
+        /// ORIENT_FLAG_SATURATED is set).
         /// </summary>
         Saturated = 11,
         /// <summary>
@@ -83,7 +86,8 @@ namespace Orient.Native
         /// </summary>
         MissingSensor = 12,
         /// <summary>
-        /// The filter waits for its first accelerometer sample (ORIENT_INIT_ACC_MAG).
+        /// The filter waits for its first accelerometer sample (ORIENT_INIT_ACC_MAG); with
+        /// ORIENT_PARAM_SAME_INSTANT set to 1, for its first sample with dt &gt; 0 as well.
         /// </summary>
         NotInitialized = 13,
         /// <summary>
@@ -1677,7 +1681,9 @@ namespace Orient.Native
         public static extern Status orient_filter_load(IntPtr filter, byte* buffer, UIntPtr size);
 
         /// <summary>
-        /// Back to the state right after orient_filter_new(); parameters set since are kept.
+        /// Back to the state right after orient_filter_new(); parameters set since are kept, and
+        /// so are the mounting, heading offset, declination and sensor models set since (see
+        /// their functions).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_filter_reset(IntPtr filter);
@@ -1693,9 +1699,11 @@ namespace Orient.Native
         /// One update. On any status but OK the filter's state is exactly as before.
         ///
         /// Checks, in order: flags and reserved (INVALID_ARGUMENT); dt finite, at least 1e-9 s
-        /// and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards);
+        /// and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards;
+        /// ORIENT_PARAM_SAME_INSTANT makes dt = 0 a burst sample instead);
         /// gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
-        /// ORIENT_PARAM_GYRO_RANGE (SATURATED), every component below 1e4 rad/s (TOO_LARGE);
+        /// ORIENT_PARAM_GYRO_RANGE (SATURATED, unless ORIENT_PARAM_SATURATION_RECOVERY uses it
+        /// clipped), every component below 1e4 rad/s (TOO_LARGE);
         /// accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
         /// below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
         /// nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE

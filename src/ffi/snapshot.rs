@@ -57,7 +57,9 @@ pub unsafe extern "C" fn orient_filter_load(
     })
 }
 
-/// Back to the state right after orient_filter_new(); parameters set since are kept.
+/// Back to the state right after orient_filter_new(); parameters set since are kept, and
+/// so are the mounting, heading offset, declination and sensor models set since (see
+/// their functions).
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_reset(filter: *mut OrientFilter) -> OrientStatus {
     guard(|| {

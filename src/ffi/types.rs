@@ -117,7 +117,8 @@ pub enum OrientStatus {
     ParamOutOfRange = 6,
     /// A present sample field, or a given quaternion, holds NaN or +-Inf.
     NonFinite = 7,
-    /// dt is below 1e-9 s (zero, negative, subnormal), above 1e6 s, NaN or infinite.
+    /// dt is below 1e-9 s (zero, negative, subnormal), above 1e6 s, NaN or infinite
+    /// (a zero dt is a burst sample instead when ORIENT_PARAM_SAME_INSTANT is 1).
     InvalidDt = 8,
     /// An accelerometer, magnetometer or quaternion whose norm is zero (or so small
     /// that its square is not a normal double).
@@ -126,11 +127,14 @@ pub enum OrientStatus {
     /// or beyond its physical bound: gyroscope 1e4 rad/s, accelerometer 1e5 m/s^2,
     /// magnetometer 1e12 (any unit).
     TooLarge = 10,
-    /// A reading at or beyond the configured ORIENT_PARAM_*_RANGE.
+    /// A reading at or beyond the configured ORIENT_PARAM_*_RANGE (with
+    /// ORIENT_PARAM_SATURATION_RECOVERY set to 1 the sample is used clipped instead and
+    /// ORIENT_FLAG_SATURATED is set).
     Saturated = 11,
     /// The sample lacks a sensor the filter needs (every filter needs the gyroscope).
     MissingSensor = 12,
-    /// The filter waits for its first accelerometer sample (ORIENT_INIT_ACC_MAG).
+    /// The filter waits for its first accelerometer sample (ORIENT_INIT_ACC_MAG); with
+    /// ORIENT_PARAM_SAME_INSTANT set to 1, for its first sample with dt > 0 as well.
     NotInitialized = 13,
     /// The output needs data the filter has not received yet (linear acceleration
     /// before the first accelerometer sample).

@@ -5,9 +5,11 @@ use super::*;
 /// One update. On any status but OK the filter's state is exactly as before.
 ///
 /// Checks, in order: flags and reserved (INVALID_ARGUMENT); dt finite, at least 1e-9 s
-/// and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards);
+/// and at most 1e6 s (INVALID_DT; in a batch this catches timestamps going backwards;
+/// ORIENT_PARAM_SAME_INSTANT makes dt = 0 a burst sample instead);
 /// gyroscope present (MISSING_SENSOR), finite (NON_FINITE), within
-/// ORIENT_PARAM_GYRO_RANGE (SATURATED), every component below 1e4 rad/s (TOO_LARGE);
+/// ORIENT_PARAM_GYRO_RANGE (SATURATED, unless ORIENT_PARAM_SATURATION_RECOVERY uses it
+/// clipped), every component below 1e4 rad/s (TOO_LARGE);
 /// accelerometer and magnetometer, when present: finite (NON_FINITE), squared norm not
 /// below DBL_MIN (ZERO_VECTOR: zero, or so small that normalising it is meaningless)
 /// nor overflowing (TOO_LARGE), accelerometer within ORIENT_PARAM_ACCEL_RANGE
