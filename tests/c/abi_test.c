@@ -655,6 +655,66 @@ static void header_promises(void) {
     }
 }
 
+/* Header sentences the other cases do not reach: set_param keeps the estimate and refuses
+ * an unknown slot; orient_last_error() holds its detail through successful calls; a save
+ * into too small a buffer writes nothing; and the order of the update's checks around
+ * NOT_INITIALIZED. */
+static void more_promises(int32_t kind) {
+    OrientConfig c;
+    OrientFilter *f = NULL, *fresh = NULL;
+    OrientQuaternion before, after;
+    OrientSample s = good_sample();
+    uint8_t blob[64];
+    size_t written = 12345, size = 0, i;
+    uint32_t flags = 0;
+    int n = 0, untouched = 1;
+    char kept[256];
+    CHECK_STATUS(orient_config_default(kind, &c), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_new(&c, &f), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_new(&c, &fresh), ORIENT_STATUS_OK);
+    if (!f || !fresh) return;
+    s.gyro.x = s.gyro.y = s.gyro.z = 0.0; /* still: past any start-up period */
+    while (!(flags & ORIENT_FLAG_INITIALIZED) && n++ < 2000) {
+        CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_flags(f, &flags), ORIENT_STATUS_OK);
+    }
+    CHECK(flags & ORIENT_FLAG_INITIALIZED);
+    /* "Changes parameter slot id of a running filter; the estimate is kept." */
+    CHECK_STATUS(orient_filter_quaternion(f, &before), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_set_param(f, ORIENT_PARAM_GRAVITY, 9.7), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(f, &after), ORIENT_STATUS_OK);
+    CHECK(same_quaternion(before, after));
+    CHECK_STATUS(orient_filter_set_param(f, 9999, 1.0), ORIENT_STATUS_UNKNOWN_PARAM);
+    CHECK_STATUS(orient_filter_quaternion(f, &after), ORIENT_STATUS_OK);
+    CHECK(same_quaternion(before, after));
+    /* The detail stays until the next failing call: a successful call leaves it. */
+    strncpy(kept, orient_last_error(), sizeof kept - 1);
+    kept[sizeof kept - 1] = 0;
+    CHECK(kept[0] != 0);
+    CHECK_STATUS(orient_filter_quaternion(f, &after), ORIENT_STATUS_OK);
+    CHECK(strcmp(kept, orient_last_error()) == 0);
+    /* BUFFER_TOO_SMALL: the call changed nothing, the buffer and *written included. */
+    CHECK_STATUS(orient_filter_state_size(f, &size), ORIENT_STATUS_OK);
+    CHECK(size > sizeof blob);
+    memset(blob, 0xA5, sizeof blob);
+    CHECK_STATUS(orient_filter_save(f, blob, sizeof blob, &written), ORIENT_STATUS_BUFFER_TOO_SMALL);
+    CHECK(written == 12345);
+    for (i = 0; i < sizeof blob; i++) untouched = untouched && blob[i] == 0xA5;
+    CHECK(untouched);
+    /* Order: dt and the gyroscope are checked before NOT_INITIALIZED (the last check). */
+    s = good_sample();
+    s.flags = ORIENT_SAMPLE_GYRO;
+    s.gyro.y = NAN;
+    CHECK_STATUS(orient_filter_update(fresh, &s), ORIENT_STATUS_NON_FINITE);
+    s.gyro.y = 0.0;
+    s.dt = -1.0;
+    CHECK_STATUS(orient_filter_update(fresh, &s), ORIENT_STATUS_INVALID_DT);
+    s.dt = 0.01;
+    CHECK_STATUS(orient_filter_update(fresh, &s), ORIENT_STATUS_NOT_INITIALIZED);
+    CHECK_STATUS(orient_filter_free(f), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_free(fresh), ORIENT_STATUS_OK);
+}
+
 static void bad_input(int32_t kind) {
     OrientFilter *f = new_filter(kind);
     OrientFilter *twin = new_filter(kind);
@@ -1152,6 +1212,7 @@ int main(int argc, char **argv) {
     header_promises();
     for (k = ORIENT_KIND_MADGWICK; k <= ORIENT_KIND_ROBUST; k++) {
         bad_input(k);
+        more_promises(k);
         diagnostics(k);
         uncertainty(k);
     }
