@@ -147,11 +147,9 @@ pub unsafe extern "C" fn orient_filters_update(
         if n == 0 {
             return Ok(());
         }
-        // Both arrays' NULL before either count (items checks one array at a time).
-        if filters.is_null() || samples.is_null() {
-            return Err(null());
-        }
-        let samples = items(samples, n, "samples")?;
+        // A NULL `filters` comes before the samples' count (items tests one array at a
+        // time): tested on that error's path only, which leaves the loop below as it was.
+        let samples = items(samples, n, "samples").map_err(|e| if filters.is_null() { null() } else { e })?;
         let handles = items(filters, n, "filters")?;
         if let Some(i) = handles.iter().position(|h| h.is_null()) {
             return Err(fail(OrientStatus::NullPointer, format_args!("filter {i} is NULL")));

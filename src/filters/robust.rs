@@ -272,14 +272,6 @@ settings! {
 }
 
 /// Dip of an earth-frame (ENU) field: positive when it points down.
-/// `false`: the field gave no heading. Out of line and cold, so that the test that leads
-/// here (a field parallel to gravity) leaves the usual path as it was.
-#[cold]
-#[inline(never)]
-fn no_heading() -> bool {
-    false
-}
-
 fn dip(f: Vec3) -> f64 {
     libm::asin((-f.z / f.norm()).clamp(-1.0, 1.0))
 }
@@ -1043,13 +1035,11 @@ impl Robust {
             self.ref_confirmed = (self.ref_confirmed + dt).min(MAG_CONFIRM_TIME);
         }
         self.new_field(dt, raw_norm, raw_dip, turning);
-        let Some((f_e, f_norm, f_dip)) = field else { return false };
         // A field parallel to gravity has no horizontal part and gives no heading: a dip
         // within 1e-6 rad of vertical (horizontal at most about 1e-6 of the norm, the
-        // EKF's bound).
-        if f_dip.abs() >= core::f64::consts::FRAC_PI_2 - 1e-6 {
-            return no_heading();
-        }
+        // EKF's bound) is not used.
+        let heading = field.filter(|&(_, _, d)| d.abs() < core::f64::consts::FRAC_PI_2 - 1e-6);
+        let Some((f_e, f_norm, f_dip)) = heading else { return false };
         self.mag_count = self.mag_count.saturating_add(1);
         // The first samples are averaged (gain 1/n) until the exponential gain is larger.
         let k = lp_gain(dt, s.tau_mag).max(1.0 / self.mag_count as f64);
