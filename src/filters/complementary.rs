@@ -104,6 +104,7 @@ settings! {
                  the earth frame; 0 (default, the paper): heading relative to the sensor y axis.",
         },
     }
+    shared { gravity: f64 = GRAVITY }
 }
 
 /// McGinnis' complementary filter. Native frame: East-North-Up with "north" from the
@@ -211,9 +212,12 @@ impl Complementary {
     }
 
     /// A known initial attitude (native frame): the start-up period is skipped; the bias
-    /// starts at zero and g₀ is taken from the first accelerometer reading.
+    /// starts at zero and g₀ is the configured gravity (one reading could be a glitch, and
+    /// a wrong g₀ would hide rest, and so the correction, for good).
     pub fn set_quaternion(&mut self, q: Quat) {
-        self.phase = Phase::Running(Running { q, ..self.running() });
+        let r = self.running();
+        let g0 = if r.g0 == 0.0 { self.settings.gravity } else { r.g0 };
+        self.phase = Phase::Running(Running { q, g0, ..r });
     }
 
     /// After a gap: the attitude from the accelerometer (and, with `align_heading`, the
@@ -323,7 +327,10 @@ impl Complementary {
                 let (q, used_mag) = Complementary::initial_attitude(&self.settings, s);
                 step.used_accel = true;
                 step.used_mag = used_mag;
-                self.phase = Phase::Running(Running { q, bias, g0: s.accel_norm(), b0: bias, rest: false });
+                // A period that never kept still has no stationary norm either: g₀ is then
+                // the configured gravity, as its bias is zero.
+                let g0 = if s.moved() { self.settings.gravity } else { s.accel_norm() };
+                self.phase = Phase::Running(Running { q, bias, g0, b0: bias, rest: false });
                 return Some(step);
             }
         };

@@ -2,13 +2,32 @@
 //! readings over the period, and their means. Both papers take the initial bias and
 //! attitude from a still period; a period that was not still would give them a wrong
 //! bias and reference for good (McGinnis' rest test compares with them), so a sample
-//! that leaves the period's mean by more than the kind's stillness thresholds starts the
-//! period over from that sample. A sensor that never keeps still is not waited for
-//! forever: once [`PATIENCE`] periods have passed, the period in progress is finished
-//! whatever the motion, with a zero bias (the mean rate of a motion is no bias).
+//! that is not still starts the period over from that sample. Not still is:
+//! - a gyroscope reading that leaves the period's mean rate by more than the kind's
+//!   threshold, or one faster than [`MAX_STILL_RATE`] (no gyroscope's offset is that
+//!   large: a steady turn would otherwise pass for a still sensor with a large bias);
+//! - an accelerometer reading that leaves the period's mean *vector* by more than the
+//!   kind's threshold (a turn about any axis but the vertical turns it; its norm alone
+//!   does not change);
+//! - a magnetometer reading that leaves the period's mean by more than [`MAG_STILL`]
+//!   of its norm (a turn about the vertical turns it).
+//!
+//! A sensor that never keeps still is not waited for forever: once [`PATIENCE`] periods
+//! have passed, the period in progress is finished whatever the motion, with a zero bias
+//! (the mean rate of a motion is no bias).
 
 /// How many start-up durations to wait for a still period before starting without one.
 pub(crate) const PATIENCE: f64 = 5.0;
+
+/// The fastest gyroscope reading a still sensor gives (rad/s): 20 °/s, the worst-case
+/// zero-rate offset of common MEMS gyroscopes (InvenSense MPU-6050 datasheet, ±20 °/s
+/// initial tolerance).
+pub(crate) const MAX_STILL_RATE: f64 = 0.349_065_850_398_865_9;
+
+/// How far a still sensor's magnetometer reading may leave the period's mean, as a share
+/// of the mean's norm: 0.1, a turn of about 6° about the vertical, or a disturbance of a
+/// tenth of the field.
+pub(crate) const MAG_STILL: f64 = 0.1;
 
 use super::state::Codec;
 use crate::math::Vec3;
@@ -33,11 +52,27 @@ pub(crate) struct StartupMeans {
 pub(crate) struct Stillness {
     /// |ω − mean ω| (rad/s).
     pub gyro: f64,
-    /// | |a| − mean |a| | (m/s²).
+    /// |a − mean a| (m/s²).
     pub accel: f64,
 }
 
+impl Stillness {
+    /// The readings lie within the thresholds of the period's means.
+    fn holds(&self, s: &StartupMeans, gyro: Vec3, accel: Vec3) -> bool {
+        (gyro - s.gyro()).norm() <= self.gyro && (accel - s.accel()).norm() <= self.accel
+    }
+}
+
 impl StartupMeans {
+    /// The magnetometer reading, when there is one and the period has a mean, lies within
+    /// [`MAG_STILL`] of that mean.
+    fn mag_still(&self, mag: Option<Vec3>) -> bool {
+        match (mag, self.mag()) {
+            (Some(m), Some(mean)) => (m - mean).norm() <= MAG_STILL * mean.norm(),
+            _ => true,
+        }
+    }
+
     /// Adds one sample; true once the sums cover `duration` seconds. A sample that is not
     /// still against the period so far starts the period over.
     pub fn add(
@@ -49,10 +84,8 @@ impl StartupMeans {
         duration: f64,
         still: Stillness,
     ) -> bool {
-        if self.n > 0
-            && ((gyro - self.gyro()).norm() > still.gyro
-                || (accel.norm() - self.accel_norm()).abs() > still.accel)
-        {
+        let turning = gyro.norm() > MAX_STILL_RATE;
+        if turning || self.n > 0 && (!still.holds(self, gyro, accel) || !self.mag_still(mag)) {
             if self.elapsed < PATIENCE * duration {
                 *self = StartupMeans { elapsed: self.elapsed, ..StartupMeans::default() };
             } else {
@@ -93,6 +126,11 @@ impl StartupMeans {
 
     pub fn gyro(&self) -> Vec3 {
         self.gyro * (1.0 / self.n as f64)
+    }
+
+    /// True when the period ended without keeping still (the patience ran out).
+    pub fn moved(&self) -> bool {
+        self.moved
     }
 
     /// The initial bias: the mean rate of a still period, zero after motion.
