@@ -17,8 +17,22 @@
 //!    pass covers the recording's start with everything after it, the forward pass the
 //!    end.
 //!
-//! Unlike [`crate::Filter::update`], this allocates (one output per sample and the
-//! passes' estimates).
+//! # Memory
+//!
+//! The priming pass is the refusal check: it is a forward run of a new filter of the
+//! configuration, so the smoother refuses exactly the samples such a run refuses, before
+//! any output is written. The backward pass writes its orientation straight into the
+//! output slots and keeps only its heading sigma on the side; the final forward pass
+//! fuses each sample as it goes and overwrites that sample's slot. Samples are read
+//! where they lie ([`SampleSource`]), never copied. So beyond the caller's samples and
+//! outputs, [`smooth_into`] allocates [`MEMORY_PER_SAMPLE`] (8) bytes per sample, in one
+//! block reserved fallibly before the first pass ([`SmoothError::OutOfMemory`] when it
+//! cannot be had), and one filter (at most [`FIXED_MEMORY`] bytes, every kind) at a
+//! time: [`memory`] is the sum. [`smooth`] adds its result, 32 bytes per sample, also
+//! reserved fallibly.
+//!
+//! Unlike [`crate::Filter::update`], this allocates; [`passes`] and [`fuse`] give the
+//! two passes apart, for analysis, at 64 more bytes per sample.
 
 #![forbid(unsafe_code)]
 
@@ -26,21 +40,107 @@ use crate::filters::{Config, Error, Filter, Init, Kind, Sample};
 use crate::math::{Quat, Vec3};
 use core::fmt;
 
-/// Why a recording could not be smoothed: the first bad sample's index and the error
-/// [`Filter::update`] gave for it.
+/// Why a recording could not be smoothed.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SmoothError {
-    pub index: usize,
-    pub error: Error,
+pub enum SmoothError {
+    /// The first sample a forward run of a new filter of the configuration refuses: its
+    /// index and the error [`Filter::update`] gave for it (or the configuration's own
+    /// error, at index 0, when no filter can be built from it).
+    Sample { index: usize, error: Error },
+    /// A buffer the call needs, of `bytes` bytes, could not be allocated (or its size
+    /// overflows); nothing was written.
+    OutOfMemory { bytes: usize },
 }
 
 impl fmt::Display for SmoothError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "sample {}: {}", self.index, self.error)
+        match self {
+            SmoothError::Sample { index, error } => write!(f, "sample {index}: {error}"),
+            SmoothError::OutOfMemory { bytes } => {
+                write!(f, "a buffer of {bytes} bytes could not be allocated")
+            }
+        }
     }
 }
 
 impl std::error::Error for SmoothError {}
+
+/// Bytes [`smooth_into`] allocates per sample: the backward pass's heading sigma (one
+/// `f64`).
+pub const MEMORY_PER_SAMPLE: usize = core::mem::size_of::<f64>();
+
+/// A bound on the bytes [`smooth_into`] allocates besides [`MEMORY_PER_SAMPLE`] per
+/// sample: one filter of any kind at a time ([`Filter::memory`]; GMVDK's, with its 16 KB
+/// window, is the largest).
+pub const FIXED_MEMORY: usize = 32 * 1024;
+
+/// The bytes [`smooth_into`] may allocate for `n` samples, at most: `8 n` plus
+/// [`FIXED_MEMORY`]. None when no recording of `n` samples can exist: its outputs (32
+/// bytes each) or this figure would exceed `isize::MAX` bytes.
+pub fn memory(n: usize) -> Option<usize> {
+    if n > max_samples() {
+        return None;
+    }
+    n.checked_mul(MEMORY_PER_SAMPLE)?.checked_add(FIXED_MEMORY)
+}
+
+/// The largest count of samples a recording can have: its outputs, one [`Quat`] each,
+/// must fit in `isize::MAX` bytes.
+pub const fn max_samples() -> usize {
+    isize::MAX as usize / core::mem::size_of::<Quat>()
+}
+
+/// A recording the smoother reads in place, one sample at a time by index (each sample
+/// is read three times, once per pass). Implemented for `[Sample]`; the C ABI implements
+/// it over the host's arrays.
+pub trait SampleSource {
+    /// The number of samples.
+    fn len(&self) -> usize;
+    /// Sample `i`, for `i < self.len()`.
+    fn sample(&self, i: usize) -> Sample;
+    /// True for a recording without samples.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl SampleSource for [Sample] {
+    fn len(&self) -> usize {
+        <[Sample]>::len(self)
+    }
+    fn sample(&self, i: usize) -> Sample {
+        self[i]
+    }
+}
+
+/// The smoother's output slots, one orientation per sample: the backward pass's
+/// estimate is stored in a slot, read back once by the final forward pass and replaced
+/// with the fused orientation. Implemented for `[Quat]`; the C ABI implements it over
+/// the host's output array.
+pub trait Orientations {
+    /// The number of slots.
+    fn len(&self) -> usize;
+    /// The orientation last stored in slot `i`.
+    fn get(&self, i: usize) -> Quat;
+    /// Stores `q` in slot `i`.
+    fn set(&mut self, i: usize, q: Quat);
+    /// True for no slots.
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl Orientations for [Quat] {
+    fn len(&self) -> usize {
+        <[Quat]>::len(self)
+    }
+    fn get(&self, i: usize) -> Quat {
+        self[i]
+    }
+    fn set(&mut self, i: usize, q: Quat) {
+        self[i] = q;
+    }
+}
 
 /// The recommended kind's heading time constant `tau_mag` in the offline defaults (s),
 /// three times its causal default. A residual gyroscope bias turns a causal pass's
@@ -67,56 +167,156 @@ pub fn smooth_default(samples: &[Sample]) -> Result<Vec<Quat>, SmoothError> {
 }
 
 /// The smoothed orientation at every sample (in the configuration's frame), through the
-/// configured kind and parameters. Fails at the first sample [`Filter::update`] refuses
-/// in a forward run of the same configuration, naming its index; an empty recording
-/// gives an empty result.
+/// configured kind and parameters: [`smooth_into`] a new vector, reserved fallibly.
+/// Fails at the first sample [`Filter::update`] refuses in a forward run of the same
+/// configuration, naming its index, or when memory runs out; an empty recording gives
+/// an empty result.
 pub fn smooth(config: &Config, samples: &[Sample]) -> Result<Vec<Quat>, SmoothError> {
-    let (fore, back) = passes(config, samples)?;
-    Ok(fuse(&fore, &back))
+    let mut out = Vec::new();
+    reserve(&mut out, samples.len())?;
+    out.resize(samples.len(), Quat::IDENTITY);
+    smooth_into(config, samples, &mut out[..])?;
+    Ok(out)
+}
+
+/// [`smooth`] into the caller's slots: `out[i]` receives the smoothed orientation at
+/// sample `i`. Allocates at most [`memory`]`(n)` bytes (see the module's "Memory").
+/// On an error `out` is unchanged: a refused sample is found by the priming pass and
+/// the side buffer is reserved before it, both before anything is written. Steps the
+/// backward or the final forward pass refuses although the forward run accepted them
+/// (a gyroscope reading re-signed and offset by the bias estimate reaching a bound the
+/// original stayed within) are skipped: that pass holds its state over the step.
+///
+/// # Panics
+///
+/// When `out` and `samples` differ in length.
+pub fn smooth_into<S, O>(config: &Config, samples: &S, out: &mut O) -> Result<(), SmoothError>
+where
+    S: SampleSource + ?Sized,
+    O: Orientations + ?Sized,
+{
+    let n = samples.len();
+    assert_eq!(out.len(), n, "one output slot per sample");
+    if n == 0 {
+        return Ok(());
+    }
+    let mut back_sigma: Vec<f64> = Vec::new();
+    reserve(&mut back_sigma, n)?;
+    back_sigma.resize(n, 0.0);
+    run(config, samples, &mut InPlace { out, back_sigma })
+}
+
+/// The passes' estimates as [`smooth_into`] keeps them: the backward pass's orientation
+/// in the output slot, its heading sigma on the side; the forward pass's fused at once.
+struct InPlace<'a, O: ?Sized> {
+    out: &'a mut O,
+    back_sigma: Vec<f64>,
+}
+
+impl<O: Orientations + ?Sized> Estimates for InPlace<'_, O> {
+    fn back(&mut self, j: usize, q: Quat, sigma: f64) {
+        self.out.set(j, q);
+        self.back_sigma[j] = sigma;
+    }
+    fn fore(&mut self, i: usize, q: Quat, sigma: f64) {
+        let fused = fuse_one(q, self.out.get(i), sigma, self.back_sigma[i]);
+        self.out.set(i, fused);
+    }
+}
+
+/// Where the passes hand their estimate at each sample: an orientation and the modelled
+/// heading sigma.
+trait Estimates {
+    /// The backward pass's at sample `j`, from the last sample to the first.
+    fn back(&mut self, j: usize, q: Quat, sigma: f64);
+    /// The final forward pass's at sample `i`, from the first sample to the last, each
+    /// after the backward pass's at the same sample.
+    fn fore(&mut self, i: usize, q: Quat, sigma: f64);
+}
+
+/// Reserves exactly `n` more elements, or says how many bytes could not be had.
+fn reserve<T>(v: &mut Vec<T>, n: usize) -> Result<(), SmoothError> {
+    v.try_reserve_exact(n)
+        .map_err(|_| SmoothError::OutOfMemory { bytes: n.saturating_mul(core::mem::size_of::<T>()) })
 }
 
 /// The forward and the backward pass of [`smooth`] before fusion (steps 1-3), each an
-/// orientation at every sample.
+/// orientation and a heading sigma at every sample (64 bytes per sample, reserved
+/// fallibly).
 pub fn passes(config: &Config, samples: &[Sample]) -> Result<(Track, Track), SmoothError> {
     let n = samples.len();
-    if n == 0 {
-        return Ok((Track::default(), Track::default()));
+    let mut tracks = (Track::default(), Track::default());
+    for t in [&mut tracks.0, &mut tracks.1] {
+        reserve(&mut t.q, n)?;
+        reserve(&mut t.sigma, n)?;
+        t.q.resize(n, Quat::IDENTITY);
+        t.sigma.resize(n, 0.0);
     }
-    let fail = |index: usize| move |error: Error| SmoothError { index, error };
-    // 1. Priming forward pass: the whole state at the recording's end.
+    run(config, samples, &mut tracks)?;
+    Ok(tracks)
+}
+
+/// (forward, backward): each pass's estimates in full.
+impl Estimates for (Track, Track) {
+    fn back(&mut self, j: usize, q: Quat, sigma: f64) {
+        (self.1.q[j], self.1.sigma[j]) = (q, sigma);
+    }
+    fn fore(&mut self, i: usize, q: Quat, sigma: f64) {
+        (self.0.q[i], self.0.sigma[i]) = (q, sigma);
+    }
+}
+
+/// Steps 1-3: the priming pass (whose refusals are the call's), then the backward and
+/// the forward pass, handing their estimates to `to`.
+fn run<S: SampleSource + ?Sized>(
+    config: &Config,
+    samples: &S,
+    to: &mut impl Estimates,
+) -> Result<(), SmoothError> {
+    let n = samples.len();
+    if n == 0 {
+        return Ok(());
+    }
+    let fail = |index: usize| move |error: Error| SmoothError::Sample { index, error };
+    // 1. Priming forward pass: the whole state at the recording's end. Exactly a forward
+    // run of a new filter, so it refuses exactly what such a run refuses.
     let mut prime = Pass { filter: Filter::new(config).map_err(fail(0))?, sign: 1.0, offset: Vec3::ZERO };
-    for (i, s) in samples.iter().enumerate() {
-        prime.step(s, s.gyro).map_err(fail(i))?;
+    for i in 0..n {
+        let s = samples.sample(i);
+        prime.step(&s, s.gyro).map_err(fail(i))?;
     }
     // 2. Backward pass, continuing from the priming pass's end state.
     let mut backward = prime.turned();
-    let mut back = Track { q: vec![Quat::IDENTITY; n], sigma: vec![0.0; n] };
     let mut sigma = FLOOR;
+    let mut next = None::<Sample>;
     for j in (0..n).rev() {
+        let s = samples.sample(j);
         // The step back to sample j is sample j + 1's reading; the last sample is where
         // the pass starts, so it takes no rotation.
-        let gyro = samples.get(j + 1).map_or(Some(Vec3::ZERO), |s| s.gyro);
-        let dt = samples.get(j + 1).map_or(samples[j].dt, |s| s.dt);
-        backward.step(&Sample { dt, ..samples[j] }, gyro).map_err(fail(j))?;
+        let gyro = next.map_or(Some(Vec3::ZERO), |s| s.gyro);
+        let dt = next.map_or(s.dt, |s| s.dt);
+        // A refused step is held (see smooth_into): the filter is unchanged by it.
+        let _ = backward.step(&Sample { dt, ..s }, gyro);
         sigma = heading_sigma(sigma, dt, &backward.filter);
-        back.q[j] = backward.filter.quaternion();
-        back.sigma[j] = sigma;
+        to.back(j, backward.filter.quaternion(), sigma);
+        next = Some(s);
     }
     // 3. Forward pass, continuing from the backward pass's state at the first sample;
     // from the host's own initial orientation when the configuration gives one.
-    let mut fore_pass = backward.turned();
-    if !matches!(config.init, Init::AccMag) {
-        fore_pass = Pass { filter: Filter::new(config).map_err(fail(0))?, sign: 1.0, offset: Vec3::ZERO };
-    }
-    let mut fore = Track { q: Vec::with_capacity(n), sigma: Vec::with_capacity(n) };
+    let mut fore_pass = if matches!(config.init, Init::AccMag) {
+        backward.turned()
+    } else {
+        drop(backward);
+        Pass { filter: Filter::new(config).map_err(fail(0))?, sign: 1.0, offset: Vec3::ZERO }
+    };
     let mut sigma = FLOOR;
-    for (i, s) in samples.iter().enumerate() {
-        fore_pass.step(s, s.gyro).map_err(fail(i))?;
+    for i in 0..n {
+        let s = samples.sample(i);
+        let _ = fore_pass.step(&s, s.gyro);
         sigma = heading_sigma(sigma, s.dt, &fore_pass.filter);
-        fore.q.push(fore_pass.filter.quaternion());
-        fore.sigma.push(sigma);
+        to.fore(i, fore_pass.filter.quaternion(), sigma);
     }
-    Ok((fore, back))
+    Ok(())
 }
 
 /// A filter run over the recording in one direction (`sign` +1 forward, -1 backward in
@@ -151,10 +351,12 @@ impl Pass {
 
     /// A pass in the other direction that continues from this one's whole state
     /// (orientation, bias, field reference, rest detection): with the same subtracted β,
-    /// its offset makes `-sign g + offset - β = -sign (g - b)`.
-    fn turned(&self) -> Pass {
+    /// its offset makes `-sign g + offset - β = -sign (g - b)`. The filter moves over:
+    /// one filter is alive at a time.
+    fn turned(self) -> Pass {
         let sign = -self.sign;
-        Pass { filter: self.filter.clone(), sign, offset: self.subtracted() - self.bias() * sign }
+        let offset = self.subtracted() - self.bias() * sign;
+        Pass { filter: self.filter, sign, offset }
     }
 }
 
@@ -193,11 +395,15 @@ pub fn fuse(fore: &Track, back: &Track) -> Vec<Quat> {
         .iter()
         .zip(&back.q)
         .zip(fore.sigma.iter().zip(&back.sigma))
-        .map(|((f, b), (sf, sb))| {
-            let (vf, vb) = (sf * sf, sb * sb);
-            slerp(*f, *b, vf / (vf + vb))
-        })
+        .map(|((f, b), (sf, sb))| fuse_one(*f, *b, *sf, *sb))
         .collect()
+}
+
+/// One sample's fusion: the SLERP from the forward pass's `f` towards the backward
+/// pass's `b` by the share of the forward pass's heading variance.
+fn fuse_one(f: Quat, b: Quat, sigma_f: f64, sigma_b: f64) -> Quat {
+    let (vf, vb) = (sigma_f * sigma_f, sigma_b * sigma_b);
+    slerp(f, b, vf / (vf + vb))
 }
 
 /// Spherical interpolation from `a` (share 0) to `b` (share 1) along the shorter arc.
@@ -243,8 +449,21 @@ mod tests {
         let mut samples = vec![good; 5];
         samples[3].gyro = Some(Vec3::new(f64::NAN, 0.0, 0.0));
         let e = smooth_default(&samples).unwrap_err();
-        assert_eq!(e.index, 3);
+        assert!(matches!(e, SmoothError::Sample { index: 3, error: Error::NonFinite(_) }), "{e:?}");
         assert_eq!(smooth_default(&[]).unwrap(), Vec::<Quat>::new());
         assert_eq!(smooth_default(&samples[..3]).unwrap().len(), 3);
+    }
+
+    #[test]
+    fn one_filter_of_any_kind_fits_the_fixed_part() {
+        for kind in Kind::ALL {
+            let f = Filter::new(&Config::new(kind).unwrap()).unwrap();
+            assert!(f.memory() <= FIXED_MEMORY, "{kind:?}: {} bytes", f.memory());
+        }
+        assert_eq!(memory(0), Some(FIXED_MEMORY));
+        assert_eq!(memory(1000), Some(8000 + FIXED_MEMORY));
+        assert_eq!(memory(max_samples()), Some(max_samples() * 8 + FIXED_MEMORY));
+        assert_eq!(memory(max_samples() + 1), None);
+        assert_eq!(memory(usize::MAX), None);
     }
 }

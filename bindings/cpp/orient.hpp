@@ -364,6 +364,14 @@ inline OrientStatus smooth(const Config& config, std::size_t n, const double* dt
     return orient_smooth_arrays(&config.raw(), n, dt, dt_count, gyro, accel, mag, out, processed);
 }
 
+/// The most bytes orient::smooth allocates for n samples (orient_smooth_memory): 8 per
+/// sample plus 32768, whatever the kind. ORIENT_STATUS_COUNT_TOO_LARGE above
+/// PTRDIFF_MAX / 32; a buffer that cannot be allocated makes orient::smooth return
+/// ORIENT_STATUS_OUT_OF_MEMORY with `out` unwritten.
+inline OrientStatus smooth_memory(std::size_t n, std::size_t* bytes) noexcept {
+    return orient_smooth_memory(n, bytes);
+}
+
 /// A magnetometer calibrator (ellipsoid fit over the readings; no allocation per reading).
 class MagCalibrator {
 public:

@@ -123,6 +123,11 @@ namespace Orient.Native
         /// of another filter kind; the filter is unchanged.
         /// </summary>
         InvalidState = 20,
+        /// <summary>
+        /// A buffer the call needs could not be allocated; nothing was changed
+        /// (orient_smooth_arrays: see orient_smooth_memory).
+        /// </summary>
+        OutOfMemory = 21,
     }
 
     /// <summary>
@@ -1473,22 +1478,46 @@ namespace Orient.Native
         public static extern Status orient_smooth_config_default(Config* config);
 
         /// <summary>
+        /// Writes to `*bytes` the most memory orient_smooth_arrays allocates for `n` samples
+        /// whose output array does not overlap an input array: 8 bytes per sample (the backward
+        /// pass's heading uncertainty; its orientations are kept in `quaternions`) plus 32768
+        /// for the filter, `8 n + 32768`, whatever the kind. Allocates nothing. The largest `n`
+        /// is PTRDIFF_MAX / 32 (the output array's size in bytes must fit a ptrdiff_t: 2^58 - 1
+        /// on 64-bit targets, 2^26 - 1 on 32-bit ones); a larger `n` is
+        /// ORIENT_STATUS_COUNT_TOO_LARGE and leaves `*bytes` unwritten.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_smooth_memory(UIntPtr n, UIntPtr* bytes);
+
+        /// <summary>
         /// Smooths a whole recording offline (non-causal: every output uses the samples before
         /// and after it) and writes the orientation at each sample to `quaternions` (room for
         /// `n`, in the configuration's frame). Runs the kind and parameters of `config` forward,
         /// then backward over the time-reversed recording, then forward again, and fuses the two
         /// directions at each sample by a SLERP weighted by each direction's confidence. For
-        /// motion-capture post-processing; allocates memory for the recording, unlike
-        /// orient_filter_update.
+        /// motion-capture post-processing.
         ///
         /// The arrays are those of orient_filter_update_arrays: `gyro` holds `3 n` doubles (x,
         /// y, z of sample 0, then of sample 1, ...), `accel` and `mag` likewise or NULL, `dt`
         /// holds `dt_count` doubles, 1 or `n` (any other count is
         /// ORIENT_STATUS_INVALID_ARGUMENT). A sample that orient_filter_update would refuse in a
         /// forward run of a new filter of this configuration fails the call with that status;
-        /// `*processed` (when not NULL) is then its index and `quaternions` is left unwritten. On
+        /// `*processed` (when not NULL) is then its index and `quaternions` is left unwritten. No
+        /// other sample fails the call: a step the backward or the final forward pass refuses
+        /// (a gyroscope reading re-signed and offset by the bias estimate reaching a bound the
+        /// reading itself stayed within) is skipped, that pass holding its estimate over it. On
         /// success `*processed` is `n`. `gyro`, `dt` and `quaternions` may be NULL only when `n`
         /// is 0.
+        ///
+        /// Memory: the arrays are read in place and `quaternions` holds the backward pass's
+        /// estimates until the fusion overwrites them, so the call allocates 8 bytes per sample
+        /// and one filter, at most orient_smooth_memory(n) bytes (8 n + 32768), in one block
+        /// reserved before the first sample is read. When that block cannot be allocated the
+        /// call returns ORIENT_STATUS_OUT_OF_MEMORY, `quaternions` is left unwritten and
+        /// `*processed` is 0. `n` above PTRDIFF_MAX / 32 is ORIENT_STATUS_COUNT_TOO_LARGE. When
+        /// `quaternions` overlaps an input array, the inputs are first copied (104 more bytes
+        /// per sample, OUT_OF_MEMORY as well when they cannot be had), so the results are those
+        /// of separate arrays.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_smooth_arrays(Config* config, UIntPtr n, double* dt, UIntPtr dtCount, double* gyro, double* accel, double* mag, Quaternion* quaternions, UIntPtr* processed);

@@ -354,7 +354,8 @@ namespace Orient
         /// backward through the kind and parameters of settings; every output uses the
         /// samples before and after it. gyro holds 3n doubles (x, y, z per sample), accel and
         /// mag likewise or null, dt 1 or n doubles. Returns the n orientations; throws
-        /// OrientException at the first bad sample (its index is in the message).
+        /// OrientException at the first bad sample (its index is in the message), and with
+        /// Status.OutOfMemory when the library's buffer (SmoothMemory) cannot be allocated.
         /// </summary>
         public static unsafe Native.Quaternion[] Smooth(OrientSettings settings, double[] dt, double[] gyro, double[] accel, double[] mag)
         {
@@ -376,6 +377,18 @@ namespace Orient
             }
             OrientException.Check(s);
             return q;
+        }
+
+        /// <summary>
+        /// Bytes Smooth may allocate inside the library for n samples (orient_smooth_memory):
+        /// 8 per sample plus 32768, whatever the kind, besides the returned array. Throws
+        /// OrientException (CountTooLarge) above PTRDIFF_MAX / 32.
+        /// </summary>
+        public static unsafe ulong SmoothMemory(ulong n)
+        {
+            UIntPtr bytes = UIntPtr.Zero;
+            OrientException.Check(NativeMethods.orient_smooth_memory((UIntPtr)n, &bytes));
+            return (ulong)bytes;
         }
 
         public int UpdateBatch(Sample[] samples, Native.Quaternion[] quaternions)

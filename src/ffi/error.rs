@@ -125,6 +125,7 @@ pub(crate) fn status_message(status: i32) -> &'static [u8] {
         18 => b"internal panic caught at the C boundary\0",
         19 => b"output buffer too small\0",
         20 => b"state blob truncated, corrupted, or of another version or kind\0",
+        21 => b"a buffer the call needs could not be allocated\0",
         _ => b"unknown status code\0",
     }
 }
@@ -157,7 +158,7 @@ mod tests {
 
     #[test]
     fn every_status_has_a_message() {
-        for code in 0..=20 {
+        for code in 0..=21 {
             assert_ne!(status_message(code), b"unknown status code\0", "{code}");
         }
         assert_eq!(status_message(99), b"unknown status code\0");

@@ -155,6 +155,9 @@ pub enum OrientStatus {
     /// A state blob that is truncated, corrupted (checksum), of another format version or
     /// of another filter kind; the filter is unchanged.
     InvalidState = 20,
+    /// A buffer the call needs could not be allocated; nothing was changed
+    /// (orient_smooth_arrays: see orient_smooth_memory).
+    OutOfMemory = 21,
 }
 
 /// Filter kinds, as the `kind` argument and `OrientConfig.kind`.

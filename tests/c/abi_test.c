@@ -9,6 +9,7 @@
 #include "orient.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -250,11 +251,12 @@ static void layout(void) {
 
 static void status_messages(void) {
     int s;
-    for (s = ORIENT_STATUS_OK; s <= ORIENT_STATUS_INVALID_STATE; s++) {
+    for (s = ORIENT_STATUS_OK; s <= ORIENT_STATUS_OUT_OF_MEMORY; s++) {
         const char *m = orient_status_message(s);
         CHECK(m != NULL && strlen(m) > 0 && strcmp(m, "unknown status code") != 0);
     }
     CHECK(strcmp(orient_status_message(-7), "unknown status code") == 0);
+    CHECK(strcmp(orient_status_message(ORIENT_STATUS_OUT_OF_MEMORY + 1), "unknown status code") == 0);
     CHECK(orient_last_error() != NULL);
 }
 
@@ -1196,6 +1198,35 @@ static void offline_smoothing(void) {
                  ORIENT_STATUS_COUNT_TOO_LARGE);
     CHECK_STATUS(orient_smooth_arrays(&c, 0, NULL, 0, NULL, NULL, NULL, NULL, &processed), ORIENT_STATUS_OK);
     CHECK(processed == 0);
+    /* What the call may allocate: 8 bytes per sample and 32768, up to PTRDIFF_MAX / 32
+       samples. */
+    {
+        size_t bytes = 5, most = (size_t)PTRDIFF_MAX / 32;
+        CHECK_STATUS(orient_smooth_memory(0, &bytes), ORIENT_STATUS_OK);
+        CHECK(bytes == 32768);
+        CHECK_STATUS(orient_smooth_memory(N, &bytes), ORIENT_STATUS_OK);
+        CHECK(bytes == 8 * N + 32768);
+        CHECK_STATUS(orient_smooth_memory(most, &bytes), ORIENT_STATUS_OK);
+        CHECK(bytes == 8 * most + 32768);
+        bytes = 5;
+        CHECK_STATUS(orient_smooth_memory(most + 1, &bytes), ORIENT_STATUS_COUNT_TOO_LARGE);
+        CHECK_STATUS(orient_smooth_memory(SIZE_MAX, &bytes), ORIENT_STATUS_COUNT_TOO_LARGE);
+        CHECK(bytes == 5);
+        CHECK_STATUS(orient_smooth_memory(N, NULL), ORIENT_STATUS_NULL_POINTER);
+        CHECK_STATUS(orient_smooth_arrays(&c, most + 1, &dt, 1, gyro, accel, mag, q, &processed),
+                     ORIENT_STATUS_COUNT_TOO_LARGE);
+        /* On 64-bit targets the largest count needs 2^61 bytes, which no address space
+           holds: OUT_OF_MEMORY before any sample is read (the arrays hold only N), the
+           output unwritten. (tests/c/smooth_oom.c runs out of memory for real.) */
+        if (sizeof(size_t) == 8) {
+            again[0].w = 7.0;
+            processed = 99;
+            CHECK_STATUS(orient_smooth_arrays(&c, most, &dt, 1, gyro, accel, mag, again, &processed),
+                         ORIENT_STATUS_OUT_OF_MEMORY);
+            CHECK(processed == 0 && again[0].w == 7.0);
+            CHECK(strstr(orient_last_error(), "could not be allocated") != NULL);
+        }
+    }
 }
 
 int main(int argc, char **argv) {

@@ -265,6 +265,9 @@ static void offline() {
     CHECK(orient::smooth(config.value(), n, &dt, 1, gyro.data(), accel.data(), mag.data(), out.data(), &processed) ==
           ORIENT_STATUS_NON_FINITE);
     CHECK(processed == 5);
+    std::size_t bytes = 0;
+    CHECK(orient::smooth_memory(n, &bytes) == ORIENT_STATUS_OK && bytes == 8 * n + 32768);
+    CHECK(orient::smooth_memory(SIZE_MAX, &bytes) == ORIENT_STATUS_COUNT_TOO_LARGE);
 }
 
 /* Issue 20: mounting, heading, declination and rig calibration through the wrapper. */

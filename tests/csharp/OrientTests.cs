@@ -320,6 +320,9 @@ public static class OrientTests
         Check(OrientFilter.Smooth(offline, new[] { 0.01 }, gyro, accel, mag).Length == n, "Smooth with Offline");
         accel[3 * 5 + 2] = double.NaN;
         Throws(Status.NonFinite, () => OrientFilter.Smooth(settings, new[] { 0.01 }, gyro, accel, mag), "Smooth bad sample", "sample 5");
+        Check(OrientFilter.SmoothMemory((ulong)n) == 8 * (ulong)n + 32768, "SmoothMemory");
+        Throws(Status.CountTooLarge, () => OrientFilter.SmoothMemory(ulong.MaxValue), "SmoothMemory too large", "cannot fit");
+        Check((int)Status.OutOfMemory == 21, "Status.OutOfMemory");
     }
 
     /// The rotation angle from a to b (radians), well conditioned near 0.

@@ -39,3 +39,14 @@ def test_module_smooth_uses_the_offline_defaults():
     slow = orient.Robust(tau_mag=27.0).smooth(GYR, ACC, MAG, dt=0.01)
     assert (q == slow).all()
     assert q.shape == plain.shape == (N, 4)
+
+
+def test_smooth_memory_states_what_the_library_allocates():
+    assert orient.smooth_memory(0) == 32768
+    assert orient.smooth_memory(N) == 8 * N + 32768
+    most = (2**63 - 1) // 32
+    assert orient.smooth_memory(most) == 8 * most + 32768
+    with pytest.raises(orient.OrientError) as e:
+        orient.smooth_memory(most + 1)
+    assert e.value.status == orient.Status.COUNT_TOO_LARGE
+    assert orient.Status.OUT_OF_MEMORY == 21

@@ -31,6 +31,7 @@ from ._filter import (
     gyro_offset,
     params,
     smooth,
+    smooth_memory,
     status_message,
     version,
 )
@@ -89,6 +90,7 @@ __all__ = [
     "Status",
     "params",
     "smooth",
+    "smooth_memory",
     "status_message",
     "version",
 ]

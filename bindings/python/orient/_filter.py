@@ -190,6 +190,15 @@ def smooth(
     return f.smooth(gyr, acc, mag, dt=dt)
 
 
+def smooth_memory(count: int) -> int:
+    """Bytes the library may allocate while smoothing ``count`` samples
+    (``orient_smooth_memory``): 8 per sample plus 32768, whatever the kind, besides the
+    (count, 4) result. Raises OrientError (COUNT_TOO_LARGE) above PTRDIFF_MAX / 32."""
+    out = c_size_t()
+    _check(lib.orient_smooth_memory(count, byref(out)))
+    return out.value
+
+
 class Filter:
     """An orientation filter. Use a kind's class (:class:`Madgwick`, :class:`Robust`, ...)
     or ``Filter("robust", ...)``.
@@ -427,7 +436,9 @@ class Filter:
             (N, 4) w, x, y, z at every sample.
 
         Raises:
-            OrientError: at the first sample a forward run would refuse, with its ``index``.
+            OrientError: at the first sample a forward run would refuse, with its ``index``;
+                OUT_OF_MEMORY when the library's buffer (:func:`smooth_memory`) cannot
+                be allocated.
         """
         g = _rows(gyr, "gyr")
         count = g.shape[0]

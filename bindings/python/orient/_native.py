@@ -74,6 +74,7 @@ class Status(enum.IntEnum):
     PANIC = 18
     BUFFER_TOO_SMALL = 19
     INVALID_STATE = 20
+    OUT_OF_MEMORY = 21
 
 
 class Kind(enum.IntEnum):
@@ -256,6 +257,7 @@ PROTOTYPES = {
         ],
     ),
     "orient_smooth_config_default": (c_int32, [_P(OrientConfig)]),
+    "orient_smooth_memory": (c_int32, [c_size_t, _P(c_size_t)]),
     "orient_smooth_arrays": (
         c_int32,
         [
