@@ -1078,7 +1078,8 @@ typedef struct OrientSensorModel {
  * A magnetometer calibrator's state, owned by the host (on its stack or in its own
  * struct): initialise it with orient_mag_calibrator_init, feed it readings with
  * orient_mag_calibrator_add (no allocation, no samples kept), solve it with
- * orient_mag_calibrator_solve. Its fields are the fit's sums; do not write them.
+ * orient_mag_calibrator_solve. Its fields are the fit's sums and its outlier gate's
+ * state; do not write them.
  */
 typedef struct OrientMagCalibrator {
   double sums[55];
@@ -1086,6 +1087,9 @@ typedef struct OrientMagCalibrator {
   struct OrientVec3 mean;
   uint64_t count;
   uint64_t bins;
+  uint64_t rejected;
+  uint64_t streak;
+  double gate[10];
 } OrientMagCalibrator;
 
 /**
@@ -1102,7 +1106,10 @@ typedef struct OrientMagFit {
    */
   double field;
   /**
-   * RMS of |calibrated| / field - 1 over the readings: 0.01 is 1 %.
+   * RMS of |calibrated| / field - 1 over the readings kept, to first order: the RMS
+   * of (|calibrated|^2 / field^2 - 1) / 2, which the sums give exactly (within a few
+   * per cent of the RMS of |calibrated| / field - 1 for residuals up to 0.02). 0.01 is
+   * 1 %.
    */
   double residual;
   /**
@@ -1111,6 +1118,9 @@ typedef struct OrientMagFit {
    * in order (one latitude after another) gets less than it covered.
    */
   double coverage;
+  /**
+   * Readings kept (in the fit); orient_mag_calibrator_rejected gives those set aside.
+   */
   uint64_t samples;
   /**
    * 1 when coverage >= 0.5 and residual < 0.02 (the fit can be trusted), else 0.
@@ -1306,14 +1316,16 @@ OrientStatus orient_filter_update_arrays(OrientFilter *filter,
  * reading is checked first (finite, within its range and physical bound), then the
  * calibrated one. Kept by orient_filter_reset and saved in snapshots.
  * INVALID_ARGUMENT for an unknown sensor, NON_FINITE for a NaN or infinite entry,
- * ZERO_VECTOR for a singular matrix; nothing changes then.
+ * ZERO_VECTOR for a singular matrix (whatever its scale: |det| <= 1e-12 (|matrix|_F /
+ * sqrt 3)^3; any nonzero multiple of the identity is accepted); nothing changes then.
  */
 OrientStatus orient_filter_set_sensor_model(OrientFilter *filter,
                                             uint32_t sensor,
                                             const struct OrientSensorModel *model);
 
 /**
- * The model set for `sensor`; NO_DATA when none is set.
+ * The model set for `sensor`; NO_DATA when none is set, INVALID_ARGUMENT for an unknown
+ * sensor.
  */
 OrientStatus orient_filter_sensor_model(const OrientFilter *filter,
                                         uint32_t sensor,
@@ -1326,29 +1338,56 @@ OrientStatus orient_mag_calibrator_init(struct OrientMagCalibrator *calibrator);
 
 /**
  * Adds one magnetometer reading (any unit; raw, before any model). Rotate the sensor
- * over as many directions as possible. NON_FINITE for a NaN or infinite reading,
- * ZERO_VECTOR for a first reading of zero, INVALID_ARGUMENT for a struct that is not a
- * calibrator's state; nothing changes then.
+ * over as many directions as possible. The reading is checked as orient_filter_update
+ * checks a magnetometer reading: NON_FINITE for a NaN or infinite component,
+ * ZERO_VECTOR for a zero (or subnormal) norm, TOO_LARGE for a component at or beyond
+ * 1e12 or a norm that overflows; INVALID_ARGUMENT for a struct that is not a
+ * calibrator's state; nothing changes then. An accepted reading is kept, or set aside
+ * as an outlier (a dropped byte, a magnet passing) and counted by
+ * orient_mag_calibrator_rejected: once the readings kept give a fit with `trustworthy`
+ * set and coverage >= 0.75 (solved every 64 readings kept), a reading whose calibrated
+ * norm is more than 20 % off that fit's field; before, one whose norm is more than 8
+ * times the RMS norm of the readings kept (or, among the first 32, less than 1/8 of
+ * it). A reading kept before the first such fit stays in the fit, its weight falling
+ * as more readings are kept (one reading 2.5 times the field off among 3,000 lifts the
+ * residual by about 0.04): a fit that stays untrustworthy, or NO_DATA, after the sensor
+ * covered the sphere holds a disturbance (a magnet near the start, say); initialise
+ * the calibrator again. When more readings in a row are set aside than the
+ * calibrator keeps (and at least 32), the ones kept were the outliers: it starts over
+ * from the current reading, and counts those it kept as set aside.
  */
 OrientStatus orient_mag_calibrator_add(struct OrientMagCalibrator *calibrator,
                                        const struct OrientVec3 *mag);
 
 /**
- * Solves the ellipsoid fit of the readings so far (the calibrator is not changed, so
- * it can be solved again after more readings). NO_DATA with fewer than 10 readings or
- * when they do not determine an ellipsoid (all on a plane, say); check `trustworthy`
- * (or coverage and residual) before using the model.
+ * Solves the ellipsoid fit of the readings kept so far (the calibrator is not changed,
+ * so it can be solved again after more readings). NO_DATA with fewer than 10 readings
+ * or when they do not determine an ellipsoid (all on a plane, say), INVALID_ARGUMENT
+ * for a struct that is not a calibrator's state. Readings near a plane (a sensor turned
+ * about one axis only) determine an ellipsoid only through their noise: the fit's
+ * coverage is low and its model wrong off that plane; check `trustworthy` (or coverage
+ * and residual) before using the model.
  */
 OrientStatus orient_mag_calibrator_solve(const struct OrientMagCalibrator *calibrator,
                                          struct OrientMagFit *fit);
+
+/**
+ * The number of readings orient_mag_calibrator_add set aside as outliers (including
+ * those a restart discarded), into `*rejected`. INVALID_ARGUMENT for a struct that is
+ * not a calibrator's state.
+ */
+OrientStatus orient_mag_calibrator_rejected(const struct OrientMagCalibrator *calibrator,
+                                            uint64_t *rejected);
 
 /**
  * The gyroscope offset from `n` readings (rad/s) taken while the sensor was still: the
  * model that removes their mean (identity matrix, offset = mean), for
  * orient_filter_set_sensor_model with ORIENT_SENSOR_GYRO. `*spread` (when not NULL)
  * receives the readings' RMS deviation from the mean (rad/s): the still period's
- * noise; a much larger value says the sensor moved. INVALID_ARGUMENT for n = 0,
- * NON_FINITE for a NaN or infinite reading.
+ * noise; a much larger value says the sensor moved. Each reading is checked as
+ * orient_filter_update checks a gyroscope reading: NON_FINITE for a NaN or infinite
+ * component, TOO_LARGE for one at or beyond 1e4 rad/s. INVALID_ARGUMENT for n = 0,
+ * COUNT_TOO_LARGE for an `n` no array can hold; nothing is written then.
  */
 OrientStatus orient_gyro_offset(const struct OrientVec3 *readings,
                                 size_t n,
@@ -1605,6 +1644,7 @@ OrientStatus orient_filter_set_heading(OrientFilter *filter, double yaw);
 
 /**
  * orient_filter_set_heading(filter, 0): the yaw becomes 0, the inclination is kept.
+ * NOT_INITIALIZED before the filter has an orientation.
  */
 OrientStatus orient_filter_reset_heading(OrientFilter *filter);
 
@@ -1641,8 +1681,12 @@ OrientStatus orient_filter_declination(const OrientFilter *filter, double *decli
  * heading part on average. The filters must share one earth frame (a magnetometer,
  * or headings aligned before); declinations are kept. Every handle and reference is
  * checked before anything changes: INVALID_ARGUMENT for n = 0 or a handle listed
- * twice, NOT_INITIALIZED, NON_FINITE or ZERO_VECTOR (the detail names the index), and
- * NON_FINITE for an infinite `heading`.
+ * twice, COUNT_TOO_LARGE for an `n` no array can hold, NULL_POINTER for a NULL handle
+ * and INVALID_HANDLE for one that is not live; NOT_INITIALIZED for a filter without
+ * an orientation; a reference is checked as orient_filter_set_quaternion checks its
+ * quaternion: NON_FINITE, ZERO_VECTOR (a norm too small to normalise) or TOO_LARGE (a
+ * norm that overflows); the detail names the index. NON_FINITE for an infinite
+ * `heading`.
  */
 OrientStatus orient_rig_calibrate(OrientFilter *const *filters,
                                   const struct OrientQuaternion *references,

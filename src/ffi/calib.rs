@@ -29,7 +29,8 @@ pub struct OrientSensorModel {
 /// A magnetometer calibrator's state, owned by the host (on its stack or in its own
 /// struct): initialise it with orient_mag_calibrator_init, feed it readings with
 /// orient_mag_calibrator_add (no allocation, no samples kept), solve it with
-/// orient_mag_calibrator_solve. Its fields are the fit's sums; do not write them.
+/// orient_mag_calibrator_solve. Its fields are the fit's sums and its outlier gate's
+/// state; do not write them.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OrientMagCalibrator {
@@ -38,6 +39,9 @@ pub struct OrientMagCalibrator {
     pub mean: OrientVec3,
     pub count: u64,
     pub bins: u64,
+    pub rejected: u64,
+    pub streak: u64,
+    pub gate: [f64; 10],
 }
 
 /// What orient_mag_calibrator_solve found.
@@ -49,12 +53,16 @@ pub struct OrientMagFit {
     pub model: OrientSensorModel,
     /// The field's magnitude after calibration (the readings' unit).
     pub field: f64,
-    /// RMS of |calibrated| / field - 1 over the readings: 0.01 is 1 %.
+    /// RMS of |calibrated| / field - 1 over the readings kept, to first order: the RMS
+    /// of (|calibrated|^2 / field^2 - 1) / 2, which the sums give exactly (within a few
+    /// per cent of the RMS of |calibrated| / field - 1 for residuals up to 0.02). 0.01 is
+    /// 1 %.
     pub residual: f64,
     /// Fraction of 54 direction bins on the sphere that readings fell in (1: all), the
     /// directions taken from the readings' running mean: a sensor that sweeps the sphere
     /// in order (one latitude after another) gets less than it covered.
     pub coverage: f64,
+    /// Readings kept (in the fit); orient_mag_calibrator_rejected gives those set aside.
     pub samples: u64,
     /// 1 when coverage >= 0.5 and residual < 0.02 (the fit can be trusted), else 0.
     pub trustworthy: i32,
@@ -91,7 +99,8 @@ fn sensor_from(sensor: u32) -> Result<Sensor, OrientStatus> {
 /// reading is checked first (finite, within its range and physical bound), then the
 /// calibrated one. Kept by orient_filter_reset and saved in snapshots.
 /// INVALID_ARGUMENT for an unknown sensor, NON_FINITE for a NaN or infinite entry,
-/// ZERO_VECTOR for a singular matrix; nothing changes then.
+/// ZERO_VECTOR for a singular matrix (whatever its scale: |det| <= 1e-12 (|matrix|_F /
+/// sqrt 3)^3; any nonzero multiple of the identity is accepted); nothing changes then.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_set_sensor_model(
     filter: *mut OrientFilter,
@@ -106,7 +115,8 @@ pub unsafe extern "C" fn orient_filter_set_sensor_model(
     })
 }
 
-/// The model set for `sensor`; NO_DATA when none is set.
+/// The model set for `sensor`; NO_DATA when none is set, INVALID_ARGUMENT for an unknown
+/// sensor.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_sensor_model(
     filter: *const OrientFilter,
@@ -131,6 +141,9 @@ fn calibrator_from(c: &OrientMagCalibrator) -> Result<MagCalibrator, OrientStatu
         mean: Vec3::new(c.mean.x, c.mean.y, c.mean.z),
         count: c.count,
         bins: c.bins,
+        rejected: c.rejected,
+        streak: c.streak,
+        gate: c.gate,
     };
     MagCalibrator::from_parts(&parts).ok_or_else(|| {
         fail(
@@ -148,6 +161,9 @@ fn calibrator_to(c: &MagCalibrator) -> OrientMagCalibrator {
         mean: OrientVec3 { x: p.mean.x, y: p.mean.y, z: p.mean.z },
         count: p.count,
         bins: p.bins,
+        rejected: p.rejected,
+        streak: p.streak,
+        gate: p.gate,
     }
 }
 
@@ -158,9 +174,23 @@ pub unsafe extern "C" fn orient_mag_calibrator_init(calibrator: *mut OrientMagCa
 }
 
 /// Adds one magnetometer reading (any unit; raw, before any model). Rotate the sensor
-/// over as many directions as possible. NON_FINITE for a NaN or infinite reading,
-/// ZERO_VECTOR for a first reading of zero, INVALID_ARGUMENT for a struct that is not a
-/// calibrator's state; nothing changes then.
+/// over as many directions as possible. The reading is checked as orient_filter_update
+/// checks a magnetometer reading: NON_FINITE for a NaN or infinite component,
+/// ZERO_VECTOR for a zero (or subnormal) norm, TOO_LARGE for a component at or beyond
+/// 1e12 or a norm that overflows; INVALID_ARGUMENT for a struct that is not a
+/// calibrator's state; nothing changes then. An accepted reading is kept, or set aside
+/// as an outlier (a dropped byte, a magnet passing) and counted by
+/// orient_mag_calibrator_rejected: once the readings kept give a fit with `trustworthy`
+/// set and coverage >= 0.75 (solved every 64 readings kept), a reading whose calibrated
+/// norm is more than 20 % off that fit's field; before, one whose norm is more than 8
+/// times the RMS norm of the readings kept (or, among the first 32, less than 1/8 of
+/// it). A reading kept before the first such fit stays in the fit, its weight falling
+/// as more readings are kept (one reading 2.5 times the field off among 3,000 lifts the
+/// residual by about 0.04): a fit that stays untrustworthy, or NO_DATA, after the sensor
+/// covered the sphere holds a disturbance (a magnet near the start, say); initialise
+/// the calibrator again. When more readings in a row are set aside than the
+/// calibrator keeps (and at least 32), the ones kept were the outliers: it starts over
+/// from the current reading, and counts those it kept as set aside.
 #[no_mangle]
 pub unsafe extern "C" fn orient_mag_calibrator_add(
     calibrator: *mut OrientMagCalibrator,
@@ -175,10 +205,13 @@ pub unsafe extern "C" fn orient_mag_calibrator_add(
     })
 }
 
-/// Solves the ellipsoid fit of the readings so far (the calibrator is not changed, so
-/// it can be solved again after more readings). NO_DATA with fewer than 10 readings or
-/// when they do not determine an ellipsoid (all on a plane, say); check `trustworthy`
-/// (or coverage and residual) before using the model.
+/// Solves the ellipsoid fit of the readings kept so far (the calibrator is not changed,
+/// so it can be solved again after more readings). NO_DATA with fewer than 10 readings
+/// or when they do not determine an ellipsoid (all on a plane, say), INVALID_ARGUMENT
+/// for a struct that is not a calibrator's state. Readings near a plane (a sensor turned
+/// about one axis only) determine an ellipsoid only through their noise: the fit's
+/// coverage is low and its model wrong off that plane; check `trustworthy` (or coverage
+/// and residual) before using the model.
 #[no_mangle]
 pub unsafe extern "C" fn orient_mag_calibrator_solve(
     calibrator: *const OrientMagCalibrator,
@@ -204,12 +237,28 @@ pub unsafe extern "C" fn orient_mag_calibrator_solve(
     })
 }
 
+/// The number of readings orient_mag_calibrator_add set aside as outliers (including
+/// those a restart discarded), into `*rejected`. INVALID_ARGUMENT for a struct that is
+/// not a calibrator's state.
+#[no_mangle]
+pub unsafe extern "C" fn orient_mag_calibrator_rejected(
+    calibrator: *const OrientMagCalibrator,
+    rejected: *mut u64,
+) -> OrientStatus {
+    guard(|| {
+        need(calibrator.is_null())?;
+        put(rejected, || Ok(calibrator_from(&*calibrator)?.rejected()))
+    })
+}
+
 /// The gyroscope offset from `n` readings (rad/s) taken while the sensor was still: the
 /// model that removes their mean (identity matrix, offset = mean), for
 /// orient_filter_set_sensor_model with ORIENT_SENSOR_GYRO. `*spread` (when not NULL)
 /// receives the readings' RMS deviation from the mean (rad/s): the still period's
-/// noise; a much larger value says the sensor moved. INVALID_ARGUMENT for n = 0,
-/// NON_FINITE for a NaN or infinite reading.
+/// noise; a much larger value says the sensor moved. Each reading is checked as
+/// orient_filter_update checks a gyroscope reading: NON_FINITE for a NaN or infinite
+/// component, TOO_LARGE for one at or beyond 1e4 rad/s. INVALID_ARGUMENT for n = 0,
+/// COUNT_TOO_LARGE for an `n` no array can hold; nothing is written then.
 #[no_mangle]
 pub unsafe extern "C" fn orient_gyro_offset(
     readings: *const OrientVec3,

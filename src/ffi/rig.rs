@@ -59,6 +59,7 @@ pub unsafe extern "C" fn orient_filter_set_heading(filter: *mut OrientFilter, ya
 }
 
 /// orient_filter_set_heading(filter, 0): the yaw becomes 0, the inclination is kept.
+/// NOT_INITIALIZED before the filter has an orientation.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_reset_heading(filter: *mut OrientFilter) -> OrientStatus {
     guard(|| handle_mut(filter)?.filter.reset_heading().map_err(from_core))
@@ -134,8 +135,12 @@ unsafe fn rig<'a>(
 /// heading part on average. The filters must share one earth frame (a magnetometer,
 /// or headings aligned before); declinations are kept. Every handle and reference is
 /// checked before anything changes: INVALID_ARGUMENT for n = 0 or a handle listed
-/// twice, NOT_INITIALIZED, NON_FINITE or ZERO_VECTOR (the detail names the index), and
-/// NON_FINITE for an infinite `heading`.
+/// twice, COUNT_TOO_LARGE for an `n` no array can hold, NULL_POINTER for a NULL handle
+/// and INVALID_HANDLE for one that is not live; NOT_INITIALIZED for a filter without
+/// an orientation; a reference is checked as orient_filter_set_quaternion checks its
+/// quaternion: NON_FINITE, ZERO_VECTOR (a norm too small to normalise) or TOO_LARGE (a
+/// norm that overflows); the detail names the index. NON_FINITE for an infinite
+/// `heading`.
 #[no_mangle]
 pub unsafe extern "C" fn orient_rig_calibrate(
     filters: *const *mut OrientFilter,

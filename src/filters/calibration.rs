@@ -38,20 +38,26 @@ impl Model {
         )
     }
 
-    fn determinant(&self) -> f64 {
-        let m = &self.matrix;
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    }
-
-    /// NonFinite for a NaN or infinite entry, ZeroVector for a singular matrix.
+    /// NonFinite for a NaN or infinite entry; ZeroVector for a matrix that is singular
+    /// whatever its scale: `|det M| ≤ 10⁻¹² (‖M‖_F/√3)³`, computed on `M` divided by its
+    /// largest entry (so that neither 10¹¹⁰ nor 10⁻¹¹⁰ times the identity overflows or
+    /// underflows, and both pass as the identity does).
     fn check(&self, field: Field) -> Result<(), Error> {
         let finite = self.matrix.iter().flatten().all(|x| x.is_finite()) && self.offset.is_finite();
         if !finite {
             return Err(Error::NonFinite(field));
         }
-        let det = self.determinant();
-        if !(det.is_finite() && det.abs() >= 1e-12) {
+        let big = self.matrix.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        if big == 0.0 {
+            return Err(Error::ZeroVector(field));
+        }
+        let m = self.matrix.map(|row| row.map(|x| x / big));
+        let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        // ‖M‖_F²/3 ≥ 1/3 after the division: no underflow.
+        let mean_square = m.iter().flatten().map(|x| x * x).sum::<f64>() / 3.0;
+        if det.abs() <= 1e-12 * mean_square * mean_square.sqrt() {
             return Err(Error::ZeroVector(field));
         }
         Ok(())
@@ -173,6 +179,32 @@ impl<E: Estimator> Runner<E> {
 /// Number of direction bins of [`MagCalibrator`]'s coverage: 6 cube faces of 3 × 3.
 pub const COVERAGE_BINS: u32 = 54;
 
+/// [`MagCalibrator`]'s outlier gate once a fit can be trusted: a reading whose calibrated
+/// norm is more than this fraction of the field off the field is set aside (20 %: ten
+/// times the largest residual of a trustworthy fit, while a magnet or a corrupted byte
+/// moves a reading much further). A reading kept before the gate acts stays in the sums,
+/// its weight falling as more readings are kept: one reading 2.5 times the field off
+/// among 3,000 lifts the residual by about 0.04, and the fit is not trustworthy.
+pub const MAG_GATE_FIT: f64 = 0.2;
+/// The coverage from which a trustworthy fit becomes the outlier gate's: three quarters
+/// of the directions. Over half a sphere an ellipsoid can bend to take in a reading far
+/// off (2.5 times the field) with a residual under 0.02, and a gate on that fit would set
+/// good readings aside; over three quarters it cannot.
+pub const MAG_GATE_COVERAGE: f64 = 0.75;
+/// [`MagCalibrator`]'s outlier gate before a fit can be trusted: a reading whose norm is
+/// more than this factor above the RMS norm of the readings kept (or, among the first
+/// [`MAG_GATE_RESTART`] readings, below it) is set aside. The norms of one sensor's
+/// readings differ by less: `|h| ± F` for a hard-iron offset `h` and a field `F`.
+pub const MAG_GATE_BAND: f64 = 8.0;
+/// When more readings in a row than the calibrator keeps (and at least this many) were
+/// set aside, the kept ones were the outliers (a first reading from a corrupted frame,
+/// a sensor moved to another place): the calibrator starts over from the next reading,
+/// and counts the readings it held as set aside.
+pub const MAG_GATE_RESTART: u64 = 32;
+/// Readings are scaled by the first kept one's norm; one more than 10⁶⁰ times larger is
+/// set aside, so that no sum of fourth powers can overflow.
+const MAG_SCALED_MAX: f64 = 1e60;
+
 /// A magnetometer calibration estimator: an ellipsoid fit (the 10-parameter quadric
 /// `a x² + b y² + c z² + 2f yz + 2g xz + 2h xy + 2p x + 2q y + 2r z + d = 0`, algebraic
 /// least squares: the coefficients are the eigenvector of the scatter matrix `Σ dᵢ dᵢᵀ`
@@ -180,6 +212,14 @@ pub const COVERAGE_BINS: u32 = 54;
 /// fixed-size array, so `add` neither allocates nor keeps the samples;
 /// [`MagCalibrator::solve`] solves it on demand. Readings are scaled by the first one's
 /// norm, for conditioning.
+///
+/// Outliers (a dropped byte, a magnet passing) are set aside before they reach the sums:
+/// once the readings kept give a trustworthy fit ([`MagFit::trustworthy`]) over
+/// [`MAG_GATE_COVERAGE`] of the directions, by their distance from that fit's sphere
+/// ([`MAG_GATE_FIT`]); before, by a generous band on their norm
+/// ([`MAG_GATE_BAND`]), which a large hard-iron offset does not trip. The fit the gate uses
+/// is solved again every 64 kept readings, and replaced when it is trustworthy. See
+/// [`MAG_GATE_RESTART`] for a calibrator whose kept readings were the outliers.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MagCalibrator {
     /// Σ dᵢ dᵢᵀ of the design rows (upper triangle).
@@ -189,6 +229,13 @@ pub struct MagCalibrator {
     /// Running mean of the readings: the coverage's centre.
     mean: Vec3,
     bins: u64,
+    /// Readings set aside.
+    rejected: u64,
+    /// Readings set aside in a row.
+    streak: u64,
+    /// The gate's fit: the quadric `w` (scaled units) with `dᵢ·w = |calᵢ|²/F² - 1`; all
+    /// zero while no fit is trusted.
+    gate: [f64; 10],
 }
 
 /// What [`MagCalibrator::solve`] found.
@@ -200,14 +247,19 @@ pub struct MagFit {
     /// The field's magnitude after calibration: the ellipsoid's mean radius
     /// (the cube root of its semi-axes' product).
     pub field: f64,
-    /// RMS of `|calibrated|/field - 1` over the samples, from the fit's algebraic residual
-    /// (`(|c|²/field² - 1) / 2`, first order): 0.01 is 1 % of the field.
+    /// RMS of `|calibrated|/field - 1` over the readings kept, to first order: the RMS of
+    /// `(|calibrated|²/field² - 1) / 2`, which the sums give exactly (it differs from the
+    /// RMS of `|calibrated|/field - 1` by a few per cent of itself at 0.02). 0.01 is 1 %
+    /// of the field.
     pub residual: f64,
     /// Fraction of the 54 direction bins (directions from the readings' running mean)
     /// that readings fell in: 1 is a full sphere. Measured from the running mean, it is
     /// less than the directions covered when the sphere is swept in order.
     pub coverage: f64,
+    /// Readings kept (in the fit).
     pub samples: u64,
+    /// Readings set aside as outliers (see [`MagCalibrator`]).
+    pub rejected: u64,
 }
 
 impl MagFit {
@@ -247,9 +299,25 @@ fn bin_of(d: Vec3) -> Option<u32> {
     Some((face * 9 + cell(others.0) * 3 + cell(others.1)) as u32)
 }
 
+/// The design row of a scaled reading `p`.
+fn design(p: Vec3) -> [f64; 10] {
+    [
+        p.x * p.x,
+        p.y * p.y,
+        p.z * p.z,
+        2.0 * p.y * p.z,
+        2.0 * p.x * p.z,
+        2.0 * p.x * p.y,
+        2.0 * p.x,
+        2.0 * p.y,
+        2.0 * p.z,
+        1.0,
+    ]
+}
+
 /// A [`MagCalibrator`]'s state as plain values (for a host-owned C struct): the scatter
-/// matrix's upper triangle row by row, the scale, the running mean, the count and the
-/// coverage bits.
+/// matrix's upper triangle row by row, the scale, the running mean, the count, the
+/// coverage bits, the readings set aside (in all and in a row) and the gate's quadric.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MagCalibratorParts {
     pub sums: [f64; 55],
@@ -257,6 +325,18 @@ pub struct MagCalibratorParts {
     pub mean: Vec3,
     pub count: u64,
     pub bins: u64,
+    pub rejected: u64,
+    pub streak: u64,
+    pub gate: [f64; 10],
+}
+
+/// The fit of a scatter matrix: the model, the field, the quadric `w` with
+/// `d(p)·w = |cal|²/F² - 1` (scaled units), and `Σ (d(p)·w)²`.
+struct Quadric {
+    model: Model,
+    field: f64,
+    w: [f64; 10],
+    sum_sq: f64,
 }
 
 impl MagCalibrator {
@@ -269,7 +349,16 @@ impl MagCalibrator {
                 k += 1;
             }
         }
-        MagCalibratorParts { sums, scale: self.scale, mean: self.mean, count: self.count, bins: self.bins }
+        MagCalibratorParts {
+            sums,
+            scale: self.scale,
+            mean: self.mean,
+            count: self.count,
+            bins: self.bins,
+            rejected: self.rejected,
+            streak: self.streak,
+            gate: self.gate,
+        }
     }
 
     /// The calibrator of [`MagCalibrator::to_parts`]'s values; `None` for values no
@@ -279,7 +368,8 @@ impl MagCalibrator {
             && p.scale.is_finite()
             && p.scale > 0.0
             && p.mean.is_finite()
-            && p.bins >> COVERAGE_BINS == 0;
+            && p.bins >> COVERAGE_BINS == 0
+            && p.gate.iter().all(|x| x.is_finite());
         if !ok {
             return None;
         }
@@ -295,54 +385,104 @@ impl MagCalibrator {
         c.mean = p.mean;
         c.count = p.count;
         c.bins = p.bins;
+        c.rejected = p.rejected;
+        c.streak = p.streak;
+        c.gate = p.gate;
         Some(c)
     }
 
     pub fn new() -> MagCalibrator {
-        MagCalibrator { dtd: [[0.0; 10]; 10], count: 0, scale: 1.0, mean: Vec3::ZERO, bins: 0 }
+        MagCalibrator {
+            dtd: [[0.0; 10]; 10],
+            count: 0,
+            scale: 1.0,
+            mean: Vec3::ZERO,
+            bins: 0,
+            rejected: 0,
+            streak: 0,
+            gate: [0.0; 10],
+        }
     }
 
-    /// Adds one reading (any unit). NonFinite for a NaN or infinite one, ZeroVector for
-    /// a first reading of zero (it sets the scale); nothing changes then.
+    /// Adds one reading (any unit). The filters' magnetometer check first (NonFinite for
+    /// a NaN or infinite component, ZeroVector for a zero or subnormal norm, TooLarge for
+    /// a component at or beyond [`MAX_MAG`](super::MAX_MAG) or a norm that overflows);
+    /// nothing changes then. An accepted reading is kept or, by the outlier gate (see
+    /// [`MagCalibrator`]), set aside and counted in [`MagCalibrator::rejected`].
     pub fn add(&mut self, m: Vec3) -> Result<(), Error> {
-        if !m.is_finite() {
-            return Err(Error::NonFinite(Field::Mag));
-        }
+        super::sample::check_mag(m)?;
         if self.count == 0 {
-            let n = m.norm();
-            if !(n > 0.0 && n.is_finite()) {
-                return Err(Error::ZeroVector(Field::Mag));
-            }
-            self.scale = n;
+            self.scale = m.norm();
+            self.keep(m);
+            return Ok(());
         }
-        let p = m * (1.0 / self.scale);
-        let d = [
-            p.x * p.x,
-            p.y * p.y,
-            p.z * p.z,
-            2.0 * p.y * p.z,
-            2.0 * p.x * p.z,
-            2.0 * p.x * p.y,
-            2.0 * p.x,
-            2.0 * p.y,
-            2.0 * p.z,
-            1.0,
-        ];
+        if !self.is_outlier(m * (1.0 / self.scale)) {
+            self.keep(m);
+            return Ok(());
+        }
+        if self.streak + 1 >= MAG_GATE_RESTART.max(self.count) {
+            // The readings kept were the outliers: start over from this one.
+            let rejected = self.rejected.saturating_add(self.count);
+            *self = MagCalibrator::new();
+            self.rejected = rejected;
+            self.scale = m.norm();
+            self.keep(m);
+        } else {
+            self.rejected = self.rejected.saturating_add(1);
+            self.streak += 1;
+        }
+        Ok(())
+    }
+
+    /// The outlier gate for the scaled reading `p` (see [`MagCalibrator`]).
+    fn is_outlier(&self, p: Vec3) -> bool {
+        let n2 = p.norm_squared();
+        if n2 > MAG_SCALED_MAX * MAG_SCALED_MAX {
+            return true;
+        }
+        if self.gate.iter().any(|x| *x != 0.0) {
+            // |cal|²/F² - 1 within ((1 ∓ g)² - 1).
+            let d = design(p);
+            let e: f64 = d.iter().zip(&self.gate).map(|(a, b)| a * b).sum();
+            let (lo, hi) = ((1.0 - MAG_GATE_FIT).powi(2) - 1.0, (1.0 + MAG_GATE_FIT).powi(2) - 1.0);
+            return !(lo..=hi).contains(&e);
+        }
+        // The RMS norm of the readings kept: Σ|p|² / N from the sums (d₀..d₂ times d₉ = 1).
+        let rms2 = (self.dtd[0][9] + self.dtd[1][9] + self.dtd[2][9]) / self.dtd[9][9];
+        let band2 = MAG_GATE_BAND * MAG_GATE_BAND;
+        n2 > band2 * rms2 || (self.count < MAG_GATE_RESTART && n2 * band2 < rms2)
+    }
+
+    /// Adds a reading to the sums, the mean and the coverage; refreshes the gate's fit.
+    fn keep(&mut self, m: Vec3) {
+        let d = design(m * (1.0 / self.scale));
         for i in 0..10 {
             for j in i..10 {
                 self.dtd[i][j] += d[i] * d[j];
             }
         }
         self.count += 1;
+        self.streak = 0;
         self.mean = self.mean + (m - self.mean) * (1.0 / self.count as f64);
         if let Some(b) = bin_of(m - self.mean) {
             self.bins |= 1 << b;
         }
-        Ok(())
+        if self.count % 64 == 0 {
+            if let Some((fit, q)) = self.fit() {
+                if fit.coverage >= MAG_GATE_COVERAGE && fit.trustworthy() {
+                    self.gate = q.w;
+                }
+            }
+        }
     }
 
     pub fn samples(&self) -> u64 {
         self.count
+    }
+
+    /// Readings set aside as outliers (see [`MagCalibrator`]).
+    pub fn rejected(&self) -> u64 {
+        self.rejected
     }
 
     /// Fraction of the direction bins seen so far (see [`MagFit::coverage`]).
@@ -353,6 +493,23 @@ impl MagCalibrator {
     /// Solves the fit. `None` with fewer than 10 samples, or when the samples do not
     /// determine an ellipsoid (all on a plane or a line, or a fit that is no ellipsoid).
     pub fn solve(&self) -> Option<MagFit> {
+        self.fit().map(|(fit, _)| fit)
+    }
+
+    fn fit(&self) -> Option<(MagFit, Quadric)> {
+        let q = self.quadric()?;
+        let fit = MagFit {
+            model: q.model,
+            field: q.field,
+            residual: (q.sum_sq.max(0.0) / self.count as f64).sqrt() / 2.0,
+            coverage: self.coverage(),
+            samples: self.count,
+            rejected: self.rejected,
+        };
+        Some((fit, q))
+    }
+
+    fn quadric(&self) -> Option<Quadric> {
         if self.count < 10 {
             return None;
         }
@@ -365,7 +522,6 @@ impl MagCalibrator {
         }
         let eig = a.symmetric_eigen();
         let smallest = eig.eigenvalues.imin();
-        let lambda = eig.eigenvalues[smallest].max(0.0);
         // A second eigenvalue as small: the samples do not fix one quadric (a plane, a
         // circle).
         let next = eig
@@ -400,24 +556,27 @@ impl MagCalibrator {
         // radius·scale and the matrix radius·√shape.
         let w = sqrt * radius;
         let hard = Vec3::new(center.x, center.y, center.z) * self.scale;
-        // dᵢ·v = k (|calᵢ|²/radius² - 1), and Σ (dᵢ·v)² = λ for the unit eigenvector:
-        // the normalised residual is √(λ/N)/|k|, and its half the relative norm error
-        // to first order.
-        let residual = (lambda / self.count as f64).sqrt() / k.abs() / 2.0;
+        // d(p)·v = (p - c)ᵀ Q (p - c) - k = k (|cal|²/radius² - 1): w = v/k gives
+        // |cal|²/F² - 1 for each reading, and Σ (dᵢ·w)² = wᵀ (Σ dᵢ dᵢᵀ) w.
+        let mut quad = [0.0; 10];
+        for (x, vi) in quad.iter_mut().zip(v.iter()) {
+            *x = vi / k;
+        }
+        let wv = SVector::<f64, 10>::from_column_slice(&quad);
+        let sum_sq = wv.dot(&(a * wv));
         let mut matrix = [[0.0; 3]; 3];
         for (i, row) in matrix.iter_mut().enumerate() {
             for (j, x) in row.iter_mut().enumerate() {
                 *x = w[(i, j)];
             }
         }
-        let fit = MagFit {
-            model: Model { matrix, offset: hard },
-            field: radius * self.scale,
-            residual,
-            coverage: self.coverage(),
-            samples: self.count,
-        };
-        (fit.model.check(Field::Mag).is_ok() && fit.field.is_finite()).then_some(fit)
+        let model = Model { matrix, offset: hard };
+        let field = radius * self.scale;
+        let ok = model.check(Field::Mag).is_ok()
+            && field.is_finite()
+            && quad.iter().all(|x| x.is_finite())
+            && sum_sq.is_finite();
+        ok.then_some(Quadric { model, field, w: quad, sum_sq })
     }
 }
 
@@ -431,12 +590,11 @@ pub struct GyroOffset {
 }
 
 impl GyroOffset {
-    /// Adds one gyroscope reading (rad/s) taken while the sensor is still. NonFinite
-    /// for a NaN or infinite one; nothing changes then.
+    /// Adds one gyroscope reading (rad/s) taken while the sensor is still. The filters'
+    /// gyroscope check first: NonFinite for a NaN or infinite component, TooLarge for one
+    /// at or beyond [`MAX_GYRO`](super::MAX_GYRO); nothing changes then.
     pub fn add(&mut self, g: Vec3) -> Result<(), Error> {
-        if !g.is_finite() {
-            return Err(Error::NonFinite(Field::Gyro));
-        }
+        super::sample::check_gyro(g)?;
         self.count += 1;
         let delta = g - self.mean;
         self.mean = self.mean + delta * (1.0 / self.count as f64);

@@ -132,6 +132,30 @@ pub(crate) fn check_vector(v: Vec3, field: Field) -> Result<(), Error> {
     Ok(())
 }
 
+/// A gyroscope reading's checks, as every update makes them after the configured range:
+/// NonFinite for a NaN or infinite component, TooLarge for one at or beyond
+/// [`MAX_GYRO`]. Zero is a reading (a still sensor).
+pub(crate) fn check_gyro(g: Vec3) -> Result<(), Error> {
+    if !g.is_finite() {
+        return Err(Error::NonFinite(Field::Gyro));
+    }
+    if g.max_abs() >= MAX_GYRO {
+        return Err(Error::TooLarge(Field::Gyro));
+    }
+    Ok(())
+}
+
+/// A magnetometer reading's checks, as every update makes them: [`check_vector`]
+/// (NonFinite, TooLarge for a norm that overflows, ZeroVector for a zero or subnormal
+/// norm), then TooLarge for a component at or beyond [`MAX_MAG`].
+pub(crate) fn check_mag(m: Vec3) -> Result<(), Error> {
+    check_vector(m, Field::Mag)?;
+    if m.max_abs() >= MAX_MAG {
+        return Err(Error::TooLarge(Field::Mag));
+    }
+    Ok(())
+}
+
 pub(crate) fn check_quaternion(q: Quat) -> Result<(), Error> {
     if !q.is_finite() {
         return Err(Error::NonFinite(Field::Quaternion));

@@ -123,6 +123,9 @@ class OrientMagCalibrator(Structure):
         ("mean", OrientVec3),
         ("count", c_uint64),
         ("bins", c_uint64),
+        ("rejected", c_uint64),
+        ("streak", c_uint64),
+        ("gate", c_double * 10),
     ]
 
 
@@ -302,6 +305,7 @@ PROTOTYPES = {
     "orient_mag_calibrator_init": (c_int32, [_P(OrientMagCalibrator)]),
     "orient_mag_calibrator_add": (c_int32, [_P(OrientMagCalibrator), _P(OrientVec3)]),
     "orient_mag_calibrator_solve": (c_int32, [_P(OrientMagCalibrator), _P(OrientMagFit)]),
+    "orient_mag_calibrator_rejected": (c_int32, [_P(OrientMagCalibrator), _P(c_uint64)]),
     "orient_gyro_offset": (c_int32, [_P(OrientVec3), c_size_t, _P(OrientSensorModel), _P(c_double)]),
 }
 
