@@ -590,16 +590,37 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_PARAM_ROBUST_BIAS_WALK 96
 
 /**
- * Parameter slot (robust): Standard deviation of the heading an accepted magnetometer
- * field gives, for the heading uncertainty only (eq. H3): with the bias's lag, the floor
- * the uncertainty settles to while the field is trusted; at most 1.8, the sigma of a
- * heading uniform on the circle (eq. H4); default 0.0349 (2 deg, orient: indoor fields
- * that pass the norm and dip tests still turn by this much; robust's and VQF's 9D
- * heading errors on BROAD's undisturbed trials are 1-2 deg).
+ * Parameter slot (robust): Standard deviation of the heading a clean accepted
+ * magnetometer field gives, for the heading uncertainty only (eq. H3): the floor the
+ * uncertainty settles to while an undisturbed field is used; at most 1.8, the sigma of a
+ * heading uniform on the circle (eq. H4); default 0.01745 (1 deg, orient: the heading of
+ * a clean field at rest against BROAD's optically aligned north, -1.5 to +1.3 deg over
+ * its trials).
  *
- * Unit rad; range 0 to 1.8; default 0.03490658503988659.
+ * Unit rad; range 0 to 1.8; default 0.017453292519943295.
  */
 #define ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA 97
+
+/**
+ * Parameter slot (robust): Heading error per unit of an accepted field's deviation from
+ * the reference (its dip's in rad and its norm's as a fraction), for the heading
+ * uncertainty only (eq. H3): a field the norm and dip tests let through still turns the
+ * heading; default 0.2 (orient: chosen by leave-one-group-out cross-validation over
+ * BROAD's 14 shared trials, tools/src/bin/robust_sigma.rs: 0.1 or 0.2 in every fold).
+ *
+ * Unit 1; range 0 to 100; default 0.2.
+ */
+#define ORIENT_PARAM_ROBUST_MAG_DEVIATION_GAIN 98
+
+/**
+ * Parameter slot (robust): Heading error the gyroscope's scale and axis errors add per
+ * square root of the angle turned, for the heading uncertainty only (eq. H1); default
+ * 0.0075 (orient: chosen by leave-one-group-out cross-validation over BROAD's 14 shared
+ * trials, tools/src/bin/robust_sigma.rs: 0.0075 in every fold).
+ *
+ * Unit sqrt(rad); range 0 to 1; default 0.0075.
+ */
+#define ORIENT_PARAM_ROBUST_GYRO_SCALE_SIGMA 99
 
 /**
  * Version of the C ABI described by this header. It changes only when an existing
@@ -1588,10 +1609,15 @@ OrientStatus orient_filter_diagnostics(const OrientFilter *filter,
 /**
  * One standard deviation (radians) of the heading and inclination errors, from the kinds
  * that model them: ORIENT_KIND_EKF (both, from its covariance) and ORIENT_KIND_ROBUST
- * (heading: it grows while the magnetometer is distrusted or absent; while it is used it
- * settles to about sqrt(sigma_m^2 + (sigma_b tau)^2), with sigma_m =
- * ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA, tau = ORIENT_PARAM_ROBUST_TAU_MAG and sigma_b
- * the bias uncertainty, ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST after a rest, else
+ * (heading: it grows while the magnetometer is distrusted or absent, faster while the
+ * sensor turns; while it is used it settles to about
+ * sqrt(sigma_v^2 + (sigma_b tau)^2 + sigma_s^2 w tau / 2), with sigma_v^2 = sigma_m^2 +
+ * kappa^2 (d_n^2 + d_d^2) for a used field whose norm is off the reference by the
+ * fraction d_n and whose dip is off by d_d rad, w the turn rate (rad/s), sigma_m =
+ * ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA (what a clean field at rest settles to), kappa =
+ * ORIENT_PARAM_ROBUST_MAG_DEVIATION_GAIN, sigma_s = ORIENT_PARAM_ROBUST_GYRO_SCALE_SIGMA,
+ * tau = ORIENT_PARAM_ROBUST_TAU_MAG and sigma_b the bias uncertainty,
+ * ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST after a rest, else
  * ORIENT_PARAM_ROBUST_BIAS_SIGMA). For the other kinds, and before initialisation,
  * `present` is 0 and both fields are NaN. The heading is against the filter's reference
  * (magnetic north once a magnetometer was used, else the start heading); offsets the

@@ -57,17 +57,20 @@ fn the_heading_uncertainty_covers_the_heading_error_on_broad() {
         panic!("{} not found (set ORIENT_SKIP_SHARED_DATA=1 to skip)", dir.display());
     }
     for kind in [Kind::Robust, Kind::Ekf] {
-        let (mut rows, mut w2, mut w3, mut sigmas) = (0, 0, 0, Vec::new());
-        println!("{kind:?}: trial, rows, RMS heading error (deg), median sigma (deg), within 2 sigma, within 3 sigma");
+        let (mut rows, mut w2, mut w3, mut sigmas, mut ratios) = (0, 0, 0, Vec::new(), Vec::new());
+        println!("{kind:?}: trial, rows, RMS heading error (deg), median sigma (deg), ratio, within 2 sigma, within 3 sigma");
         for path in csv_files(&dir).unwrap() {
             let rec = Recording::read(&path, true).unwrap();
             let mut c = coverage(kind, &rec);
             let name = path.file_name().unwrap().to_string_lossy().chars().take(3).collect::<String>();
+            let (rms, med) = ((c.sq_error / c.rows as f64).sqrt(), median(&mut c.sigmas));
+            ratios.push((name.clone(), rms / med));
             println!(
-                "  {name} {:6} {:6.2} {:6.2} {:6.1}% {:6.1}%",
+                "  {name} {:6} {:6.2} {:6.2} {:5.2} {:6.1}% {:6.1}%",
                 c.rows,
-                (c.sq_error / c.rows as f64).sqrt().to_degrees(),
-                median(&mut c.sigmas).to_degrees(),
+                rms.to_degrees(),
+                med.to_degrees(),
+                rms / med,
                 100.0 * c.within2 as f64 / c.rows as f64,
                 100.0 * c.within3 as f64 / c.rows as f64
             );
@@ -79,9 +82,18 @@ fn the_heading_uncertainty_covers_the_heading_error_on_broad() {
         let (f2, f3) = (w2 as f64 / rows as f64, w3 as f64 / rows as f64);
         println!("  all {rows} {:.1}% {:.1}%", 100.0 * f2, 100.0 * f3);
         if kind == Kind::Robust {
-            // Measured 91.7 % and 99.6 %; the fast rotations (06, 21) are covered least:
-            // gyroscope scale-factor errors are not in the model.
-            assert!(f2 > 0.85 && f3 > 0.97, "robust's sigma covers {f2} (2 sigma), {f3} (3 sigma)");
+            // Issue 40 class 11: sigma must follow the error, trial by trial: the RMS error
+            // within 0.5-2 times the median sigma on every trial (measured 0.59-1.69; before
+            // the deviation and turning terms, 0.41-1.98 with a median of 2.0-2.1 deg on
+            // every trial), and 2 sigma covering near its Gaussian 95 % over all (measured
+            // 94.3 %, 3 sigma 99.7 %).
+            for (name, r) in &ratios {
+                assert!((0.5..=2.0).contains(r), "trial {name}: RMS error / median sigma = {r}");
+            }
+            assert!(
+                (0.90..=0.98).contains(&f2) && f3 > 0.97,
+                "robust's sigma covers {f2} (2 sigma), {f3} (3 sigma)"
+            );
             let mut all = sigmas;
             let m = median(&mut all).to_degrees();
             assert!(m < 3.0, "robust's median sigma {m} deg is too large to be of use");

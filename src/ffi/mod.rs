@@ -220,6 +220,8 @@ mod tests {
             (ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST, params::id::ROBUST_BIAS_SIGMA_REST),
             (ORIENT_PARAM_ROBUST_BIAS_WALK, params::id::ROBUST_BIAS_WALK),
             (ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA, params::id::ROBUST_MAG_HEADING_SIGMA),
+            (ORIENT_PARAM_ROBUST_MAG_DEVIATION_GAIN, params::id::ROBUST_MAG_DEVIATION_GAIN),
+            (ORIENT_PARAM_ROBUST_GYRO_SCALE_SIGMA, params::id::ROBUST_GYRO_SCALE_SIGMA),
         ];
         for (c, r) in slots {
             assert_eq!(c, r);

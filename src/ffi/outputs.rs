@@ -84,10 +84,15 @@ pub unsafe extern "C" fn orient_filter_diagnostics(
 
 /// One standard deviation (radians) of the heading and inclination errors, from the kinds
 /// that model them: ORIENT_KIND_EKF (both, from its covariance) and ORIENT_KIND_ROBUST
-/// (heading: it grows while the magnetometer is distrusted or absent; while it is used it
-/// settles to about sqrt(sigma_m^2 + (sigma_b tau)^2), with sigma_m =
-/// ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA, tau = ORIENT_PARAM_ROBUST_TAU_MAG and sigma_b
-/// the bias uncertainty, ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST after a rest, else
+/// (heading: it grows while the magnetometer is distrusted or absent, faster while the
+/// sensor turns; while it is used it settles to about
+/// sqrt(sigma_v^2 + (sigma_b tau)^2 + sigma_s^2 w tau / 2), with sigma_v^2 = sigma_m^2 +
+/// kappa^2 (d_n^2 + d_d^2) for a used field whose norm is off the reference by the
+/// fraction d_n and whose dip is off by d_d rad, w the turn rate (rad/s), sigma_m =
+/// ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA (what a clean field at rest settles to), kappa =
+/// ORIENT_PARAM_ROBUST_MAG_DEVIATION_GAIN, sigma_s = ORIENT_PARAM_ROBUST_GYRO_SCALE_SIGMA,
+/// tau = ORIENT_PARAM_ROBUST_TAU_MAG and sigma_b the bias uncertainty,
+/// ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST after a rest, else
 /// ORIENT_PARAM_ROBUST_BIAS_SIGMA). For the other kinds, and before initialisation,
 /// `present` is 0 and both fields are NaN. The heading is against the filter's reference
 /// (magnetic north once a magnetometer was used, else the start heading); offsets the

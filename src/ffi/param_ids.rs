@@ -410,12 +410,29 @@ pub const ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST: u32 = 95;
 /// Unit rad/s/sqrt(s); range 0 to 10; default 0.00017453292519943296.
 pub const ORIENT_PARAM_ROBUST_BIAS_WALK: u32 = 96;
 
-/// Parameter slot (robust): Standard deviation of the heading an accepted magnetometer
-/// field gives, for the heading uncertainty only (eq. H3): with the bias's lag, the floor
-/// the uncertainty settles to while the field is trusted; at most 1.8, the sigma of a
-/// heading uniform on the circle (eq. H4); default 0.0349 (2 deg, orient: indoor fields
-/// that pass the norm and dip tests still turn by this much; robust's and VQF's 9D
-/// heading errors on BROAD's undisturbed trials are 1-2 deg).
+/// Parameter slot (robust): Standard deviation of the heading a clean accepted
+/// magnetometer field gives, for the heading uncertainty only (eq. H3): the floor the
+/// uncertainty settles to while an undisturbed field is used; at most 1.8, the sigma of a
+/// heading uniform on the circle (eq. H4); default 0.01745 (1 deg, orient: the heading of
+/// a clean field at rest against BROAD's optically aligned north, -1.5 to +1.3 deg over
+/// its trials).
 ///
-/// Unit rad; range 0 to 1.8; default 0.03490658503988659.
+/// Unit rad; range 0 to 1.8; default 0.017453292519943295.
 pub const ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA: u32 = 97;
+
+/// Parameter slot (robust): Heading error per unit of an accepted field's deviation from
+/// the reference (its dip's in rad and its norm's as a fraction), for the heading
+/// uncertainty only (eq. H3): a field the norm and dip tests let through still turns the
+/// heading; default 0.2 (orient: chosen by leave-one-group-out cross-validation over
+/// BROAD's 14 shared trials, tools/src/bin/robust_sigma.rs: 0.1 or 0.2 in every fold).
+///
+/// Unit 1; range 0 to 100; default 0.2.
+pub const ORIENT_PARAM_ROBUST_MAG_DEVIATION_GAIN: u32 = 98;
+
+/// Parameter slot (robust): Heading error the gyroscope's scale and axis errors add per
+/// square root of the angle turned, for the heading uncertainty only (eq. H1); default
+/// 0.0075 (orient: chosen by leave-one-group-out cross-validation over BROAD's 14 shared
+/// trials, tools/src/bin/robust_sigma.rs: 0.0075 in every fold).
+///
+/// Unit sqrt(rad); range 0 to 1; default 0.0075.
+pub const ORIENT_PARAM_ROBUST_GYRO_SCALE_SIGMA: u32 = 99;

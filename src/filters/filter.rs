@@ -291,8 +291,9 @@ impl Filter {
     /// One standard deviation (rad) of the heading and inclination errors, from the kinds
     /// that model them: the EKF (both, from its covariance P) and the robust kind (heading:
     /// it grows while the magnetometer is distrusted or absent, and settles while it is
-    /// used to about √(σ_m² + (σ τ_mag)²), σ_m = `mag_heading_sigma` and σ the bias
-    /// uncertainty, `bias_sigma_rest` after a rest, else `bias_sigma`;
+    /// used to about √(σ_v² + (σ τ_mag)²) plus the turning's share, σ_v growing from
+    /// `mag_heading_sigma` with the used field's deviation from the reference and σ the
+    /// bias uncertainty, `bias_sigma_rest` after a rest, else `bias_sigma`;
     /// `src/filters/robust.rs`, eqs. (H1)-(H4)). `set_quaternion` makes the robust
     /// kind's heading exact; the EKF keeps its covariance.
     /// Every field is `None` for the other kinds and before initialisation. The heading
