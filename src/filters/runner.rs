@@ -464,11 +464,13 @@ impl<E: Estimator> Runner<E> {
             None => None,
         };
         if let (Some(a), Some(m)) = (accel, mag) {
-            // A field that may give no heading ([`no_heading`]) takes the general step,
-            // which leaves it out. Conservative: a product of squared norms out of range
-            // (infinite, or zero by underflow) fails too.
+            // A field that gives no heading ([`no_heading`]) takes the general step, which
+            // leaves it out: here its first branch's test, on the squared norms at hand,
+            // and a product out of that branch's range fails too. So a sample this
+            // passes has a field that gives a heading.
             let p = a.norm_squared() * m.norm_squared();
-            if !(a.v.cross(m.v).norm_squared() > NO_HEADING_SINE * NO_HEADING_SINE * p && p < f64::INFINITY) {
+            let heading = a.v.cross(m.v).norm_squared() > NO_HEADING_SINE * NO_HEADING_SINE * p;
+            if !(heading && p > 1e-290 && p < 1e290) {
                 return None;
             }
         }
@@ -609,7 +611,8 @@ impl<E: Estimator> Runner<E> {
     #[inline(always)]
     fn update_plain<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
         match (self.plainly_valid(s), s.gyro()) {
-            (true, Some(gyro)) => self.update_checked(s.dt(), gyro, s.accel(), s.mag()),
+            // The quick check found any field one that gives a heading.
+            (true, Some(gyro)) => self.update_step(s.dt(), gyro, s.accel(), s.mag()),
             _ => self.update_plain_slowly(s),
         }
     }
@@ -653,7 +656,8 @@ impl<E: Estimator> Runner<E> {
         Ok(())
     }
 
-    /// [`Runner::update_checked`]'s step, the field's rule applied.
+    /// The step of a sample that passed the checks, with no field or one that gives a
+    /// heading ([`Runner::update_checked`] applied the rule, or the quick check found it).
     #[inline(always)]
     fn update_step(
         &mut self,
