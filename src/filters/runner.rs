@@ -464,13 +464,14 @@ impl<E: Estimator> Runner<E> {
             None => None,
         };
         if let (Some(a), Some(m)) = (accel, mag) {
-            // A field that gives no heading ([`no_heading`]) takes the general step, which
-            // leaves it out: here its first branch's test, on the squared norms at hand,
-            // and a product out of that branch's range fails too. So a sample this
-            // passes has a field that gives a heading.
+            // A field that may give no heading ([`no_heading`]) takes the general step,
+            // which applies the rule. Lagrange's identity, |a × m|² = |a|²|m|² − (a·m)²,
+            // gives the cheaper form (a·m)² < (1 − 2 sin²) |a|²|m|²: twice the rule's
+            // sin² leaves room for rounding, so a field this passes gives a heading, and
+            // a product of squared norms that underflows (or overflows, or a NaN) fails.
             let p = a.norm_squared() * m.norm_squared();
-            let heading = a.v.cross(m.v).norm_squared() > NO_HEADING_SINE * NO_HEADING_SINE * p;
-            if !(heading && p > 1e-290 && p < 1e290) {
+            let am = a.v.dot(m.v);
+            if !(am * am < (1.0 - 2.0 * NO_HEADING_SINE * NO_HEADING_SINE) * p && p > 1e-290) {
                 return None;
             }
         }
@@ -611,7 +612,7 @@ impl<E: Estimator> Runner<E> {
     #[inline(always)]
     fn update_plain<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
         match (self.plainly_valid(s), s.gyro()) {
-            // The quick check found any field one that gives a heading.
+            // The quick check found any field to be one that gives a heading.
             (true, Some(gyro)) => self.update_step(s.dt(), gyro, s.accel(), s.mag()),
             _ => self.update_plain_slowly(s),
         }
