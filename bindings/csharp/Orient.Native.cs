@@ -87,7 +87,9 @@ namespace Orient.Native
         MissingSensor = 12,
         /// <summary>
         /// The filter waits for its first accelerometer sample (ORIENT_INIT_ACC_MAG); with
-        /// ORIENT_PARAM_SAME_INSTANT set to 1, for its first sample with dt &gt; 0 as well.
+        /// ORIENT_PARAM_SAME_INSTANT set to 1, for its first sample with dt &gt; 0 as well. During
+        /// a kind's start-up period (ORIENT_KIND_COMPLEMENTARY, ORIENT_KIND_GMVDK) a sample
+        /// without an accelerometer reading is refused so too; a dt = 0 sample is not.
         /// </summary>
         NotInitialized = 13,
         /// <summary>
@@ -808,7 +810,12 @@ namespace Orient.Native
 
         /// <summary>
         /// `orient_filter_flags`: the filter has an orientation (clear while it waits for its
-        /// first accelerometer sample under `ORIENT_INIT_ACC_MAG`).
+        /// first accelerometer sample under `ORIENT_INIT_ACC_MAG`, and through the start-up
+        /// period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK, ORIENT_PARAM_*_INIT_DURATION
+        /// seconds of samples with an accelerometer reading: their readings are averaged into the
+        /// initial orientation, and each such sample sets ORIENT_FLAG_ACCEL_USED and, for the
+        /// magnetometer, ORIENT_FLAG_MAG_USED or ORIENT_FLAG_MAG_REJECTED as the period will use
+        /// it; the dt = 0 samples of ORIENT_PARAM_SAME_INSTANT are samples of the period too).
         /// </summary>
         public const uint FlagInitialized = 1;
 
@@ -1817,10 +1824,11 @@ namespace Orient.Native
         /// Recoveries that are not errors: after a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
         /// packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
         /// ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
-        /// magnetometer parallel to gravity gives no heading, so that step is an IMU update
-        /// (ORIENT_FLAG_MAG_USED clear), except in ORIENT_KIND_GMVDK once it runs: its
-        /// magnetometer pipeline aligns the whole field vector (the paper's eqs. 10-12), a
-        /// vertical one included. NUMERIC guards a step whose result would not be
+        /// magnetometer within 1e-6 rad of parallel to the sample's accelerometer reading
+        /// (gravity) gives no heading, so that step is the kind's IMU update, bit for bit
+        /// (ORIENT_FLAG_MAG_USED clear, ORIENT_FLAG_MAG_REJECTED set), in every kind: at the
+        /// first sample, in a start-up period, after a gap and in the running filter.
+        /// NUMERIC guards a step whose result would not be
         /// finite; the bounds on dt and on the readings keep every accepted sample from reaching
         /// it, and no test has found one that does.
         /// </summary>

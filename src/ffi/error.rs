@@ -117,7 +117,7 @@ pub(crate) fn status_message(status: i32) -> &'static [u8] {
         10 => b"reading too large: beyond its physical bound, or its norm overflows\0",
         11 => b"sensor reading at or beyond its configured range\0",
         12 => b"sample lacks a sensor the filter needs\0",
-        13 => b"filter waits for its first accelerometer sample\0",
+        13 => b"filter waits for its first accelerometer sample (with dt > 0)\0",
         14 => b"no data yet for this output\0",
         15 => b"update would produce a non-finite orientation\0",
         16 => b"count too large for any buffer\0",

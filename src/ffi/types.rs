@@ -19,7 +19,12 @@ pub const ORIENT_SAMPLE_ACCEL: u32 = 2;
 pub const ORIENT_SAMPLE_MAG: u32 = 4;
 
 /// `orient_filter_flags`: the filter has an orientation (clear while it waits for its
-/// first accelerometer sample under `ORIENT_INIT_ACC_MAG`).
+/// first accelerometer sample under `ORIENT_INIT_ACC_MAG`, and through the start-up
+/// period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK, ORIENT_PARAM_*_INIT_DURATION
+/// seconds of samples with an accelerometer reading: their readings are averaged into the
+/// initial orientation, and each such sample sets ORIENT_FLAG_ACCEL_USED and, for the
+/// magnetometer, ORIENT_FLAG_MAG_USED or ORIENT_FLAG_MAG_REJECTED as the period will use
+/// it; the dt = 0 samples of ORIENT_PARAM_SAME_INSTANT are samples of the period too).
 pub const ORIENT_FLAG_INITIALIZED: u32 = 1;
 /// `orient_filter_flags`: the last accepted update used the accelerometer.
 pub const ORIENT_FLAG_ACCEL_USED: u32 = 2;
@@ -134,7 +139,9 @@ pub enum OrientStatus {
     /// The sample lacks a sensor the filter needs (every filter needs the gyroscope).
     MissingSensor = 12,
     /// The filter waits for its first accelerometer sample (ORIENT_INIT_ACC_MAG); with
-    /// ORIENT_PARAM_SAME_INSTANT set to 1, for its first sample with dt > 0 as well.
+    /// ORIENT_PARAM_SAME_INSTANT set to 1, for its first sample with dt > 0 as well. During
+    /// a kind's start-up period (ORIENT_KIND_COMPLEMENTARY, ORIENT_KIND_GMVDK) a sample
+    /// without an accelerometer reading is refused so too; a dt = 0 sample is not.
     NotInitialized = 13,
     /// The output needs data the filter has not received yet (linear acceleration
     /// before the first accelerometer sample).

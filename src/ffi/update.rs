@@ -21,10 +21,11 @@ use super::*;
 /// Recoveries that are not errors: after a dt above ORIENT_PARAM_GAP_DT (a gap: dropped
 /// packets) the filter re-acquires its orientation from the sensors (ORIENT_FLAG_GAP,
 /// ORIENT_FLAG_REACQUIRED, ORIENT_FLAG_REACQUIRE_PENDING); a
-/// magnetometer parallel to gravity gives no heading, so that step is an IMU update
-/// (ORIENT_FLAG_MAG_USED clear), except in ORIENT_KIND_GMVDK once it runs: its
-/// magnetometer pipeline aligns the whole field vector (the paper's eqs. 10-12), a
-/// vertical one included. NUMERIC guards a step whose result would not be
+/// magnetometer within 1e-6 rad of parallel to the sample's accelerometer reading
+/// (gravity) gives no heading, so that step is the kind's IMU update, bit for bit
+/// (ORIENT_FLAG_MAG_USED clear, ORIENT_FLAG_MAG_REJECTED set), in every kind: at the
+/// first sample, in a start-up period, after a gap and in the running filter.
+/// NUMERIC guards a step whose result would not be
 /// finite; the bounds on dt and on the readings keep every accepted sample from reaching
 /// it, and no test has found one that does.
 #[no_mangle]

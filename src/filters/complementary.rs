@@ -320,7 +320,11 @@ impl Complementary {
                 let still =
                     Stillness { gyro: 2.0 * self.settings.gyro_rest, accel: 2.0 * self.settings.accel_rest };
                 if !s.add(dt, gyro, a, mag, self.settings.init_duration, still) {
+                    // The readings went into the period's means (the field is used only
+                    // for north, with align_heading).
                     step.initializing = true;
+                    step.used_accel = true;
+                    step.used_mag = mag.is_some() && self.settings.align_heading.on();
                     return Some(step);
                 }
                 let bias = s.bias();
@@ -518,6 +522,10 @@ mod estimator_impl {
 
         fn at_rest(&self) -> bool {
             Complementary::at_rest(self)
+        }
+
+        fn starting(&self) -> bool {
+            matches!(&self.phase, Phase::Starting(s) if s.begun())
         }
     });
 }

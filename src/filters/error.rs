@@ -48,7 +48,8 @@ pub enum Error {
     Saturated(Field),
     /// A sensor the filter needs is absent from the sample.
     MissingSensor(Field),
-    /// The filter waits for an accelerometer reading to initialise.
+    /// The filter waits for a first sample with an accelerometer reading (and, with
+    /// `same_instant`, dt > 0), or its start-up period for samples with one.
     NotInitialized,
     /// The update would have produced a non-finite orientation.
     Numeric,
@@ -81,7 +82,12 @@ impl fmt::Display for Error {
             Error::MissingSensor(field) => {
                 write!(f, "sample has no {} reading, which this filter needs", field.name())
             }
-            Error::NotInitialized => write!(f, "filter waits for an accelerometer reading to initialise"),
+            Error::NotInitialized => {
+                write!(
+                    f,
+                    "filter waits for a sample with an accelerometer reading (and dt > 0) to initialise"
+                )
+            }
             Error::Numeric => write!(f, "update would produce a non-finite orientation"),
         }
     }

@@ -43,6 +43,12 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     /// One update in the native frame; `None` (and no change) on numerical failure,
     /// except for a kind with [`Estimator::FAILURE_RESTARTS`].
     fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step>;
+    /// True while a kind with [`Estimator::OWN_STARTUP`] is in its start-up period and
+    /// has taken a sample of it: the lifecycle's start-up stage, where the filter has no
+    /// orientation yet but waits for nothing other than more samples of the period.
+    fn starting(&self) -> bool {
+        false
+    }
     /// True for a kind whose update keeps no copy of its state to put back: an argument
     /// at its update shows that no sample within the runner's bounds makes it fail, and a
     /// failure beyond them (a core driven directly) starts it over from the orientation

@@ -1,6 +1,8 @@
 //! State flags reported by [`crate::Filter::flags`].
 
-/// The filter has an orientation (always set unless waiting for acc/mag init).
+/// The filter has an orientation: clear while it waits for its first accelerometer
+/// sample, and through a kind's own start-up period (complementary, GMVDK), whose
+/// samples set [`ACCEL_USED`] (and [`MAG_USED`] or [`MAG_REJECTED`]).
 pub const INITIALIZED: u32 = 1;
 /// The last accepted update used the accelerometer.
 pub const ACCEL_USED: u32 = 2;

@@ -678,8 +678,11 @@ impl Gmvdk {
             // Still: within the activity scales, where stillness would reach zero.
             let still = Stillness { gyro: self.settings.gyro_activity, accel: self.settings.accel_activity };
             if !s.add(dt, gyro, a, mag, self.settings.init_duration, still) {
+                // The readings went into the period's means (A_init, M_init).
                 self.startup = Some(s);
                 step.initializing = true;
+                step.used_accel = true;
+                step.used_mag = mag.is_some();
                 return Some(step);
             }
             step.used_mag = self.finish_startup(&s);
@@ -1204,6 +1207,10 @@ mod estimator_impl {
     estimator!(impl for Gmvdk { settings: GmvdkSettings, native: Enu, own_startup: true, diagnostics: GYRO_BIAS | ALPHA | MU_KA | MU_KM | MU_K } {
         fn heap_bytes(&self) -> usize {
             core::mem::size_of::<MinWindow>()
+        }
+
+        fn starting(&self) -> bool {
+            self.startup.as_ref().is_some_and(StartupMeans::begun)
         }
 
         fn restart(&mut self, settings: GmvdkSettings) {

@@ -12,6 +12,7 @@ use super::sample::{check_quaternion, check_vector, Checked, SampleView, Usual};
 use super::state::{self, Codec, Reader, StateError, Writer};
 use super::{flags, holds, Config, Diagnostics, Error, Field, Init, Kind, Sample};
 use super::{MAX_ACCEL, MAX_DT, MAX_GYRO, MAX_MAG, MIN_DT};
+use crate::math::frame::{no_heading, NO_HEADING_SINE};
 use crate::math::{Frame, Quat, Vec3};
 
 /// The common settings (slots 0-3) and the sample limits the checks compare with, kept
@@ -404,6 +405,13 @@ impl<E: Estimator> Runner<E> {
         self.policy = (self.policy & !Self::UNSETTLED) | unsettled;
     }
 
+    /// The lifecycle's first stage: no orientation and no start-up period begun (the
+    /// kind's own, [`Estimator::starting`]), so the filter waits for a first sample with
+    /// dt > 0 and an accelerometer reading.
+    pub(crate) fn waiting(&self) -> bool {
+        self.flags & flags::INITIALIZED == 0 && !self.core.starting()
+    }
+
     /// Initialised, no re-acquisition pending.
     #[inline(always)]
     fn settled(&self) -> bool {
@@ -455,13 +463,31 @@ impl<E: Estimator> Runner<E> {
             Some(m) => Some(Some(Checked::of(m)).filter(|m| m.within(MAX_MAG * MAX_MAG))?),
             None => None,
         };
+        if let (Some(a), Some(m)) = (accel, mag) {
+            // A field that may give no heading ([`no_heading`]) takes the general step,
+            // which applies the rule. Lagrange's identity, |a × m|² = |a|²|m|² − (a·m)²,
+            // gives the cheaper form (a·m)² < (1 − 2 sin²) |a|²|m|²: twice the rule's
+            // sin² leaves room for rounding, so a field this passes gives a heading, and
+            // a product of squared norms that underflows (or overflows, or a NaN) fails.
+            let p = a.norm_squared() * m.norm_squared();
+            let am = a.v.dot(m.v);
+            if !(am * am < (1.0 - 2.0 * NO_HEADING_SINE * NO_HEADING_SINE) * p && p > 1e-290) {
+                return None;
+            }
+        }
         Some(Usual { dt, gyro, accel, mag })
     }
 
-    /// The rules one by one, in the order that picks the reported error.
+    /// The rules one by one, in the order that picks the reported error. A configured
+    /// range refuses a reading (Saturated) only without `saturation_recovery`: with it, a
+    /// reading between the range and the physical bound is used clipped (the policies
+    /// clip it before they check), and one at or beyond the bound is TooLarge, as the
+    /// order's next rule says, for every kind, field and path (bursts included).
     #[cold]
     #[inline(never)]
     pub(crate) fn check_exactly(&self, s: &Sample) -> Result<(), Error> {
+        let refuses =
+            |range: Option<f64>, v: Vec3| !self.recover() && range.is_some_and(|r| v.max_abs() >= r);
         // No sensor samples faster than 1 GHz: a smaller dt (a subnormal one, say) is a
         // host bug, and would overflow noise variances that scale with 1/dt.
         if !(s.dt.is_finite() && (MIN_DT..=MAX_DT).contains(&s.dt)) {
@@ -471,7 +497,7 @@ impl<E: Estimator> Runner<E> {
         if !gyro.is_finite() {
             return Err(Error::NonFinite(Field::Gyro));
         }
-        if self.common.gyro_range(self.bits).is_some_and(|r| gyro.max_abs() >= r) {
+        if refuses(self.common.gyro_range(self.bits), gyro) {
             return Err(Error::Saturated(Field::Gyro));
         }
         if gyro.max_abs() >= MAX_GYRO {
@@ -479,7 +505,7 @@ impl<E: Estimator> Runner<E> {
         }
         if let Some(a) = s.accel {
             check_vector(a, Field::Accel)?;
-            if self.common.accel_range(self.bits).is_some_and(|r| a.max_abs() >= r) {
+            if refuses(self.common.accel_range(self.bits), a) {
                 return Err(Error::Saturated(Field::Accel));
             }
             if a.max_abs() >= MAX_ACCEL {
@@ -586,7 +612,8 @@ impl<E: Estimator> Runner<E> {
     #[inline(always)]
     fn update_plain<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
         match (self.plainly_valid(s), s.gyro()) {
-            (true, Some(gyro)) => self.update_checked(s.dt(), gyro, s.accel(), s.mag()),
+            // The quick check found any field to be one that gives a heading.
+            (true, Some(gyro)) => self.update_step(s.dt(), gyro, s.accel(), s.mag()),
             _ => self.update_plain_slowly(s),
         }
     }
@@ -601,9 +628,39 @@ impl<E: Estimator> Runner<E> {
         self.update_checked(s.dt(), s.gyro().unwrap_or_default(), s.accel(), s.mag())
     }
 
-    /// The step of a sample that passed the checks.
+    /// The step of a sample that passed the checks. A magnetometer reading that gives no
+    /// heading ([`no_heading`]: parallel to gravity) is left out, for every kind and
+    /// every stage: the step is the IMU update, with [`flags::MAG_REJECTED`].
     #[inline(always)]
     fn update_checked(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+    ) -> Result<(), Error> {
+        if let (Some(a), Some(m)) = (accel, mag) {
+            if no_heading(a, m) {
+                return self.update_without_heading(dt, gyro, a);
+            }
+        }
+        self.update_step(dt, gyro, accel, mag)
+    }
+
+    /// [`Runner::update_checked`] for a sample whose field gives no heading: the step
+    /// without it, the reading flagged as not used.
+    #[cold]
+    #[inline(never)]
+    fn update_without_heading(&mut self, dt: f64, gyro: Vec3, accel: Vec3) -> Result<(), Error> {
+        self.update_step(dt, gyro, Some(accel), None)?;
+        self.flags |= flags::MAG_REJECTED;
+        Ok(())
+    }
+
+    /// The step of a sample that passed the checks, with no field or one that gives a
+    /// heading ([`Runner::update_checked`] applied the rule, or the quick check found it).
+    #[inline(always)]
+    fn update_step(
         &mut self,
         dt: f64,
         gyro: Vec3,
@@ -701,8 +758,10 @@ impl<E: Estimator> Runner<E> {
         let dt = if gap { self.common.gap_limit } else { dt };
         match self.core.update(dt, gyro, accel, mag) {
             Some(step) => {
+                // A start-up sample's readings go into the period's means: its flags say
+                // which, with INITIALIZED still clear.
                 let flags = if step.initializing {
-                    0
+                    step.flags(accel.is_some(), mag.is_some()) & !flags::INITIALIZED
                 } else {
                     step.flags(accel.is_some(), mag.is_some()) | if gap { flags::GAP } else { 0 }
                 };

@@ -52,7 +52,9 @@ impl<E: Estimator> Runner<E> {
         let (checked, gyro_clipped, clipped) = self.clipped(&probe);
         self.check_view(&checked)?;
         if s.dt() == 0.0 {
-            if self.flags & flags::INITIALIZED == 0 {
+            // Refused only while the filter waits for its first sample with dt > 0; a
+            // kind's start-up period takes a burst like any other sample.
+            if self.waiting() {
                 return Err(Error::NotInitialized);
             }
             let g = checked.gyro.unwrap_or_default();

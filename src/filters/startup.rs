@@ -124,6 +124,12 @@ impl StartupMeans {
         StartupMeans { time: -1.0, ..StartupMeans::default() }
     }
 
+    /// The period has taken a sample (the kind is in its start-up stage, not waiting
+    /// for a first sample).
+    pub fn begun(&self) -> bool {
+        self.n > 0
+    }
+
     pub fn gyro(&self) -> Vec3 {
         self.gyro * (1.0 / self.n as f64)
     }

@@ -99,17 +99,18 @@ impl Frame {
     /// measured up onto the frame's up.
     ///
     /// Returns `None` when the magnetometer is parallel to the accelerometer (no
-    /// horizontal field to define north); the caller then falls back to `mag = None`.
+    /// horizontal field to define north, [`no_heading`]); the caller then falls back to
+    /// `mag = None`.
     pub fn attitude_from(self, accel: Vec3, mag: Option<Vec3>) -> Option<Quat> {
         let up = accel.normalized();
         let Some(mag) = mag else {
             return Some(Quat::from_two_vectors(up, self.up()));
         };
-        let east = mag.cross(up);
-        let east_norm = east.norm();
-        if east_norm <= 1e-9 * mag.norm() {
+        if no_heading(accel, mag) {
             return None;
         }
+        let east = mag.cross(up);
+        let east_norm = east.norm();
         let east = east * (1.0 / east_norm);
         let north = up.cross(east);
         let rows = |a: Vec3, b: Vec3, c: Vec3| [[a.x, a.y, a.z], [b.x, b.y, b.z], [c.x, c.y, c.z]];
@@ -120,6 +121,35 @@ impl Frame {
         };
         Some(Quat::from_matrix(m))
     }
+}
+
+/// The sine of the largest angle between a magnetometer reading and the accelerometer
+/// reading at which the field counts as parallel to gravity: 1e-6 (rad), the bound of
+/// the EKF's and the robust kind's tests (horizontal part at most 1e-6 of the norm).
+pub(crate) const NO_HEADING_SINE: f64 = 1e-6;
+
+/// The rule every kind follows for "a magnetometer parallel to gravity gives no
+/// heading": `mag` within [`NO_HEADING_SINE`] of parallel (or antiparallel) to the
+/// sample's accelerometer reading `accel` has no horizontal part to define north: the
+/// lifecycle (`filters::Runner`) leaves it out of every kind's step, which is then the
+/// kind's IMU update, and [`Frame::attitude_from`] takes no heading from it (the start
+/// from a first sample, a start-up period's means, a re-acquisition). Both vectors
+/// finite and not zero.
+#[inline]
+pub(crate) fn no_heading(accel: Vec3, mag: Vec3) -> bool {
+    // |a × m|² = sin² ∠(a, m) |a|² |m|²: compared directly while the product is in
+    // range, else from the unit vectors.
+    let p = accel.norm_squared() * mag.norm_squared();
+    if p > 1e-290 && p < 1e290 {
+        return accel.cross(mag).norm_squared() <= NO_HEADING_SINE * NO_HEADING_SINE * p;
+    }
+    no_heading_by_units(accel, mag)
+}
+
+#[cold]
+#[inline(never)]
+fn no_heading_by_units(accel: Vec3, mag: Vec3) -> bool {
+    accel.normalized().cross(mag.normalized()).norm_squared() <= NO_HEADING_SINE * NO_HEADING_SINE
 }
 
 #[cfg(test)]

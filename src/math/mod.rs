@@ -9,7 +9,7 @@
 
 #![forbid(unsafe_code)]
 
-mod frame;
+pub(crate) mod frame;
 pub(crate) mod lanes;
 mod quat;
 mod vec3;

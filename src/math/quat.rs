@@ -270,17 +270,65 @@ impl Quat {
     }
 
     /// Euler angles (Z-Y'-X'') of a unit quaternion: yaw and roll in (-π, π], pitch in
-    /// [-π/2, π/2].
+    /// [-π/2, π/2]; the angles rebuild the rotation, `Rz(yaw) Ry(pitch) Rx(roll) = R(q)`,
+    /// at every pitch.
+    ///
+    /// With the half angles `ψ/2`, `θ/2`, `φ/2` of `q = qz(ψ) ⊗ qy(θ) ⊗ qx(φ)`, the sums
+    /// `w + y`, `z − x` are `√2 cos(θ/2 − π/4) (cos, sin)((ψ − φ)/2)` and `w − y`,
+    /// `z + x` are `√2 cos(θ/2 + π/4) (cos, sin)((ψ + φ)/2)`. So `θ = 2 atan2(|(w + y,
+    /// z − x)|, |(w − y, z + x)|) − π/2` and the half sum and half difference of yaw and
+    /// roll are two `atan2`s, each of a pair whose length is known: no `asin` (which
+    /// loses half the digits near ±90°, where its argument is within rounding of ±1) and
+    /// no angle from two rounded near-zero matrix entries. At gimbal lock, θ = ±90°, only
+    /// `ψ − φ` (at +90°) or `ψ + φ` (at −90°) is defined: the convention is roll = 0 and
+    /// yaw carries the whole rotation about the vertical. A pair counts as zero when its
+    /// length is below `LOCK` = 1e-15 of the other's, where the rotation it stands for
+    /// changes the quaternion by less than rounding does. (Bernardes and Viollet, "Quaternion
+    /// to Euler angles conversion: a direct, general and computationally efficient
+    /// method", PLoS ONE 17(11), 2022, derive the same sums for every sequence.)
     pub fn to_euler(self) -> Euler {
+        use core::f64::consts::{FRAC_PI_2, PI};
+        const LOCK: f64 = 1e-15;
         let Quat { w, x, y, z } = self;
-        let sin_pitch = (2.0 * (w * y - z * x)).clamp(-1.0, 1.0);
-        // atan2 gives -π for a -0 sine and a negative cosine: the same angle as π.
-        let half_open = |a: f64| if a == -core::f64::consts::PI { core::f64::consts::PI } else { a };
-        Euler {
-            yaw: half_open(libm::atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))),
-            pitch: libm::asin(sin_pitch),
-            roll: half_open(libm::atan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))),
-        }
+        let (a, b) = (w + y, z - x); // √2 cos(θ/2 − π/4) (cos, sin)((ψ − φ)/2)
+        let (c, d) = (w - y, z + x); // √2 cos(θ/2 + π/4) (cos, sin)((ψ + φ)/2)
+        let (m, n) = (libm::hypot(a, b), libm::hypot(c, d));
+        // sin θ = (m² − n²)/2 (|q| = 1): its asin is accurate, relative to θ, away from
+        // ±90°, and the atan2 near them.
+        let sin_pitch = 2.0 * (w * y - z * x);
+        let pitch = if sin_pitch.abs() < 0.5 {
+            libm::asin(sin_pitch)
+        } else {
+            (2.0 * libm::atan2(m, n) - FRAC_PI_2).clamp(-FRAC_PI_2, FRAC_PI_2)
+        };
+        let half_difference = libm::atan2(b, a);
+        let half_sum = libm::atan2(d, c);
+        let (yaw, roll) = if n <= LOCK * m {
+            // θ = +90°: only ψ − φ is defined.
+            (2.0 * half_difference, 0.0)
+        } else if m <= LOCK * n {
+            // θ = −90°: only ψ + φ is defined.
+            (2.0 * half_sum, 0.0)
+        } else {
+            (half_sum + half_difference, half_sum - half_difference)
+        };
+        // Each sum lies in [−2π, 2π]: one turn at most brings it into (−π, π].
+        let wrap = |v: f64| {
+            let r = if v > PI {
+                v - 2.0 * PI
+            } else if v <= -PI {
+                v + 2.0 * PI
+            } else {
+                v
+            };
+            // A result that rounds onto −π is the same angle as π.
+            if r <= -PI {
+                PI
+            } else {
+                r
+            }
+        };
+        Euler { yaw: wrap(yaw), pitch, roll: wrap(roll) }
     }
 }
 
@@ -556,13 +604,60 @@ mod tests {
             assert!(e.yaw > -PI && e.yaw <= PI, "{q:?}: yaw {}", e.yaw);
             assert!(e.roll > -PI && e.roll <= PI, "{q:?}: roll {}", e.roll);
             assert!((-FRAC_PI_2..=FRAC_PI_2).contains(&e.pitch), "{q:?}: pitch {}", e.pitch);
-            if e.pitch.abs() < 1.5 {
-                let r = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), e.yaw)
-                    * Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), e.pitch)
-                    * Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), e.roll);
-                assert!(q.angle_to(r) < 1e-9, "{q:?}: {e:?}");
+            assert!(q.angle_to(rebuilt(e)) < 1e-14, "{q:?}: {e:?}");
+        }
+    }
+
+    /// `Rz(yaw) Ry(pitch) Rx(roll)`.
+    fn rebuilt(e: Euler) -> Quat {
+        Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), e.yaw)
+            * Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), e.pitch)
+            * Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), e.roll)
+    }
+
+    /// At and around gimbal lock (pitch ±90° and within 1e-12 to 1e-3 rad of it, both
+    /// sides, for yaws and rolls around the circle) the angles rebuild the rotation to
+    /// within a few rounding errors, and at exact lock roll is 0 and yaw carries the
+    /// rotation about the vertical (issue 40: Rz(0.7) Ry(π/2) read as a rotation 12°
+    /// away).
+    #[test]
+    #[cfg_attr(miri, ignore = "a long loop: too slow under Miri")]
+    fn euler_angles_rebuild_the_rotation_at_and_near_gimbal_lock() {
+        use core::f64::consts::{FRAC_PI_2, PI};
+        let (z, y) = (Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 1.0, 0.0));
+        let mut worst = 0.0f64;
+        for sign in [1.0, -1.0] {
+            for yaw in [0.7, -2.9, 3.0, PI, 0.0, -1e-9] {
+                let q = Quat::from_axis_angle(z, yaw) * Quat::from_axis_angle(y, sign * FRAC_PI_2);
+                let e = q.to_euler();
+                assert_eq!(e.roll, 0.0, "{q:?}: {e:?}");
+                assert!((e.pitch - sign * FRAC_PI_2).abs() < 1e-15, "{q:?}: {e:?}");
+                let dy = (e.yaw - yaw).rem_euclid(2.0 * PI);
+                assert!(dy.min(2.0 * PI - dy) < 1e-14, "{q:?}: {e:?}");
+                worst = worst.max(q.angle_to(rebuilt(e)));
             }
         }
+        let x = Vec3::new(1.0, 0.0, 0.0);
+        for sign in [1.0, -1.0] {
+            for k in 0..=90 {
+                // Offsets from 1e-12 to 1e-3 rad, ten per decade, and exact lock.
+                let offset = if k == 90 { 0.0 } else { 10f64.powf(-12.0 + k as f64 / 10.0) };
+                for side in [1.0, -1.0] {
+                    let pitch = sign * (FRAC_PI_2 - side * offset);
+                    for (yaw, roll) in [(0.7, 0.0), (-2.5, 1.1), (3.1, -3.1), (0.0, 0.3), (1e-7, -2.0)] {
+                        let q = Quat::from_axis_angle(z, yaw)
+                            * Quat::from_axis_angle(y, pitch)
+                            * Quat::from_axis_angle(x, roll);
+                        let e = q.to_euler();
+                        assert!((-FRAC_PI_2..=FRAC_PI_2).contains(&e.pitch), "{q:?}: {e:?}");
+                        let err = q.angle_to(rebuilt(e));
+                        assert!(err < 1e-14, "pitch {pitch:e}, yaw {yaw}, roll {roll}: {err:e} rad, {e:?}");
+                        worst = worst.max(err);
+                    }
+                }
+            }
+        }
+        println!("worst rebuild error near gimbal lock: {worst:e} rad");
     }
 
     const FRAC_1_SQRT_2_F: f64 = core::f64::consts::FRAC_1_SQRT_2;
