@@ -563,6 +563,65 @@ fn absorb3<V: Lanes>(
     Some(())
 }
 
+/// The NIS bound of the gravity measurement (13): an innovation whose power exceeds this
+/// many times the power the model predicts for it (`tr(H P Hᵀ) + 3 r`, r the noise and
+/// linear-acceleration variance per axis) is a gross inconsistency, one the model's
+/// noise does not explain (4 standard deviations of its RMS).
+const GROSS_NIS: f64 = 16.0;
+
+/// Covariance inflation: P_qq ← P_qq + (σ²/4)(I − q qᵀ), an attitude error of variance σ²
+/// (rad²) about each axis (`I − q qᵀ = Σ_k (q ⊗ e_k)(q ⊗ e_k)ᵀ` for the three imaginary
+/// units e_k, and δq = ½ q ⊗ (0, δθ)). A positive semi-definite addition, so P stays a
+/// covariance; the cross-covariances with ω and δ are kept. Inlined, so that the AVX copy
+/// keeps its lanes; it runs only on a gross inconsistency.
+#[inline(always)]
+fn inflate_attitude<V: Lanes>(p: &mut Cov<V>, q: V, var: f64) {
+    let t = q.token();
+    let k = 0.25 * var;
+    let qe = q.to_array();
+    for (j, col) in p.qq.iter_mut().enumerate() {
+        *col += (unit::<V>(t, j, 1.0) - q * V::splat(t, qe[j])) * V::splat(t, k);
+    }
+}
+
+/// ω's axes whose gyroscope innovation fails the NIS test against the predicted rate's
+/// variance (`P_ωω + 2 P_ωδ + P_δδ + r_g` on the diagonal, the prior before this step's
+/// process noise plus the most that noise adds, σ_ω²): a rate change the model (9) does
+/// not allow in one step.
+#[inline(always)]
+fn rate_jumps<V: Lanes>(p: &Cov<V>, w: V, d: V, gyro: Vec3, var: f64) -> [bool; 3] {
+    let (ww, wd, dd) = (entries(&p.ww), entries(&p.wd), entries(&p.dd));
+    let g = [gyro.x, gyro.y, gyro.z];
+    array(
+        #[inline(always)]
+        |i| {
+            let nu = g[i] - (lane(w, i) + lane(d, i));
+            nu * nu > GROSS_NIS * (((ww[i][i] + 2.0 * wd[i][i]) + dd[i][i]) + var)
+        },
+    )
+}
+
+/// Re-initialises ω on the `jumped` axes from the gyroscope (12): ω_i = ω_IMU,i − δ_i,
+/// independent of the other states with variance `var` (P's row and column for ω_i set to
+/// zero but its diagonal, which keeps P positive semi-definite).
+#[cold]
+#[inline(never)]
+fn reinit_rate(x: &mut Blocks, p: &mut Cov, gyro: Vec3, jumped: [bool; 3], var: f64, a: (f64, f64)) {
+    let g = [gyro.x, gyro.y, gyro.z];
+    for i in (0..3).filter(|&i| jumped[i]) {
+        // Before the prediction: ω_i such that the predicted a_ω ω_i + a_δ δ_i is the reading.
+        let d = x.d.as_array_ref()[i];
+        x.w.as_array_mut()[i] = (g[i] - a.1 * d) / a.0;
+        p.qw[i] = f64x4::splat(0.0);
+        for j in 0..3 {
+            p.ww[j].as_array_mut()[i] = 0.0;
+            p.ww[i].as_array_mut()[j] = 0.0;
+            p.wd[j].as_array_mut()[i] = 0.0;
+        }
+        p.ww[i].as_array_mut()[i] = var;
+    }
+}
+
 /// The EKF. State in the native North-East-Down frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ekf {
@@ -854,6 +913,41 @@ impl Ekf {
     /// the orientation and drift kept. Only if that fails too is the step refused.
     #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        let var = self.settings.omega_std * self.settings.omega_std;
+        let jumped = rate_jumps::<f64x4>(&self.p, self.x.w, self.x.d, gyro, var);
+        if jumped != [false; 3] {
+            return self.update_after_jump(dt, gyro, accel, mag, jumped);
+        }
+        self.update_plain(dt, gyro, accel, mag)
+    }
+
+    /// [`Ekf::update`] after ω was re-initialised on the axes whose gyroscope reading
+    /// failed the NIS test; nothing changed when the step is refused.
+    #[cold]
+    #[inline(never)]
+    fn update_after_jump(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+        jumped: [bool; 3],
+    ) -> Option<Step> {
+        let before = self.clone();
+        let s = &self.settings;
+        let a_w = 1.0 - one_minus_exp_neg(dt / s.tau_omega);
+        let a_d = 1.0 - one_minus_exp_neg(dt / s.tau_drift);
+        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
+        reinit_rate(&mut self.x, &mut self.p, gyro, jumped, rg / (a_w * a_w), (a_w, a_d));
+        let step = self.update_plain(dt, gyro, accel, mag);
+        if step.is_none() {
+            *self = before;
+        }
+        step
+    }
+
+    #[inline(always)]
+    fn update_plain(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         match self.step(dt, gyro, accel, mag) {
             Some(step) => Some(step),
             None => self.retry_from_fresh_covariance(dt, gyro, accel, mag),
@@ -988,6 +1082,14 @@ impl Ekf {
         let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
         let mut adapt = self.adapt;
         let mut adapt_h = self.adapt_h;
+        // Rest (with `rest_rate_std` set) depends on the readings only, so it is decided
+        // first: it also tells the accelerometer update that f is gravity alone.
+        let rest = (s.rest_rate_std > 0.0).then(|| {
+            let mut detector = self.rest.clone();
+            let still = detector.update(dt, gyro, accel, &RestThresholds::DEFAULT);
+            (detector, still)
+        });
+        let at_rest = rest.as_ref().is_some_and(|r| r.1);
         if let Some(acc) = accel {
             step.used_accel = true;
             let q_pred = x.q;
@@ -1001,20 +1103,35 @@ impl Ekf {
             // variance is scaled by that count (the white-noise equivalent of a
             // first-order Markov process's low-frequency power).
             let colour = (2.0 * s.motion_tau / dt).max(1.0);
-            let ra0 = s.accel_noise * s.accel_noise / (2.0 * dt)
-                + (s.accel_motion * s.accel_motion + dev * dev) * colour;
-            let mut ra = ra0;
-            if s.accel_adapt_tau > 0.0 {
-                // The innovation's recent power per axis: linear acceleration the standing
-                // allowance does not cover (sustained translation) shows up there first.
-                adapt += (nu.norm_squared() / 3.0 - adapt) * lp_gain(dt, s.accel_adapt_tau);
-                ra = ra.max(adapt * colour);
-            }
+            let white = s.accel_noise * s.accel_noise / (2.0 * dt);
+            let motion = s.accel_motion * s.accel_motion + dev * dev;
+            let ra0 = white + motion * colour;
             let h: [V; 3] = array(
                 #[inline(always)]
                 |i| V::new(tk, [hf[(i, 0)], hf[(i, 1)], hf[(i, 2)], hf[(i, 3)]]),
             );
-            let u = h.map(|hq| p.times_q(hq));
+            let mut u = h.map(|hq| p.times_q(hq));
+            // The NIS test (see the module documentation): the innovation's power against
+            // the power the model predicts for it, tr(H P Hᵀ) plus three axes of noise and
+            // linear acceleration counted as a variance (not colour-scaled).
+            let nu2 = nu.norm_squared();
+            let hph = (dot4(h[0], u[0].q) + dot4(h[1], u[1].q)) + dot4(h[2], u[2].q);
+            let expected = hph + 3.0 * (white + motion);
+            let gross = nu2 > GROSS_NIS * expected;
+            if gross {
+                inflate_attitude(&mut p, x.q, (nu2 - expected) / (2.0 * s.gravity * s.gravity));
+                u = h.map(|hq| p.times_q(hq));
+            }
+            let mut ra = ra0;
+            // At rest (the zero-rate update's detector) f is gravity alone, and a gross
+            // innovation is the attitude's error: neither is linear acceleration, so
+            // neither feeds nor takes the adaptive floor.
+            if s.accel_adapt_tau > 0.0 && !gross && !at_rest {
+                // The innovation's recent power per axis: linear acceleration the standing
+                // allowance does not cover (sustained translation) shows up there first.
+                adapt += (nu2 / 3.0 - adapt) * lp_gain(dt, s.accel_adapt_tau);
+                ra = ra.max(adapt * colour);
+            }
             let s3 = array(
                 #[inline(always)]
                 |i| {
@@ -1046,32 +1163,27 @@ impl Ekf {
             |i| nu_g[i] - (lane(x.w, i) + lane(x.d, i)),
         );
         absorb3(&mut x, &mut p, &u, s3, innovation)?;
-        let mut rest = None;
-        if s.rest_rate_std > 0.0 {
-            let mut detector = self.rest.clone();
-            if detector.update(dt, gyro, accel, &RestThresholds::DEFAULT) {
-                // At rest the rate is zero: the pseudo-measurement ω = 0.
-                let rz = s.rest_rate_std * s.rest_rate_std;
-                let u: [Blocks<V>; 3] = array(
-                    #[inline(always)]
-                    |j| p.column_w(j),
-                );
-                let s3 = array(
-                    #[inline(always)]
-                    |i| {
-                        array(
-                            #[inline(always)]
-                            |j| lane(u[j].w, i) + if i == j { rz } else { 0.0 },
-                        )
-                    },
-                );
-                let innovation = array(
-                    #[inline(always)]
-                    |i| -lane(x.w, i),
-                );
-                absorb3(&mut x, &mut p, &u, s3, innovation)?;
-            }
-            rest = Some(detector);
+        if let Some((_, true)) = rest {
+            // At rest the rate is zero: the pseudo-measurement ω = 0.
+            let rz = s.rest_rate_std * s.rest_rate_std;
+            let u: [Blocks<V>; 3] = array(
+                #[inline(always)]
+                |j| p.column_w(j),
+            );
+            let s3 = array(
+                #[inline(always)]
+                |i| {
+                    array(
+                        #[inline(always)]
+                        |j| lane(u[j].w, i) + if i == j { rz } else { 0.0 },
+                    )
+                },
+            );
+            let innovation = array(
+                #[inline(always)]
+                |i| -lane(x.w, i),
+            );
+            absorb3(&mut x, &mut p, &u, s3, innovation)?;
         }
         let q_norm = dot4(x.q, x.q).sqrt();
         // An absurd reading can blow the correction up: refuse the step rather than
@@ -1129,7 +1241,7 @@ impl Ekf {
         self.p = p.store();
         self.adapt = adapt;
         self.adapt_h = adapt_h;
-        if let Some(r) = rest {
+        if let Some((r, _)) = rest {
             self.rest = r;
         }
         Some(step)
@@ -1282,6 +1394,9 @@ mod tests {
         let settings = EkfSettings { accel_adapt_tau: 0.0, heading_adapt_tau: 0.0, ..Default::default() };
         let mut f = Ekf::new(settings);
         let truth = Quat::from_axis_angle(Vec3::new(0.2, -1.0, 0.4), 0.9);
+        // Started at the truth: a start 0.9 rad away fails the NIS test, whose covariance
+        // inflation the dense reference does not model.
+        f.set_quaternion(truth);
         let mut worst = (0.0f64, 0.0f64);
         for i in 0..400 {
             let t = i as f64 * 0.01;
