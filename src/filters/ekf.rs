@@ -584,19 +584,32 @@ fn inflate_attitude<V: Lanes>(p: &mut Cov<V>, q: V, var: f64) {
     }
 }
 
-/// ω's axes whose gyroscope innovation fails the NIS test against the predicted rate's
-/// variance (`P_ωω + 2 P_ωδ + P_δδ + r_g` on the diagonal, the prior before this step's
-/// process noise plus the most that noise adds, σ_ω²): a rate change the model (9) does
-/// not allow in one step.
+/// The one-step factors of the Markov processes (9)-(10) over dt: `(a_ω, a_δ)`, the
+/// decays `e^{−dt/τ}`, and `(q_ω, q_δ)`, the exact discrete process-noise variances
+/// `σ²(1 − e^{−2dt/τ})`, from `c = 1 − e^{−dt/τ}` (see the prediction in `update_in`).
 #[inline(always)]
-fn rate_jumps<V: Lanes>(p: &Cov<V>, w: V, d: V, gyro: Vec3, var: f64) -> [bool; 3] {
-    let (ww, wd, dd) = (entries(&p.ww), entries(&p.wd), entries(&p.dd));
+fn markov(s: &EkfSettings, c_w: f64, c_d: f64) -> ((f64, f64), (f64, f64)) {
+    let qw = s.omega_std * s.omega_std * (c_w * (2.0 - c_w));
+    let qd = s.drift_std * s.drift_std * (c_d * (2.0 - c_d));
+    ((1.0 - c_w, 1.0 - c_d), (qw, qd))
+}
+
+/// ω's axes whose gyroscope reading fails the NIS test (12): its innovation against the
+/// predicted reading `a_ω ω_i + a_δ δ_i`, squared, beyond [`GROSS_NIS`] times its
+/// predicted variance `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g` (on the
+/// diagonal): a rate the model (9) does not allow (a glitch, or a rate far beyond
+/// `omega_std` held for many correlation times).
+#[inline(always)]
+fn rate_jumps(p: &Cov, x: &Blocks, gyro: Vec3, a: (f64, f64), var: f64) -> [bool; 3] {
+    let (ww, wd, dd) = (in_place(&p.ww), in_place(&p.wd), in_place(&p.dd));
+    let (w, d) = (x.w.as_array_ref(), x.d.as_array_ref());
     let g = [gyro.x, gyro.y, gyro.z];
+    let (aww, awd, add) = (a.0 * a.0, 2.0 * a.0 * a.1, a.1 * a.1);
     array(
         #[inline(always)]
         |i| {
-            let nu = g[i] - (lane(w, i) + lane(d, i));
-            nu * nu > GROSS_NIS * (((ww[i][i] + 2.0 * wd[i][i]) + dd[i][i]) + var)
+            let nu = g[i] - (a.0 * w[i] + a.1 * d[i]);
+            nu * nu > GROSS_NIS * (((aww * ww[i][i] + awd * wd[i][i]) + add * dd[i][i]) + var)
         },
     )
 }
@@ -610,15 +623,17 @@ fn reinit_rate(x: &mut Blocks, p: &mut Cov, gyro: Vec3, jumped: [bool; 3], var: 
     let g = [gyro.x, gyro.y, gyro.z];
     for i in (0..3).filter(|&i| jumped[i]) {
         // Before the prediction: ω_i such that the predicted a_ω ω_i + a_δ δ_i is the reading.
+        // With a_ω = 0 (dt ≫ τ_ω) the prediction forgets ω: any value will do.
         let d = x.d.as_array_ref()[i];
-        x.w.as_array_mut()[i] = (g[i] - a.1 * d) / a.0;
+        let w = (g[i] - a.1 * d) / a.0;
+        x.w.as_array_mut()[i] = if w.is_finite() { w } else { 0.0 };
         p.qw[i] = f64x4::splat(0.0);
         for j in 0..3 {
             p.ww[j].as_array_mut()[i] = 0.0;
             p.ww[i].as_array_mut()[j] = 0.0;
             p.wd[j].as_array_mut()[i] = 0.0;
         }
-        p.ww[i].as_array_mut()[i] = var;
+        p.ww[i].as_array_mut()[i] = if var.is_finite() { var } else { 0.0 };
     }
 }
 
@@ -913,8 +928,11 @@ impl Ekf {
     /// the orientation and drift kept. Only if that fails too is the step refused.
     #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        let var = self.settings.omega_std * self.settings.omega_std;
-        let jumped = rate_jumps::<f64x4>(&self.p, self.x.w, self.x.d, gyro, var);
+        let s = &self.settings;
+        let (a, (qw, qd)) =
+            markov(s, one_minus_exp_neg(dt / s.tau_omega), one_minus_exp_neg(dt / s.tau_drift));
+        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
+        let jumped = rate_jumps(&self.p, &self.x, gyro, a, (qw + qd) + rg);
         if jumped != [false; 3] {
             return self.update_after_jump(dt, gyro, accel, mag, jumped);
         }
