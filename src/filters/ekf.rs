@@ -59,6 +59,25 @@
 //!   heading variance is scaled by `2τ_ψ/dt` in the same way, and bounded below by the
 //!   heading innovation's recent power (`heading_adapt_tau`): near a magnet the
 //!   innovation grows and the field is trusted less (trial 32: 25.3° to 2.8°).
+//! - Gross inconsistencies (accepted input the model (9)-(13) cannot produce: gyroscope
+//!   glitches below the 1e4 rad/s bound, a wrong attitude after a clipped spin). Each is
+//!   a normalised-innovation-squared test with bound 16 (4 standard deviations):
+//!   - gyroscope rows (12): `ν_i = ω_IMU,i − (a_ω ω_i + a_δ δ_i)` against its predicted
+//!     variance `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g`. A reading
+//!     that fails it re-initialises ω_i from the reading (`a_ω ω_i + a_δ δ_i = ω_IMU,i`,
+//!     ω_i uncorrelated, variance `r_g/a_ω²`) before the step, so the drift δ, whose
+//!     process (10) allows only `drift_std`, takes no share of a rate jump (9) does not
+//!     allow either. Tested against the *predicted* rate: a reading held at 9999 rad/s
+//!     fails on every sample, as (9) decays ω towards zero (before: δ reached 0.8
+//!     rad/s and the estimate kept turning). BROAD's EKF 9D and 6D* means are
+//!     unchanged with it.
+//!   - gravity rows (13), at detected rest only (`rest_rate_std` set): f is gravity
+//!     alone there, so `|ν|²` beyond 16 (tr(H P Hᵀ) + 3 r) is the attitude's error:
+//!     P_qq ← P_qq + (σ²/4)(I − q qᵀ) with `σ² = (|ν|² − tr(H P Hᵀ) − 3r)/(2g²)`, an
+//!     error of variance σ² about each axis (covariance matching), and the adaptive floor
+//!     is not applied at rest. In motion the same test failed 381 times on BROAD and
+//!     doubled the EKF's 9D error (5.82° to 10.17°): there a large innovation is as
+//!     likely linear acceleration, so it is left to the adaptive floor.
 
 use super::params::settings;
 use super::rest::{lp_gain, RestDetector, RestThresholds};
@@ -563,6 +582,80 @@ fn absorb3<V: Lanes>(
     Some(())
 }
 
+/// The NIS bound of the gravity measurement (13): an innovation whose power exceeds this
+/// many times the power the model predicts for it (`tr(H P Hᵀ) + 3 r`, r the noise and
+/// linear-acceleration variance per axis) is a gross inconsistency, one the model's
+/// noise does not explain (4 standard deviations of its RMS).
+const GROSS_NIS: f64 = 16.0;
+
+/// Covariance inflation: P_qq ← P_qq + (σ²/4)(I − q qᵀ), an attitude error of variance σ²
+/// (rad²) about each axis (`I − q qᵀ = Σ_k (q ⊗ e_k)(q ⊗ e_k)ᵀ` for the three imaginary
+/// units e_k, and δq = ½ q ⊗ (0, δθ)). A positive semi-definite addition, so P stays a
+/// covariance; the cross-covariances with ω and δ are kept. Inlined, so that the AVX copy
+/// keeps its lanes; it runs only on a gross inconsistency.
+#[inline(always)]
+fn inflate_attitude<V: Lanes>(p: &mut Cov<V>, q: V, var: f64) {
+    let t = q.token();
+    let k = 0.25 * var;
+    let qe = q.to_array();
+    for (j, col) in p.qq.iter_mut().enumerate() {
+        *col += (unit::<V>(t, j, 1.0) - q * V::splat(t, qe[j])) * V::splat(t, k);
+    }
+}
+
+/// The one-step factors of the Markov processes (9)-(10) over dt: `(a_ω, a_δ)`, the
+/// decays `e^{−dt/τ}`, and `(q_ω, q_δ)`, the exact discrete process-noise variances
+/// `σ²(1 − e^{−2dt/τ})`, from `c = 1 − e^{−dt/τ}` (see the prediction in `update_in`).
+#[inline(always)]
+fn markov(s: &EkfSettings, c_w: f64, c_d: f64) -> ((f64, f64), (f64, f64)) {
+    let qw = s.omega_std * s.omega_std * (c_w * (2.0 - c_w));
+    let qd = s.drift_std * s.drift_std * (c_d * (2.0 - c_d));
+    ((1.0 - c_w, 1.0 - c_d), (qw, qd))
+}
+
+/// ω's axes whose gyroscope reading fails the NIS test (12): its innovation against the
+/// predicted reading `a_ω ω_i + a_δ δ_i`, squared, beyond [`GROSS_NIS`] times its
+/// predicted variance `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g` (on the
+/// diagonal): a rate the model (9) does not allow (a glitch, or a rate far beyond
+/// `omega_std` held for many correlation times).
+#[inline(always)]
+fn rate_jumps(p: &Cov, x: &Blocks, gyro: Vec3, a: (f64, f64), var: f64) -> [bool; 3] {
+    let (ww, wd, dd) = (in_place(&p.ww), in_place(&p.wd), in_place(&p.dd));
+    let (w, d) = (x.w.as_array_ref(), x.d.as_array_ref());
+    let g = [gyro.x, gyro.y, gyro.z];
+    let (aww, awd, add) = (a.0 * a.0, 2.0 * a.0 * a.1, a.1 * a.1);
+    array(
+        #[inline(always)]
+        |i| {
+            let nu = g[i] - (a.0 * w[i] + a.1 * d[i]);
+            nu * nu > GROSS_NIS * (((aww * ww[i][i] + awd * wd[i][i]) + add * dd[i][i]) + var)
+        },
+    )
+}
+
+/// Re-initialises ω on the `jumped` axes from the gyroscope (12): ω_i = ω_IMU,i − δ_i,
+/// independent of the other states with variance `var` (P's row and column for ω_i set to
+/// zero but its diagonal, which keeps P positive semi-definite).
+#[cold]
+#[inline(never)]
+fn reinit_rate(x: &mut Blocks, p: &mut Cov, gyro: Vec3, jumped: [bool; 3], var: f64, a: (f64, f64)) {
+    let g = [gyro.x, gyro.y, gyro.z];
+    for i in (0..3).filter(|&i| jumped[i]) {
+        // Before the prediction: ω_i such that the predicted a_ω ω_i + a_δ δ_i is the reading.
+        // With a_ω = 0 (dt ≫ τ_ω) the prediction forgets ω: any value will do.
+        let d = x.d.as_array_ref()[i];
+        let w = (g[i] - a.1 * d) / a.0;
+        x.w.as_array_mut()[i] = if w.is_finite() { w } else { 0.0 };
+        p.qw[i] = f64x4::splat(0.0);
+        for j in 0..3 {
+            p.ww[j].as_array_mut()[i] = 0.0;
+            p.ww[i].as_array_mut()[j] = 0.0;
+            p.wd[j].as_array_mut()[i] = 0.0;
+        }
+        p.ww[i].as_array_mut()[i] = if var.is_finite() { var } else { 0.0 };
+    }
+}
+
 /// The EKF. State in the native North-East-Down frame.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ekf {
@@ -854,6 +947,44 @@ impl Ekf {
     /// the orientation and drift kept. Only if that fails too is the step refused.
     #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+        let s = &self.settings;
+        let (a, (qw, qd)) =
+            markov(s, one_minus_exp_neg(dt / s.tau_omega), one_minus_exp_neg(dt / s.tau_drift));
+        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
+        let jumped = rate_jumps(&self.p, &self.x, gyro, a, (qw + qd) + rg);
+        if jumped != [false; 3] {
+            return self.update_after_jump(dt, gyro, accel, mag, jumped);
+        }
+        self.update_plain(dt, gyro, accel, mag)
+    }
+
+    /// [`Ekf::update`] after ω was re-initialised on the axes whose gyroscope reading
+    /// failed the NIS test; nothing changed when the step is refused.
+    #[cold]
+    #[inline(never)]
+    fn update_after_jump(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+        jumped: [bool; 3],
+    ) -> Option<Step> {
+        let before = self.clone();
+        let s = &self.settings;
+        let a_w = 1.0 - one_minus_exp_neg(dt / s.tau_omega);
+        let a_d = 1.0 - one_minus_exp_neg(dt / s.tau_drift);
+        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
+        reinit_rate(&mut self.x, &mut self.p, gyro, jumped, rg / (a_w * a_w), (a_w, a_d));
+        let step = self.update_plain(dt, gyro, accel, mag);
+        if step.is_none() {
+            *self = before;
+        }
+        step
+    }
+
+    #[inline(always)]
+    fn update_plain(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
         match self.step(dt, gyro, accel, mag) {
             Some(step) => Some(step),
             None => self.retry_from_fresh_covariance(dt, gyro, accel, mag),
@@ -988,6 +1119,14 @@ impl Ekf {
         let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
         let mut adapt = self.adapt;
         let mut adapt_h = self.adapt_h;
+        // Rest (with `rest_rate_std` set) depends on the readings only, so it is decided
+        // first: it also tells the accelerometer update that f is gravity alone.
+        let rest = (s.rest_rate_std > 0.0).then(|| {
+            let mut detector = self.rest.clone();
+            let still = detector.update(dt, gyro, accel, &RestThresholds::DEFAULT);
+            (detector, still)
+        });
+        let at_rest = rest.as_ref().is_some_and(|r| r.1);
         if let Some(acc) = accel {
             step.used_accel = true;
             let q_pred = x.q;
@@ -1001,20 +1140,35 @@ impl Ekf {
             // variance is scaled by that count (the white-noise equivalent of a
             // first-order Markov process's low-frequency power).
             let colour = (2.0 * s.motion_tau / dt).max(1.0);
-            let ra0 = s.accel_noise * s.accel_noise / (2.0 * dt)
-                + (s.accel_motion * s.accel_motion + dev * dev) * colour;
-            let mut ra = ra0;
-            if s.accel_adapt_tau > 0.0 {
-                // The innovation's recent power per axis: linear acceleration the standing
-                // allowance does not cover (sustained translation) shows up there first.
-                adapt += (nu.norm_squared() / 3.0 - adapt) * lp_gain(dt, s.accel_adapt_tau);
-                ra = ra.max(adapt * colour);
-            }
+            let white = s.accel_noise * s.accel_noise / (2.0 * dt);
+            let motion = s.accel_motion * s.accel_motion + dev * dev;
+            let ra0 = white + motion * colour;
             let h: [V; 3] = array(
                 #[inline(always)]
                 |i| V::new(tk, [hf[(i, 0)], hf[(i, 1)], hf[(i, 2)], hf[(i, 3)]]),
             );
-            let u = h.map(|hq| p.times_q(hq));
+            let mut u = h.map(|hq| p.times_q(hq));
+            // The NIS test (see the module documentation): the innovation's power against
+            // the power the model predicts for it, tr(H P Hᵀ) plus three axes of noise and
+            // linear acceleration counted as a variance (not colour-scaled).
+            let nu2 = nu.norm_squared();
+            let hph = (dot4(h[0], u[0].q) + dot4(h[1], u[1].q)) + dot4(h[2], u[2].q);
+            let expected = hph + 3.0 * (white + motion);
+            let gross = at_rest && nu2 > GROSS_NIS * expected;
+            if gross {
+                inflate_attitude(&mut p, x.q, (nu2 - expected) / (2.0 * s.gravity * s.gravity));
+                u = h.map(|hq| p.times_q(hq));
+            }
+            let mut ra = ra0;
+            // At rest (the zero-rate update's detector) f is gravity alone, and a gross
+            // innovation is the attitude's error: neither is linear acceleration, so
+            // neither feeds nor takes the adaptive floor.
+            if s.accel_adapt_tau > 0.0 && !gross && !at_rest {
+                // The innovation's recent power per axis: linear acceleration the standing
+                // allowance does not cover (sustained translation) shows up there first.
+                adapt += (nu2 / 3.0 - adapt) * lp_gain(dt, s.accel_adapt_tau);
+                ra = ra.max(adapt * colour);
+            }
             let s3 = array(
                 #[inline(always)]
                 |i| {
@@ -1046,32 +1200,27 @@ impl Ekf {
             |i| nu_g[i] - (lane(x.w, i) + lane(x.d, i)),
         );
         absorb3(&mut x, &mut p, &u, s3, innovation)?;
-        let mut rest = None;
-        if s.rest_rate_std > 0.0 {
-            let mut detector = self.rest.clone();
-            if detector.update(dt, gyro, accel, &RestThresholds::DEFAULT) {
-                // At rest the rate is zero: the pseudo-measurement ω = 0.
-                let rz = s.rest_rate_std * s.rest_rate_std;
-                let u: [Blocks<V>; 3] = array(
-                    #[inline(always)]
-                    |j| p.column_w(j),
-                );
-                let s3 = array(
-                    #[inline(always)]
-                    |i| {
-                        array(
-                            #[inline(always)]
-                            |j| lane(u[j].w, i) + if i == j { rz } else { 0.0 },
-                        )
-                    },
-                );
-                let innovation = array(
-                    #[inline(always)]
-                    |i| -lane(x.w, i),
-                );
-                absorb3(&mut x, &mut p, &u, s3, innovation)?;
-            }
-            rest = Some(detector);
+        if let Some((_, true)) = rest {
+            // At rest the rate is zero: the pseudo-measurement ω = 0.
+            let rz = s.rest_rate_std * s.rest_rate_std;
+            let u: [Blocks<V>; 3] = array(
+                #[inline(always)]
+                |j| p.column_w(j),
+            );
+            let s3 = array(
+                #[inline(always)]
+                |i| {
+                    array(
+                        #[inline(always)]
+                        |j| lane(u[j].w, i) + if i == j { rz } else { 0.0 },
+                    )
+                },
+            );
+            let innovation = array(
+                #[inline(always)]
+                |i| -lane(x.w, i),
+            );
+            absorb3(&mut x, &mut p, &u, s3, innovation)?;
         }
         let q_norm = dot4(x.q, x.q).sqrt();
         // An absurd reading can blow the correction up: refuse the step rather than
@@ -1129,7 +1278,7 @@ impl Ekf {
         self.p = p.store();
         self.adapt = adapt;
         self.adapt_h = adapt_h;
-        if let Some(r) = rest {
+        if let Some((r, _)) = rest {
             self.rest = r;
         }
         Some(step)
