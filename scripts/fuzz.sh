@@ -12,6 +12,8 @@ cp -r fuzz/corpus/abi_calls "$work/corpus"
 cd fuzz
 cargo +nightly fuzz run abi_calls "$work/corpus" -- -max_total_time="$seconds" -rss_limit_mb=2048 \
   -print_final_stats=1 2>&1 | tee "$work/log" | grep -E "stat::number_of_executed_units|ERROR|panicked|Done" || true
+# Breaches the target knows of (allow-lists naming issue 40's classes), once each.
+grep "^known failure" "$work/log" | sort -u || true
 grep -q "ERROR\|panicked" "$work/log" && { tail -60 "$work/log"; exit 1; }
 grep -q "stat::number_of_executed_units" "$work/log" || { tail -40 "$work/log"; exit 1; }
 echo "fuzz: $(ls "$work/corpus" | wc -l) corpus entries after the run"
