@@ -1469,7 +1469,12 @@ OrientStatus orient_filter_get_param(const OrientFilter *filter, uint32_t id, do
 
 /**
  * Creates a filter from `config`. On success `*out` is a new handle; on failure it is
- * set to NULL (when `out` is not NULL).
+ * set to NULL (when `out` is not NULL). The configuration is checked as
+ * orient_config_set_param and the OrientConfig fields document (VERSION_MISMATCH,
+ * INVALID_ARGUMENT, UNKNOWN_PARAM, PARAM_OUT_OF_RANGE); with ORIENT_INIT_GIVEN, an
+ * unusable `initial` quaternion is NON_FINITE, ZERO_VECTOR or TOO_LARGE, as for
+ * orient_filter_set_quaternion. COUNT_TOO_LARGE when the most filters the library
+ * holds are live.
  */
 OrientStatus orient_filter_new(const struct OrientConfig *config, OrientFilter **out);
 

@@ -1485,7 +1485,12 @@ namespace Orient.Native
 
         /// <summary>
         /// Creates a filter from `config`. On success `*out` is a new handle; on failure it is
-        /// set to NULL (when `out` is not NULL).
+        /// set to NULL (when `out` is not NULL). The configuration is checked as
+        /// orient_config_set_param and the OrientConfig fields document (VERSION_MISMATCH,
+        /// INVALID_ARGUMENT, UNKNOWN_PARAM, PARAM_OUT_OF_RANGE); with ORIENT_INIT_GIVEN, an
+        /// unusable `initial` quaternion is NON_FINITE, ZERO_VECTOR or TOO_LARGE, as for
+        /// orient_filter_set_quaternion. COUNT_TOO_LARGE when the most filters the library
+        /// holds are live.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_filter_new(Config* config, IntPtr* @out);

@@ -60,7 +60,12 @@ pub(crate) fn need(any_null: bool) -> Res {
 }
 
 /// Creates a filter from `config`. On success `*out` is a new handle; on failure it is
-/// set to NULL (when `out` is not NULL).
+/// set to NULL (when `out` is not NULL). The configuration is checked as
+/// orient_config_set_param and the OrientConfig fields document (VERSION_MISMATCH,
+/// INVALID_ARGUMENT, UNKNOWN_PARAM, PARAM_OUT_OF_RANGE); with ORIENT_INIT_GIVEN, an
+/// unusable `initial` quaternion is NON_FINITE, ZERO_VECTOR or TOO_LARGE, as for
+/// orient_filter_set_quaternion. COUNT_TOO_LARGE when the most filters the library
+/// holds are live.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_new(
     config: *const OrientConfig,
