@@ -52,20 +52,9 @@ const RECOVERY_EVERY: u64 = 4;
 
 /// Known breaches of the status property: (function, status, issue 40 class, what).
 /// Remove an entry when the fix of its class merges; the fuzzer then holds it.
-const KNOWN_STATUSES: &[(&str, &str, u32, &str)] = &[
-    ("orient_rig_calibrate", "TOO_LARGE", 10, "a reference of 1e200: TOO_LARGE, not listed"),
-    ("orient_rig_align_heading", "TOO_LARGE", 10, "as orient_rig_calibrate"),
-    ("orient_mag_calibrator_solve", "INVALID_ARGUMENT", 6, "after a reading of 1e100 or more was accepted"),
-    ("orient_mag_calibrator_add", "INVALID_ARGUMENT", 6, "after a reading of 1e100 or more was accepted"),
-    ("orient_filter_new", "ZERO_VECTOR", 10, "init GIVEN with a zero initial quaternion; the doc lists none"),
-    ("orient_filter_new", "NON_FINITE", 10, "init GIVEN with a NaN initial quaternion"),
-    ("orient_filter_new", "TOO_LARGE", 10, "init GIVEN with an initial quaternion of 5e303"),
-];
+const KNOWN_STATUSES: &[(&str, &str, u32, &str)] = &[];
 /// Known breaches of the recovery property, by kind (ORIENT_KIND_*) and issue 40 class.
 const KNOWN_RECOVERY: &[(i32, u32, &str)] = &[
-    (4, 3, "EKF: accepted gyro glitches leave its rate state spinning"),
-    (4, 2, "EKF: with rest_rate_std, no inclination correction at rest"),
-    (3, 5, "complementary: start-up"),
     // Not in issue 40 (class 0 here), found by this target: see the report of fix/fuzz.
     (1, 0, "Madgwick: not within 2 deg after its beta bound"),
     (5, 0, "GMVDK: not within 2 deg after 60 s"),
@@ -73,8 +62,6 @@ const KNOWN_RECOVERY: &[(i32, u32, &str)] = &[
 ];
 /// Known breaches of other checks: (check, class, what).
 const KNOWN_OTHER: &[(&str, u32, &str)] = &[
-    ("orient_gyro_offset accepted a non-finite spread", 10, "readings of 1e200: OK with spread = inf"),
-    ("calibrator unusable after an outlier", 6, "huge readings accepted wreck the fit"),
     // Not in issue 40 (class 0 here): a model whose offset or scale puts every plausible
     // reading beyond the bounds (an offset of 1e249, a scale of 1e150 or 1e-150) is
     // accepted, and then every sample is refused: a stuck filter.
