@@ -23,16 +23,20 @@
 //! configuration, so the smoother refuses exactly the samples such a run refuses, before
 //! any output is written. The backward pass writes its orientation straight into the
 //! output slots and keeps only its heading sigma on the side; the final forward pass
-//! fuses each sample as it goes and overwrites that sample's slot. Samples are read
-//! where they lie ([`SampleSource`]), never copied. So beyond the caller's samples and
-//! outputs, [`smooth_into`] allocates [`MEMORY_PER_SAMPLE`] (8) bytes per sample, in one
-//! block reserved fallibly before the first pass ([`SmoothError::OutOfMemory`] when it
-//! cannot be had), and one filter (at most [`FIXED_MEMORY`] bytes, every kind) at a
-//! time: [`memory`] is the sum. [`smooth`] adds its result, 32 bytes per sample, also
-//! reserved fallibly.
+//! fuses each sample as it goes and overwrites that sample's slot. Samples are read where
+//! they lie ([`SampleSource`](crate::offline::SampleSource)), never copied. So beyond the
+//! caller's samples and outputs, [`smooth_into`](crate::offline::smooth_into) allocates
+//! [`MEMORY_PER_SAMPLE`](crate::offline::MEMORY_PER_SAMPLE) (8) bytes per sample, in one
+//! block reserved fallibly before the first pass
+//! ([`SmoothError::OutOfMemory`](crate::offline::SmoothError::OutOfMemory) when it cannot
+//! be had), and one filter (at most [`FIXED_MEMORY`](crate::offline::FIXED_MEMORY) bytes,
+//! every kind) at a time: [`memory`](crate::offline::memory) is the sum.
+//! [`smooth`](crate::offline::smooth) adds its result, 32 bytes per sample, also reserved
+//! fallibly.
 //!
-//! Unlike [`crate::Filter::update`], this allocates; [`passes`] and [`fuse`] give the
-//! two passes apart, for analysis, at 64 more bytes per sample.
+//! Unlike [`crate::Filter::update`], this allocates; [`passes`](crate::offline::passes)
+//! and [`fuse`](crate::offline::fuse) give the two passes apart, for analysis, at 64 more
+//! bytes per sample.
 
 #![forbid(unsafe_code)]
 

@@ -99,7 +99,7 @@ impl Frame {
     /// measured up onto the frame's up.
     ///
     /// Returns `None` when the magnetometer is parallel to the accelerometer (no
-    /// horizontal field to define north, [`no_heading`]); the caller then falls back to
+    /// horizontal field to define north, `no_heading`); the caller then falls back to
     /// `mag = None`.
     pub fn attitude_from(self, accel: Vec3, mag: Option<Vec3>) -> Option<Quat> {
         let up = accel.normalized();
