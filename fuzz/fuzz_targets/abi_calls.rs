@@ -467,8 +467,8 @@ fn normalise(v: [f64; 3]) -> [f64; 3] {
 
 /// The recovery property for `h`: a copy through its blob, with its gains and time
 /// constants back at their defaults (a gain of 1e-9 legitimately takes 1e9 s) but its
-/// options (ORIENT_PARAM_FLAG_ZERO_OFF), the common slots and Madgwick's betas kept,
-/// and its sensor models cleared (they would change what the still samples mean),
+/// options (ORIENT_PARAM_FLAG_ZERO_OFF), the common slots but gravity and Madgwick's
+/// betas kept, and its sensor models cleared (they would change what the still samples mean),
 /// takes still samples at 100 Hz for 60 s (Madgwick: its bound 2 pi / min(beta_imu,
 /// beta_marg) s, at least 60; not checked when that exceeds 600 s), each accepted; its
 /// gravity estimate must then be within 2 deg of the truth.
@@ -482,7 +482,10 @@ fn check_recovery(h: *mut OrientFilter, with_mag: bool, what: &str) {
     };
     let madgwick = kind == OrientKind::Madgwick as i32;
     for p in params(kind) {
-        let keep = p.id < 8
+        // Gravity goes back to its default too: a kind's noise parameters are absolute
+        // (m/s^2), so a gravity of 1e-3 leaves the EKF's correction negligible, as the
+        // configuration asks.
+        let keep = (p.id < 8 && p.id != ORIENT_PARAM_GRAVITY)
             || p.flags & ORIENT_PARAM_FLAG_ZERO_OFF != 0
             || (madgwick
                 && [ORIENT_PARAM_MADGWICK_BETA_IMU, ORIENT_PARAM_MADGWICK_BETA_MARG].contains(&p.id));
