@@ -92,7 +92,7 @@ fn scenario(event: Event, rate: f64) -> Outcome {
     // The still or turning sensor in the room's field (plus the magnet once it is there).
     let mut field = FIELD;
     let mut offset = 0.0; // heading the truth gained without the gyroscope seeing it
-    let mut step = |f: &mut Filter, t: &mut f64, field: Vec3, offset: f64, rng: &mut Noise| {
+    let step = |f: &mut Filter, t: &mut f64, field: Vec3, offset: f64, rng: &mut Noise| {
         *t += DT;
         let q = Quat::from_axis_angle(UP, offset) * truth(*t, rate);
         f.update(&at(q, DT, w, field, rng)).unwrap();
