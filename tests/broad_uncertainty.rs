@@ -86,7 +86,7 @@ fn the_heading_uncertainty_covers_the_heading_error_on_broad() {
             // within 0.5-2 times the median sigma on every trial (measured 0.59-1.69; before
             // the deviation and turning terms, 0.41-1.98 with a median of 2.0-2.1 deg on
             // every trial), and 2 sigma covering near its Gaussian 95 % over all (measured
-            // 94.3 %, 3 sigma 99.7 %).
+            // 95.4 %, 3 sigma 99.7 %; 94.3 % before the innovation evidence, eq. H5).
             for (name, r) in &ratios {
                 assert!((0.5..=2.0).contains(r), "trial {name}: RMS error / median sigma = {r}");
             }
