@@ -97,8 +97,12 @@ pub unsafe extern "C" fn orient_filter_diagnostics(
 /// `present` is 0 and both fields are NaN. The heading is against the filter's reference
 /// (magnetic north once a magnetometer was used, else the start heading); offsets the
 /// host sets (heading, declination, rig calibration, mounting, frame) are exact and add
-/// none. orient_filter_set_quaternion makes the robust kind's heading exact (0 until the
-/// next update); the EKF keeps its covariance.
+/// none. The robust kind's heading sigma also takes what the filter observes: a used
+/// field whose heading disagrees with the estimate beyond the model's 2 sigma raises it
+/// (the innovation, low-passed over 4 s, fading as the correction removes it), and a
+/// gyroscope step faster than 2000 deg/s counts its whole angle (a glitch, not a turn).
+/// orient_filter_set_quaternion makes the robust kind's heading exact (0 until the next
+/// update, then as above); the EKF keeps its covariance.
 #[no_mangle]
 pub unsafe extern "C" fn orient_filter_uncertainty(
     filter: *const OrientFilter,

@@ -294,8 +294,10 @@ impl Filter {
     /// used to about √(σ_v² + (σ τ_mag)²) plus the turning's share, σ_v growing from
     /// `mag_heading_sigma` with the used field's deviation from the reference and σ the
     /// bias uncertainty, `bias_sigma_rest` after a rest, else `bias_sigma`;
-    /// `src/filters/robust.rs`, eqs. (H1)-(H4)). `set_quaternion` makes the robust
-    /// kind's heading exact; the EKF keeps its covariance.
+    /// `src/filters/robust.rs`, eqs. (H1)-(H5): a used field that disagrees with the
+    /// estimate, and a gyroscope step too fast to be a turn, raise it). `set_quaternion`
+    /// makes the robust kind's heading exact until the next update; the EKF keeps its
+    /// covariance.
     /// Every field is `None` for the other kinds and before initialisation. The heading
     /// is against the kind's reference (magnetic north once a magnetometer was used, else
     /// the start heading); offsets the host sets (heading, declination, rig calibration,
