@@ -489,24 +489,49 @@ fn blob(f: *mut OrientFilter) -> Vec<u8> {
     }
 }
 
-/// Class 10: a pure scale of the identity is no singular matrix, whatever the scale.
+/// Class 10: a pure scale of the identity is no singular matrix, whatever the scale: it
+/// is accepted, or refused by the rule on plausible readings (TOO_LARGE when a plausible
+/// reading calibrates beyond the physical bound, ZERO_VECTOR when one calibrates to
+/// zero), never as singular.
 #[test]
 fn a_scaled_identity_is_no_singular_model() {
     let f = running_filter(OrientKind::Madgwick as i32);
-    for scale in [1e-110, 1e110, 1e-300, 1e300, 5e-324, -1e-200, 3.0] {
+    use OrientStatus::{Ok as A, TooLarge as L, ZeroVector as Z};
+    // Gyroscope, accelerometer, magnetometer.
+    let expected = [
+        (1e-110, [A, A, A]),
+        (1e110, [L, L, L]),
+        (1e-300, [A, Z, Z]),
+        (1e300, [L, L, L]),
+        (5e-324, [A, Z, Z]),
+        (-1e-200, [A, Z, Z]),
+        (3.0, [A, A, A]),
+        // 1 rad/s, gravity and 65000 reach the bounds (1e4, 1e5, 1e12) beyond these.
+        (9999.0, [A, A, A]),
+        (1e4, [L, A, A]),
+        (1.1e4, [L, L, A]),
+        (1.5e7, [L, L, A]),
+        (1.6e7, [L, L, L]),
+    ];
+    for (scale, statuses) in expected {
         let model = OrientSensorModel {
             matrix: [scale, 0.0, 0.0, 0.0, scale, 0.0, 0.0, 0.0, scale],
             offset: OrientVec3::default(),
         };
-        for sensor in [ORIENT_SENSOR_GYRO, ORIENT_SENSOR_ACCEL, ORIENT_SENSOR_MAG] {
-            assert_eq!(
-                unsafe { orient_filter_set_sensor_model(f, sensor, &model) },
-                OrientStatus::Ok,
-                "{scale:e}"
-            );
+        for (sensor, status) in
+            [ORIENT_SENSOR_GYRO, ORIENT_SENSOR_ACCEL, ORIENT_SENSOR_MAG].into_iter().zip(statuses)
+        {
+            unsafe { orient_filter_set_sensor_model(f, sensor, std::ptr::null()) };
+            let before = blob(f);
+            let s = unsafe { orient_filter_set_sensor_model(f, sensor, &model) };
+            assert_eq!(s, status, "{scale:e}, sensor {sensor}");
             let mut back = OrientSensorModel::default();
-            assert_eq!(unsafe { orient_filter_sensor_model(f, sensor, &mut back) }, OrientStatus::Ok);
-            assert_eq!(back, model);
+            if s == OrientStatus::Ok {
+                assert_eq!(unsafe { orient_filter_sensor_model(f, sensor, &mut back) }, OrientStatus::Ok);
+                assert_eq!(back, model);
+            } else {
+                assert_eq!(blob(f), before);
+            }
         }
     }
     // Singular at any scale: a rank-2 matrix, and a nearly singular one.

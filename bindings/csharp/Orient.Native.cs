@@ -1354,9 +1354,18 @@ namespace Orient.Native
         /// update, in every kind; NULL clears it (the readings are used as they come). The raw
         /// reading is checked first (finite, within its range and physical bound), then the
         /// calibrated one. Kept by orient_filter_reset and saved in snapshots.
+        /// A model must map the sensor's plausible readings to readings every update accepts:
+        /// for the gyroscope every reading of at most 1 rad/s (0 among them), for the
+        /// accelerometer standard gravity (9.80665) in any direction, for the magnetometer (any
+        /// unit) the earth's field of any strength from 0.25 (gauss) to 65000 (nanotesla) in
+        /// any direction, read with the hard-iron offset added.
         /// INVALID_ARGUMENT for an unknown sensor, NON_FINITE for a NaN or infinite entry,
         /// ZERO_VECTOR for a singular matrix (whatever its scale: |det| &lt;= 1e-12 (|matrix|_F /
-        /// sqrt 3)^3; any nonzero multiple of the identity is accepted); nothing changes then.
+        /// sqrt 3)^3) or one that sends a plausible reading to zero (|calibrated|^2 below
+        /// DBL_MIN, by the bound sigma_min(matrix) &gt;= 1 / |matrix^-1|_F), TOO_LARGE for an
+        /// offset with a component at or beyond the sensor's physical bound (1e4 rad/s, 1e5
+        /// m/s^2, 1e12) or a model that sends a plausible reading to a component at or beyond
+        /// it; nothing changes then.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_filter_set_sensor_model(IntPtr filter, uint sensor, SensorModel* model);

@@ -38,11 +38,33 @@ impl Model {
         )
     }
 
-    /// NonFinite for a NaN or infinite entry; ZeroVector for a matrix that is singular
-    /// whatever its scale: `|det M| ≤ 10⁻¹² (‖M‖_F/√3)³`, computed on `M` divided by its
-    /// largest entry (so that neither 10¹¹⁰ nor 10⁻¹¹⁰ times the identity overflows or
-    /// underflows, and both pass as the identity does).
-    fn check(&self, field: Field) -> Result<(), Error> {
+    /// A model the filter can use: one that maps the sensor's plausible readings
+    /// ([`PLAUSIBLE_GYRO`], [`PLAUSIBLE_GRAVITY`], [`PLAUSIBLE_FIELD`]) to readings every
+    /// update accepts, so that no accepted model leaves every sample refused. In order:
+    /// - NonFinite for a NaN or infinite entry;
+    /// - ZeroVector for a matrix that is singular whatever its scale:
+    ///   `|det M| ≤ 10⁻¹² (‖M‖_F/√3)³`, computed on `M` divided by its largest entry (so
+    ///   that no scale overflows or underflows);
+    /// - TooLarge for an offset with a component at or beyond the sensor's physical bound
+    ///   (no reading lies there);
+    /// - gyroscope: TooLarge unless every reading of at most [`PLAUSIBLE_GYRO`] (a still
+    ///   sensor's 0 among them) calibrates with each component under
+    ///   [`MAX_GYRO`](super::MAX_GYRO);
+    /// - accelerometer: a reading of standard gravity ([`PLAUSIBLE_GRAVITY`]) in any
+    ///   direction must calibrate with each component under [`MAX_ACCEL`](super::MAX_ACCEL)
+    ///   (else TooLarge) and to a nonzero vector, `|calibrated|² ≥ f64::MIN_POSITIVE` (the
+    ///   zero threshold of every reading; else ZeroVector);
+    /// - magnetometer (any unit): the earth's field at any strength of
+    ///   [`PLAUSIBLE_FIELD`] (gauss to nanotesla) in any direction, read with the hard-iron
+    ///   offset added, must calibrate with each component under [`MAX_MAG`](super::MAX_MAG)
+    ///   (else TooLarge) and to a nonzero vector (else ZeroVector).
+    ///
+    /// Over the readings `r = c + ρ u` around a centre `c` (0, or the offset for the
+    /// magnetometer), `ρ ≤ hi`, component `i` of `M (r − offset)` reaches at most
+    /// `hi ‖Mᵢ‖ + |Mᵢ (c − offset)|` (row `Mᵢ`; exact), and the norm is at least
+    /// `σ_min(M) · min |r − offset|`, with `σ_min(M) ≥ 1/‖M⁻¹‖_F` (a bound that may
+    /// refuse a model whose least calibrated reading is a few times above zero).
+    pub(crate) fn check(&self, field: Field) -> Result<(), Error> {
         let finite = self.matrix.iter().flatten().all(|x| x.is_finite()) && self.offset.is_finite();
         if !finite {
             return Err(Error::NonFinite(field));
@@ -52,17 +74,81 @@ impl Model {
             return Err(Error::ZeroVector(field));
         }
         let m = self.matrix.map(|row| row.map(|x| x / big));
-        let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        // Cofactors: adj(m)ᵀ, so that det = m₀ · cof₀ and m⁻¹ = adj(m) / det.
+        let cof = [
+            [
+                m[1][1] * m[2][2] - m[1][2] * m[2][1],
+                m[1][2] * m[2][0] - m[1][0] * m[2][2],
+                m[1][0] * m[2][1] - m[1][1] * m[2][0],
+            ],
+            [
+                m[0][2] * m[2][1] - m[0][1] * m[2][2],
+                m[0][0] * m[2][2] - m[0][2] * m[2][0],
+                m[0][1] * m[2][0] - m[0][0] * m[2][1],
+            ],
+            [
+                m[0][1] * m[1][2] - m[0][2] * m[1][1],
+                m[0][2] * m[1][0] - m[0][0] * m[1][2],
+                m[0][0] * m[1][1] - m[0][1] * m[1][0],
+            ],
+        ];
+        let det = m[0][0] * cof[0][0] + m[0][1] * cof[0][1] + m[0][2] * cof[0][2];
         // ‖M‖_F²/3 ≥ 1/3 after the division: no underflow.
         let mean_square = m.iter().flatten().map(|x| x * x).sum::<f64>() / 3.0;
         if det.abs() <= 1e-12 * mean_square * mean_square.sqrt() {
             return Err(Error::ZeroVector(field));
         }
+        let (bound, (centre, lo, hi)) = match field {
+            Field::Gyro => (super::MAX_GYRO, (Vec3::ZERO, 0.0, PLAUSIBLE_GYRO)),
+            Field::Accel => (super::MAX_ACCEL, (Vec3::ZERO, PLAUSIBLE_GRAVITY, PLAUSIBLE_GRAVITY)),
+            _ => (super::MAX_MAG, (self.offset, PLAUSIBLE_FIELD.0, PLAUSIBLE_FIELD.1)),
+        };
+        if !(self.offset.max_abs() < bound) {
+            return Err(Error::TooLarge(field));
+        }
+        // Largest component over |r − centre| ≤ hi: ρ‖Mᵢ‖ + |Mᵢ (centre − offset)|, each
+        // factor of big taken last (an overflow gives ∞, refused).
+        let d = centre - self.offset;
+        let reach = m.iter().fold(0.0f64, |w, row| {
+            let r = Vec3::new(row[0], row[1], row[2]);
+            w.max(hi * r.norm() + r.dot(d).abs())
+        });
+        if !(reach * big < bound) {
+            return Err(Error::TooLarge(field));
+        }
+        if lo > 0.0 {
+            // |M (r − offset)| ≥ σ_min(M) |r − offset| ≥ σ_min(M) · min |r − offset|, with
+            // σ_min(M) ≥ big |det m| / ‖adj m‖_F.
+            let adj = cof.iter().flatten().map(|x| x * x).sum::<f64>().sqrt();
+            let sigma = det.abs() / adj * big;
+            // The readings are `centre + ρ u`, ρ in [lo, hi]: the nearest to the offset.
+            let dist = d.norm();
+            let nearest = if dist < lo {
+                lo - dist
+            } else if dist > hi {
+                dist - hi
+            } else {
+                0.0
+            };
+            let least = sigma * nearest;
+            if !(least * least >= f64::MIN_POSITIVE) {
+                return Err(Error::ZeroVector(field));
+            }
+        }
         Ok(())
     }
 }
+
+/// The gyroscope readings a model must map within the physical bound (rad/s): every
+/// reading of at most 1 rad/s, a still sensor's 0 among them.
+pub const PLAUSIBLE_GYRO: f64 = 1.0;
+/// The accelerometer reading a model must map to a usable vector in every direction
+/// (m/s²): standard gravity.
+pub const PLAUSIBLE_GRAVITY: f64 = 9.80665;
+/// The strengths of the earth's field a magnetometer model must map to usable vectors,
+/// whatever the unit the host reads in: 0.25 (weakest field in gauss) to 65,000 (the
+/// strongest in nanotesla, or counts); microtesla (25 to 65) lie between.
+pub const PLAUSIBLE_FIELD: (f64, f64) = (0.25, 65_000.0);
 
 /// The three sensor models of a filter; `None` is the identity.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -124,8 +210,11 @@ pub enum Sensor {
 impl Filter {
     /// Sets (or with `None` clears) the model applied to one sensor's readings before
     /// every update, in every kind. The raw reading is checked first (finite, within its
-    /// range and physical bound), then the calibrated one. NonFinite for a NaN or
-    /// infinite entry, ZeroVector for a singular matrix; nothing changes then.
+    /// range and physical bound), then the calibrated one. A model must map the sensor's
+    /// plausible readings to usable ones ([`Model::check`]): NonFinite for a NaN or
+    /// infinite entry, ZeroVector for a singular matrix or one that sends a plausible
+    /// reading to zero, TooLarge for an offset beyond the physical bound or one that
+    /// sends a plausible reading beyond it; nothing changes then.
     pub fn set_sensor_model(&mut self, sensor: Sensor, model: Option<Model>) -> Result<(), Error> {
         let field = match sensor {
             Sensor::Gyro => Field::Gyro,
