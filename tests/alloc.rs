@@ -133,7 +133,9 @@ fn footprint_of_one_filter_per_kind() {
         let bound = match kind {
             Kind::Madgwick | Kind::Mahony => 184,
             Kind::Complementary => 256,
-            Kind::Ekf => 1040,
+            // Issue 40: the mean gravity innovation behind the reported inclination σ
+            // (24 bytes, 32 with the lanes' alignment).
+            Kind::Ekf => 1072,
             // 624 and the running-minimum window of μ (Appendix B.2), two 1024-entry f64
             // buffers and two indices.
             Kind::Gmvdk => 624 + 16_400,

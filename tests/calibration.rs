@@ -186,15 +186,15 @@ fn models_and_host_frames_survive_reset_and_snapshots() {
 
 /// A blob of format version 2 (before issue 20's fields) is refused as another version,
 /// as are those of version 3 (before the robust kind's heading uncertainty), 4 (the
-/// robust kind's heading as an angle, not a half-angle pair) and 5 (Mahony's estimate
-/// North-West-Up).
+/// robust kind's heading as an angle, not a half-angle pair), 5 (Mahony's estimate
+/// North-West-Up) and 6 (before the EKF's mean gravity innovation).
 #[test]
 fn a_version_2_snapshot_is_refused_as_another_version() {
     use orient::filters::state::{checksum, StateError, VERSION};
-    assert_eq!(VERSION, 6);
+    assert_eq!(VERSION, 7);
     let mut f = Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap();
     let before = f.clone();
-    for old in [2u16, 3, 4, 5] {
+    for old in [2u16, 3, 4, 5, 6] {
         let mut blob = vec![0u8; f.state_size()];
         f.save(&mut blob).unwrap();
         blob[4..6].copy_from_slice(&old.to_le_bytes());
