@@ -104,7 +104,8 @@
 //!   (trial 21, fast combined motion: from 46 % to 100 %); the median σ is unchanged where
 //!   the accelerometer sees gravity alone and grows under sustained translation (trials
 //!   15 and 30: 15.7° and 7.1° to 27.1° and 21.6°, RMS errors 9.7° and 5.3°), where the
-//!   accelerometer cannot tell tilt from acceleration.
+//!   accelerometer cannot tell tilt from acceleration. It costs 58 instructions per
+//!   update (callgrind, baseline ISA: IMU 4620 to 4678, MARG 5274 to 5332).
 
 use super::params::settings;
 use super::rest::{lp_gain, RestDetector, RestThresholds};
