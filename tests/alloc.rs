@@ -135,7 +135,9 @@ fn footprint_of_one_filter_per_kind() {
             // Issue 40: the configured gravity, the rest reference g0 of a start that was
             // given or never kept still (8).
             Kind::Complementary => 264,
-            Kind::Ekf => 1040,
+            // Issue 40: the mean gravity innovation behind the reported inclination σ
+            // (24 bytes, 32 with the lanes' alignment).
+            Kind::Ekf => 1072,
             // 624 and the running-minimum window of μ (Appendix B.2), two 1024-entry f64
             // buffers and two indices.
             Kind::Gmvdk => 624 + 16_400,

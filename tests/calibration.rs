@@ -187,7 +187,8 @@ fn models_and_host_frames_survive_reset_and_snapshots() {
 /// A blob of format version 2 (before issue 20's fields) is refused as another version,
 /// as are those of version 3 (before the robust kind's heading uncertainty), 4 (the
 /// robust kind's heading as an angle, not a half-angle pair), 5 (Mahony's estimate
-/// North-West-Up) and 6 (before the robust kind's innovation evidence, eq. H5).
+/// North-West-Up) and 6 (before the robust kind's innovation evidence, eq. H5, and the
+/// EKF's mean gravity innovation).
 #[test]
 fn a_version_2_snapshot_is_refused_as_another_version() {
     use orient::filters::state::{checksum, StateError, VERSION};

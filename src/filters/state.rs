@@ -5,7 +5,7 @@
 //! ```text
 //! offset  size  field
 //! 0       4     magic "ORST"
-//! 4       2     format version (6)
+//! 4       2     format version (7)
 //! 6       1     kind (1 Madgwick .. 5 GMVDK)
 //! 7       1     reserved, 0
 //! 8       4     payload length P
