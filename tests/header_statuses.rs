@@ -22,6 +22,8 @@ fn table_from_the_header() {
     assert!(t.allows("orient_filter_save", 19), "BUFFER_TOO_SMALL's doc names it");
     assert!(t.allows("orient_filter_new", 17), "OrientConfig's doc: VERSION_MISMATCH");
     assert!(t.allows("orient_smooth_arrays", 8) && t.allows("orient_filters_update", 12));
-    assert!(!t.allows("orient_mag_calibrator_add", 10), "TOO_LARGE is not named");
-    assert!(!t.allows("orient_gyro_offset", 10), "TOO_LARGE is not named");
+    assert!(t.allows("orient_mag_calibrator_add", 10), "named: the filters' magnetometer bound");
+    assert!(t.allows("orient_gyro_offset", 10), "named: the gyroscope's physical bound");
+    assert!(!t.allows("orient_filter_flags", 10), "TOO_LARGE is not named");
+    assert!(!t.allows("orient_mag_calibrator_rejected", 7), "NON_FINITE is not named");
 }

@@ -89,7 +89,8 @@ namespace Orient.Native
         /// The filter waits for its first accelerometer sample (ORIENT_INIT_ACC_MAG); with
         /// ORIENT_PARAM_SAME_INSTANT set to 1, for its first sample with dt &gt; 0 as well. During
         /// a kind's start-up period (ORIENT_KIND_COMPLEMENTARY, ORIENT_KIND_GMVDK) a sample
-        /// without an accelerometer reading is refused so too; a dt = 0 sample is not.
+        /// without an accelerometer reading is refused so too; a same-instant sample (dt 0) is
+        /// not.
         /// </summary>
         NotInitialized = 13,
         /// <summary>

@@ -141,7 +141,8 @@ pub enum OrientStatus {
     /// The filter waits for its first accelerometer sample (ORIENT_INIT_ACC_MAG); with
     /// ORIENT_PARAM_SAME_INSTANT set to 1, for its first sample with dt > 0 as well. During
     /// a kind's start-up period (ORIENT_KIND_COMPLEMENTARY, ORIENT_KIND_GMVDK) a sample
-    /// without an accelerometer reading is refused so too; a dt = 0 sample is not.
+    /// without an accelerometer reading is refused so too; a same-instant sample (dt 0) is
+    /// not.
     NotInitialized = 13,
     /// The output needs data the filter has not received yet (linear acceleration
     /// before the first accelerometer sample).

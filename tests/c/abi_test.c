@@ -952,7 +952,7 @@ static void uncertainty(int32_t kind) {
     OrientUncertainty u, v;
     OrientSample s = good_sample();
     uint32_t expected;
-    double sigma_m = 0.0;
+    double sigma_m = 0.0, sigma_b = 0.0, tau = 0.0, settle = 0.0;
     int i, grows = 1;
     CHECK(f != NULL);
     if (!f) return;
@@ -982,7 +982,12 @@ static void uncertainty(int32_t kind) {
     CHECK(v.present == u.present && (v.present == 0 || (v.heading == u.heading)));
     if (kind == ORIENT_KIND_ROBUST) {
         CHECK_STATUS(orient_filter_get_param(f, ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA, &sigma_m), ORIENT_STATUS_OK);
-        CHECK(fabs(u.heading - sigma_m) < 0.01 * sigma_m);
+        /* The header's settle value at rest in a clean field: sqrt(sigma_m^2 + (sigma_b tau)^2),
+         * sigma_b the bias uncertainty after a rest. */
+        CHECK_STATUS(orient_filter_get_param(f, ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST, &sigma_b), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_get_param(f, ORIENT_PARAM_ROBUST_TAU_MAG, &tau), ORIENT_STATUS_OK);
+        settle = sqrt(sigma_m * sigma_m + sigma_b * tau * sigma_b * tau);
+        CHECK(fabs(u.heading - settle) < 0.02 * settle);
         s.flags &= ~(uint32_t)ORIENT_SAMPLE_MAG;
         for (i = 0; i < 200; i++) {
             CHECK_STATUS(orient_filter_update(f, &s), ORIENT_STATUS_OK);
