@@ -103,7 +103,7 @@ impl Model {
             Field::Accel => (super::MAX_ACCEL, (Vec3::ZERO, PLAUSIBLE_GRAVITY, PLAUSIBLE_GRAVITY)),
             _ => (super::MAX_MAG, (self.offset, PLAUSIBLE_FIELD.0, PLAUSIBLE_FIELD.1)),
         };
-        if !(self.offset.max_abs() < bound) {
+        if self.offset.max_abs() >= bound {
             return Err(Error::TooLarge(field));
         }
         // Largest component over |r − centre| ≤ hi: ρ‖Mᵢ‖ + |Mᵢ (centre − offset)|, each
@@ -113,7 +113,8 @@ impl Model {
             let r = Vec3::new(row[0], row[1], row[2]);
             w.max(hi * r.norm() + r.dot(d).abs())
         });
-        if !(reach * big < bound) {
+        // NaN cannot arise (finite factors; an overflow is ∞), but would be refused too.
+        if (reach * big).is_nan() || reach * big >= bound {
             return Err(Error::TooLarge(field));
         }
         if lo > 0.0 {
@@ -131,7 +132,7 @@ impl Model {
                 0.0
             };
             let least = sigma * nearest;
-            if !(least * least >= f64::MIN_POSITIVE) {
+            if least.is_nan() || least * least < f64::MIN_POSITIVE {
                 return Err(Error::ZeroVector(field));
             }
         }
@@ -211,7 +212,7 @@ impl Filter {
     /// Sets (or with `None` clears) the model applied to one sensor's readings before
     /// every update, in every kind. The raw reading is checked first (finite, within its
     /// range and physical bound), then the calibrated one. A model must map the sensor's
-    /// plausible readings to usable ones ([`Model::check`]): NonFinite for a NaN or
+    /// plausible readings to usable ones (`Model::check`): NonFinite for a NaN or
     /// infinite entry, ZeroVector for a singular matrix or one that sends a plausible
     /// reading to zero, TooLarge for an offset beyond the physical bound or one that
     /// sends a plausible reading beyond it; nothing changes then.
