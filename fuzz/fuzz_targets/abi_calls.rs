@@ -58,7 +58,6 @@ const KNOWN_RECOVERY: &[(i32, u32, &str)] = &[
     // Not in issue 40 (class 0 here), found by this target: see the report of fix/fuzz.
     (1, 0, "Madgwick: not within 2 deg after its beta bound"),
     (2, 0, "Mahony: 17.6 deg after 60 s with default gains (fuzz/regressions/new-mahony-recovery)"),
-    (5, 0, "GMVDK with SAME_INSTANT = 1: 121 deg after 60 s (fuzz/regressions/gmvdk-recovery-2)"),
 ];
 /// Known breaches of other checks: (check, class, what).
 const KNOWN_OTHER: &[(&str, u32, &str)] = &[];

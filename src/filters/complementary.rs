@@ -317,8 +317,11 @@ impl Complementary {
                 // The wrapper guarantees an accelerometer reading until initialised.
                 let a = accel?;
                 // Still: within twice the rest thresholds of the period's means.
-                let still =
-                    Stillness { gyro: 2.0 * self.settings.gyro_rest, accel: 2.0 * self.settings.accel_rest };
+                let still = Stillness {
+                    gyro: 2.0 * self.settings.gyro_rest,
+                    accel: 2.0 * self.settings.accel_rest,
+                    gravity: self.settings.gravity,
+                };
                 if !s.add(dt, gyro, a, mag, self.settings.init_duration, still) {
                     // The readings went into the period's means (the field is used only
                     // for north, with align_heading).

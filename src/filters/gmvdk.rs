@@ -50,7 +50,7 @@
 //!   as it does when μ_K = 0.
 
 use super::params::{settings, Switch};
-use super::startup::{StartupMeans, Stillness};
+use super::startup::{StartupMeans, Stillness, GRAVITY_STILL};
 use super::Step;
 use crate::math::{asin_over, cos_and_sinc, inv_sqrt, inv_sqrt_fast, Frame, Quat, Vec3};
 
@@ -149,6 +149,7 @@ settings! {
                  (default): in the configured earth frame.",
         },
     }
+    shared { gravity: f64 = GRAVITY }
 }
 
 /// `SLERP(q1, q2, h)`, eqs. (15)-(16), along the shorter arc; linear interpolation
@@ -576,10 +577,11 @@ impl Gmvdk {
         used_mag
     }
 
-    /// A known initial attitude (ENU): start-up is skipped; the references are taken from
-    /// the first readings (A_init as gravity's reaction along up, M_init as the first
-    /// field rotated into the earth frame with the dip it makes with that sample's
-    /// accelerometer reading: see [`first_field`]).
+    /// A known initial attitude (ENU): start-up is skipped; A_init is the configured
+    /// gravity along up, and M_init the first field that comes with an accelerometer
+    /// reading of gravity's norm (within `GRAVITY_STILL`), rotated into the earth frame
+    /// with the dip it makes with that reading (see `first_field`): one glitched reading
+    /// must not become a reference, which GMVDK keeps for good.
     pub fn set_quaternion(&mut self, q: Quat) {
         self.q = q;
         self.q_start = q;
@@ -681,7 +683,8 @@ impl Gmvdk {
         self.bias = s.bias();
         self.a_init = Some(Reference::new(q.rotate(accel)));
         self.m_init = mag.map(|m| Reference::new(q.rotate(m)));
-        self.g0 = accel.norm();
+        // A period that never kept still has no stationary norm: the configured gravity.
+        self.g0 = if s.moved() { self.settings.gravity } else { accel.norm() };
         with_mag.is_some()
     }
 
@@ -692,7 +695,11 @@ impl Gmvdk {
             let a = accel?;
             self.time += dt;
             // Still: within the activity scales, where stillness would reach zero.
-            let still = Stillness { gyro: self.settings.gyro_activity, accel: self.settings.accel_activity };
+            let still = Stillness {
+                gyro: self.settings.gyro_activity,
+                accel: self.settings.accel_activity,
+                gravity: self.settings.gravity,
+            };
             if !s.add(dt, gyro, a, mag, self.settings.init_duration, still) {
                 // The readings went into the period's means (A_init, M_init).
                 self.startup = Some(s);
@@ -724,8 +731,11 @@ impl Gmvdk {
         let mut ms_accel = self.ms_accel;
         let a_norm = accel.map_or(0.0, Vec3::norm);
         if accel.is_some() {
+            // A known start skipped the start-up period: the configured gravity is the
+            // stationary norm (one reading could be a glitch, and a wrong g0 would keep
+            // α at its floor for good).
             if g0 == 0.0 {
-                g0 = a_norm;
+                g0 = st.gravity;
             }
             let dev = a_norm - g0;
             ms_accel += c * (dev * dev - ms_accel);
@@ -751,7 +761,7 @@ impl Gmvdk {
                 step.used_accel = true;
                 let a_ref = match self.a_init {
                     Some(r) => r,
-                    None => *a_new.insert(Reference::new(Vec3::new(0.0, 0.0, a_norm))),
+                    None => *a_new.insert(Reference::new(Vec3::new(0.0, 0.0, st.gravity))),
                 };
                 a_pair = Some((a0, a_ref));
                 let a_pred = q_g.rotate_inverse(a_ref.v); // (9)
@@ -764,8 +774,11 @@ impl Gmvdk {
         let mut m_new = None;
         let mut mu1 = None;
         // SLERP(1, Δq_m, μ_K), with q_sm = q_g ⊗ it.
+        // After a known start, M_init waits for a sample whose accelerometer reads gravity
+        // (as a still one does): its dip is taken against that reading.
+        let first_ok = self.m_init.is_some() || (a_norm - st.gravity).abs() <= GRAVITY_STILL * st.gravity;
         let sm = match (mag, a_pair) {
-            (Some(m0), Some((a0, a_ref))) => {
+            (Some(m0), Some((a0, a_ref))) if first_ok => {
                 step.used_mag = true;
                 let m_ref = match self.m_init {
                     Some(r) => r,

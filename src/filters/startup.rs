@@ -6,6 +6,8 @@
 //! - a gyroscope reading that leaves the period's mean rate by more than the kind's
 //!   threshold, or one faster than [`MAX_STILL_RATE`] (no gyroscope's offset is that
 //!   large: a steady turn would otherwise pass for a still sensor with a large bias);
+//! - an accelerometer reading whose norm is not the configured gravity's, within
+//!   [`GRAVITY_STILL`] (the period's mean norm becomes the kinds' rest reference);
 //! - an accelerometer reading that leaves the period's mean *vector* by more than the
 //!   kind's threshold (a turn about any axis but the vertical turns it; its norm alone
 //!   does not change);
@@ -23,6 +25,13 @@ pub(crate) const PATIENCE: f64 = 5.0;
 /// zero-rate offset of common MEMS gyroscopes (InvenSense MPU-6050 datasheet, ±20 °/s
 /// initial tolerance).
 pub(crate) const MAX_STILL_RATE: f64 = 0.349_065_850_398_865_9;
+
+/// How far a still accelerometer's norm may be from the configured gravity, as a share
+/// of it: 0.1, three times the ±3 % sensitivity tolerance of common MEMS accelerometers
+/// (InvenSense MPU-6050 datasheet), so that a mis-scaled but still sensor starts, while
+/// a constant reading that is no gravity (a glitch held over the period, a sensor
+/// accelerating steadily) does not become the rest reference.
+pub(crate) const GRAVITY_STILL: f64 = 0.1;
 
 /// How far a still sensor's magnetometer reading may leave the period's mean, as a share
 /// of the mean's norm: 0.1, a turn of about 6° about the vertical, or a disturbance of a
@@ -54,12 +63,20 @@ pub(crate) struct Stillness {
     pub gyro: f64,
     /// |a − mean a| (m/s²).
     pub accel: f64,
+    /// The configured gravity (m/s²): a still accelerometer reads its magnitude, within
+    /// [`GRAVITY_STILL`] of it.
+    pub gravity: f64,
 }
 
 impl Stillness {
     /// The readings lie within the thresholds of the period's means.
     fn holds(&self, s: &StartupMeans, gyro: Vec3, accel: Vec3) -> bool {
         (gyro - s.gyro()).norm() <= self.gyro && (accel - s.accel()).norm() <= self.accel
+    }
+
+    /// The accelerometer reads gravity's magnitude, as a still one does.
+    fn reads_gravity(&self, accel: Vec3) -> bool {
+        (accel.norm() - self.gravity).abs() <= GRAVITY_STILL * self.gravity
     }
 }
 
@@ -84,8 +101,8 @@ impl StartupMeans {
         duration: f64,
         still: Stillness,
     ) -> bool {
-        let turning = gyro.norm() > MAX_STILL_RATE;
-        if turning || self.n > 0 && (!still.holds(self, gyro, accel) || !self.mag_still(mag)) {
+        let alone_not_still = gyro.norm() > MAX_STILL_RATE || !still.reads_gravity(accel);
+        if alone_not_still || self.n > 0 && (!still.holds(self, gyro, accel) || !self.mag_still(mag)) {
             if self.elapsed < PATIENCE * duration {
                 *self = StartupMeans { elapsed: self.elapsed, ..StartupMeans::default() };
             } else {
