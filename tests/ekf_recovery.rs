@@ -136,3 +136,28 @@ fn a_sustained_glitch_leaves_no_error() {
     let (err, _) = glitch(100, 0.01, false);
     assert!(err < 2.0, "{err:.2} deg");
 }
+
+#[test]
+#[cfg_attr(miri, ignore = "long loops")]
+fn a_drift_a_narrower_process_cannot_produce_is_forgotten() {
+    // Under a wide, fast drift process a steady gyroscope error of 20 rad/s is taken
+    // for drift; the host then sets the default process (0.02 rad/s over 100 s). The
+    // drift it holds is no drift of that process: a still sensor must not keep turning.
+    let truth = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.4);
+    let mut rng = Noise(0xd81f7);
+    let mut f = ekf(&[(id::EKF_DRIFT_STD, 10.0), (id::EKF_TAU_DRIFT, 1.0)]);
+    for _ in 0..500 {
+        let mut s = still_sample(truth, &mut rng, 0.01);
+        s.gyro = Some(Vec3::new(20.0, -20.0, 20.0));
+        f.update(&s).unwrap();
+    }
+    let learned = f.diagnostics().gyro_bias;
+    assert!(learned.norm() > 1.0, "the wide process took no drift: {learned:?}");
+    let defaults = Config::new(Kind::Ekf).unwrap();
+    for p in [id::EKF_DRIFT_STD, id::EKF_TAU_DRIFT] {
+        f.set_param(p, defaults.slots()[p as usize]).unwrap();
+    }
+    let (err, covered) = settle(&mut f, truth, &mut rng);
+    assert!(err < 2.0, "{err} deg after 60 s still (drift {:?})", f.diagnostics().gyro_bias);
+    assert!(covered >= 0.95, "within 2 sigma on {covered}");
+}

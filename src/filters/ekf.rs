@@ -667,6 +667,22 @@ fn rate_jumps(p: &Cov, x: &Blocks, gyro: Vec3, a: (f64, f64), var: f64) -> [bool
     )
 }
 
+/// Re-initialises the drift on axis `i` to `d`, independent of the other states with
+/// variance `var` (P's row and column for δ_i set to zero but its diagonal, which keeps P
+/// positive semi-definite).
+#[cold]
+#[inline(never)]
+fn reinit_drift(x: &mut Blocks, p: &mut Cov, i: usize, d: f64, var: f64) {
+    x.d.as_array_mut()[i] = d;
+    p.qd[i] = f64x4::splat(0.0);
+    p.wd[i] = f64x4::splat(0.0);
+    for j in 0..3 {
+        p.dd[j].as_array_mut()[i] = 0.0;
+        p.dd[i].as_array_mut()[j] = 0.0;
+    }
+    p.dd[i].as_array_mut()[i] = var;
+}
+
 /// Re-initialises ω on the `jumped` axes from the gyroscope (12): ω_i = ω_IMU,i − δ_i,
 /// independent of the other states with variance `var` (P's row and column for ω_i set to
 /// zero but its diagonal, which keeps P positive semi-definite).
@@ -689,6 +705,10 @@ fn reinit_rate(x: &mut Blocks, p: &mut Cov, gyro: Vec3, jumped: [bool; 3], var: 
         p.ww[i].as_array_mut()[i] = if var.is_finite() { var } else { 0.0 };
     }
 }
+
+/// How many stationary standard deviations of the drift process (10) a drift may reach
+/// and still be one: 5 (a Gauss-Markov process leaves that band with probability 6e-7).
+pub const DRIFT_PLAUSIBLE: f64 = 5.0;
 
 /// The EKF. State in the native North-East-Down frame.
 #[derive(Clone, Debug, PartialEq)]
@@ -946,6 +966,32 @@ impl Ekf {
     }
 
     /// The gyro drift estimate δ (rad/s).
+    /// Takes new settings, the state kept but for the drift δ, which is held to what the
+    /// new drift process (10) allows: each axis within [`DRIFT_PLAUSIBLE`] stationary
+    /// standard deviations (`drift_std`). A drift learned under a wider process (a
+    /// larger `drift_std`, or a shorter `tau_drift` that let it follow rate errors)
+    /// would otherwise keep the estimate turning while the gyroscope reads zero, for as
+    /// long as the new, slower process takes to forget it (minutes at the defaults).
+    /// An axis whose drift the new process cannot produce (|δ_i| beyond the band) starts
+    /// over from the process's prior, zero with the stationary variance `drift_std`²; one
+    /// whose variance is above that keeps its drift with that variance. Either is made
+    /// independent of the other states (as [`reinit_rate`] does for ω), so that a
+    /// gyroscope reading is not split between ω and a drift the process says cannot move.
+    pub(crate) fn configure(&mut self, settings: EkfSettings) {
+        self.settings = settings;
+        let var = settings.drift_std * settings.drift_std;
+        let bound = DRIFT_PLAUSIBLE * settings.drift_std;
+        for i in 0..3 {
+            let d = self.x.d.as_array_ref()[i];
+            if d.abs() > bound {
+                // No drift of this process: its prior, zero.
+                reinit_drift(&mut self.x, &mut self.p, i, 0.0, var);
+            } else if self.p.dd[i].as_array_ref()[i] > var {
+                reinit_drift(&mut self.x, &mut self.p, i, d, var);
+            }
+        }
+    }
+
     pub fn drift(&self) -> Vec3 {
         Vec3::new(lane(self.x.d, 0), lane(self.x.d, 1), lane(self.x.d, 2))
     }
@@ -1690,6 +1736,10 @@ mod estimator_impl {
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Ekf::update(self, dt, gyro, accel, mag)
+        }
+
+        fn configure(&mut self, settings: EkfSettings) {
+            Ekf::configure(self, settings);
         }
 
         fn diagnose(&self, d: &mut Diagnostics) {
