@@ -307,6 +307,32 @@ fn a_held_reading_that_is_no_gravity_is_no_start() {
 
 #[test]
 #[cfg_attr(miri, ignore = "long loops")]
+fn a_new_gravity_setting_moves_the_stationary_norm() {
+    // Started under a configured gravity of 20 m/s^2 (readings to match), then set to
+    // standard gravity with readings of 9.81: the stationary norm the start took must
+    // follow, or complementary's rest and GMVDK's stillness are never seen again.
+    for kind in [Kind::Complementary, Kind::Gmvdk] {
+        let mut rng = Noise(0x96a7);
+        let mut c = Config::new(kind).unwrap();
+        c.set("gravity", 20.0).unwrap().unwrap();
+        let mut f = Filter::new(&c).unwrap();
+        let start = Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), 0.8);
+        for _ in 0..500 {
+            let mut s = at(start, 0.01, Vec3::ZERO, &mut rng);
+            s.accel = s.accel.map(|a| a * (20.0 / G));
+            f.update(&s).unwrap();
+        }
+        let standard = Config::new(kind).unwrap();
+        let gravity = standard.kind().param_by_name("gravity").unwrap().id;
+        f.set_param(gravity, standard.slots()[gravity as usize]).unwrap();
+        let q = Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), -0.3);
+        let (err, _) = settle(&mut f, q, 60.0, &mut rng);
+        assert!(err < 2.0, "{kind:?}: {err}° after 60 s still under the new gravity");
+    }
+}
+
+#[test]
+#[cfg_attr(miri, ignore = "long loops")]
 fn a_glitch_after_a_given_attitude_does_not_hide_rest() {
     // A host sets the attitude before the first sample, whose accelerometer reading is a
     // glitch (accepted: within the physical bound). The complementary filter's rest test

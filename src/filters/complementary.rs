@@ -211,6 +211,16 @@ impl Complementary {
         self.running().q
     }
 
+    /// Takes new settings, the state kept but for the rest reference g₀: one that is not
+    /// the new configured gravity's within `GRAVITY_STILL` becomes that gravity, or rest,
+    /// and with it the correction, would not be seen again.
+    pub(crate) fn configure(&mut self, settings: ComplementarySettings) {
+        self.settings = settings;
+        if let Phase::Running(r) = &mut self.phase {
+            r.g0 = super::startup::stationary_norm(r.g0, settings.gravity);
+        }
+    }
+
     /// A known initial attitude (native frame): the start-up period is skipped; the bias
     /// starts at zero and g₀ is the configured gravity (one reading could be a glitch, and
     /// a wrong g₀ would hide rest, and so the correction, for good).
@@ -513,6 +523,10 @@ mod estimator_impl {
     use crate::filters::Diagnostics;
 
     estimator!(impl for Complementary { settings: ComplementarySettings, native: Enu, own_startup: true, diagnostics: GYRO_BIAS | REST, usual: true } {
+        fn configure(&mut self, settings: ComplementarySettings) {
+            Complementary::configure(self, settings);
+        }
+
         #[inline(always)]
         fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
             Complementary::update(self, dt, gyro, accel, mag)

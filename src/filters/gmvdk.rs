@@ -50,7 +50,7 @@
 //!   as it does when μ_K = 0.
 
 use super::params::{settings, Switch};
-use super::startup::{StartupMeans, Stillness, GRAVITY_STILL};
+use super::startup::{stationary_norm, StartupMeans, Stillness, GRAVITY_STILL};
 use super::Step;
 use crate::math::{asin_over, cos_and_sinc, inv_sqrt, inv_sqrt_fast, Frame, Quat, Vec3};
 
@@ -575,6 +575,15 @@ impl Gmvdk {
         self.regression = Regression::default();
         self.mag_seen = false;
         used_mag
+    }
+
+    /// Takes new settings, the state kept but for the stationary norm g0: one that is not
+    /// the new configured gravity's within `GRAVITY_STILL` (a start-up must read it so
+    /// too) becomes that gravity, or the stillness behind α would stay at zero, and the
+    /// accelerometer distrusted, for good.
+    pub(crate) fn configure(&mut self, settings: GmvdkSettings) {
+        self.settings = settings;
+        self.g0 = stationary_norm(self.g0, settings.gravity);
     }
 
     /// A known initial attitude (ENU): start-up is skipped; A_init is the configured
@@ -1269,6 +1278,10 @@ mod estimator_impl {
     use crate::filters::Diagnostics;
 
     estimator!(impl for Gmvdk { settings: GmvdkSettings, native: Enu, own_startup: true, diagnostics: GYRO_BIAS | ALPHA | MU_KA | MU_KM | MU_K } {
+        fn configure(&mut self, settings: GmvdkSettings) {
+            Gmvdk::configure(self, settings);
+        }
+
         fn heap_bytes(&self) -> usize {
             core::mem::size_of::<MinWindow>()
         }

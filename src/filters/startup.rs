@@ -33,6 +33,17 @@ pub(crate) const MAX_STILL_RATE: f64 = 0.349_065_850_398_865_9;
 /// accelerating steadily) does not become the rest reference.
 pub(crate) const GRAVITY_STILL: f64 = 0.1;
 
+/// A stationary accelerometer norm `g0` after the configured gravity became `gravity`:
+/// kept when it is that gravity's within [`GRAVITY_STILL`], else the gravity itself (a
+/// norm the start-up would not take now); 0 (not known yet) stays 0.
+pub(crate) fn stationary_norm(g0: f64, gravity: f64) -> f64 {
+    if g0 == 0.0 || (g0 - gravity).abs() <= GRAVITY_STILL * gravity {
+        g0
+    } else {
+        gravity
+    }
+}
+
 /// How far a still sensor's magnetometer reading may leave the period's mean, as a share
 /// of the mean's norm: 0.1, a turn of about 6° about the vertical, or a disturbance of a
 /// tenth of the field.
