@@ -686,7 +686,10 @@ typedef struct OrientFilter OrientFilter;
  * `orient_filter_flags`: the last accepted update followed a gap (dt above
  * ORIENT_PARAM_GAP_DT). Nothing was integrated over the gap, whose motion is unknown:
  * the update re-acquired the orientation (ORIENT_FLAG_REACQUIRED) or, on a sample
- * without an accelerometer reading, held it (ORIENT_FLAG_REACQUIRE_PENDING).
+ * without an accelerometer reading, held it (ORIENT_FLAG_REACQUIRE_PENDING). During the
+ * start-up period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK the period started
+ * over with the sample instead (not at a gap right after a gap: where every sample is
+ * one, it goes on, and its stillness test alone starts it over).
  */
 #define ORIENT_FLAG_GAP 8
 

@@ -333,6 +333,23 @@ fn a_new_gravity_setting_moves_the_stationary_norm() {
 
 #[test]
 #[cfg_attr(miri, ignore = "long loops")]
+fn a_start_up_where_every_sample_is_a_gap_ends() {
+    // gap_dt below the sample period makes every sample a gap. A gap starts a still
+    // start-up period over; at every sample the period would never end.
+    for kind in [Kind::Complementary, Kind::Gmvdk] {
+        let mut rng = Noise(0x6a9);
+        let mut c = Config::new(kind).unwrap();
+        c.set("gap_dt", 0.001).unwrap().unwrap();
+        let mut f = Filter::new(&c).unwrap();
+        let q = Quat::from_axis_angle(Vec3::new(1.0, 1.0, 0.0), 0.6);
+        let (err, _) = settle(&mut f, q, 60.0, &mut rng);
+        assert!(f.is_initialized(), "{kind:?} never started");
+        assert!(err < 2.0, "{kind:?}: {err}° after 60 s still");
+    }
+}
+
+#[test]
+#[cfg_attr(miri, ignore = "long loops")]
 fn a_glitch_after_a_given_attitude_does_not_hide_rest() {
     // A host sets the attitude before the first sample, whose accelerometer reading is a
     // glitch (accepted: within the physical bound). The complementary filter's rest test

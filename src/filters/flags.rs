@@ -11,7 +11,8 @@ pub const MAG_USED: u32 = 4;
 /// The last accepted update followed a gap: its dt was above `gap_dt`. Nothing was
 /// integrated over the gap (the motion in it is unknown): the update re-acquired the
 /// orientation from the sensors ([`REACQUIRED`]) or, without an accelerometer
-/// reading, held it ([`REACQUIRE_PENDING`]).
+/// reading, held it ([`REACQUIRE_PENDING`]); during an own start-up period the period
+/// started over with the sample (not at a gap right after a gap).
 pub const GAP: u32 = 8;
 /// The last accepted update re-acquired the orientation after a gap: inclination from
 /// the accelerometer, heading from the magnetometer when the sample has one (and the

@@ -751,8 +751,10 @@ impl<E: Estimator> Runner<E> {
             Some(saved)
         };
         // An own start-up's still period is broken by a gap: it starts over with this
-        // sample, counted as gap_dt.
-        if gap && saved.is_none() {
+        // sample, counted as gap_dt. Not again at the gap after a gap: where every sample
+        // is one (gap_dt below the sample period) the period would never end; the
+        // period's stillness test still starts it over when the readings move.
+        if gap && saved.is_none() && self.flags & flags::GAP == 0 {
             self.core.restart(*self.core.settings());
         }
         let dt = if gap { self.common.gap_limit } else { dt };
@@ -760,10 +762,11 @@ impl<E: Estimator> Runner<E> {
             Some(step) => {
                 // A start-up sample's readings go into the period's means: its flags say
                 // which, with INITIALIZED still clear.
+                let gap_flag = if gap { flags::GAP } else { 0 };
                 let flags = if step.initializing {
-                    step.flags(accel.is_some(), mag.is_some()) & !flags::INITIALIZED
+                    (step.flags(accel.is_some(), mag.is_some()) & !flags::INITIALIZED) | gap_flag
                 } else {
-                    step.flags(accel.is_some(), mag.is_some()) | if gap { flags::GAP } else { 0 }
+                    step.flags(accel.is_some(), mag.is_some()) | gap_flag
                 };
                 self.stepped(flags, accel);
                 self.sync_state();
