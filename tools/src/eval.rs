@@ -269,6 +269,18 @@ pub fn remove_heading_offset(est: &mut [Quat], truth: &[Quat], movement: &[bool]
     delta
 }
 
+/// BROAD's groups among the 14 shared trials (FORMAT.md "Scoring", trials.json): the
+/// folds of the leave-one-group-out cross-validations (robust_cv, robust_sigma).
+pub const GROUPS: [(&str, &[u32]); 7] = [
+    ("rotation", &[1, 3, 6]),
+    ("translation", &[11, 15, 21]),
+    ("breaks", &[8]),
+    ("tapping", &[24, 25]),
+    ("vibration", &[26]),
+    ("stationary magnet", &[28, 30]),
+    ("attached magnet", &[32, 34]),
+];
+
 #[cfg(test)]
 mod tests {
     use super::*;

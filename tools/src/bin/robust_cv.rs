@@ -25,19 +25,8 @@
 //!   defaults' (in-sample) score and VQF's.
 
 use orient::{Config, Filter, Kind, Quat, Sample};
-use orient_tools::eval::{remove_heading_offset, score, Recording};
+use orient_tools::eval::{remove_heading_offset, score, Recording, GROUPS};
 use std::path::PathBuf;
-
-/// BROAD's groups among the shared trials (FORMAT.md "Scoring", trials.json).
-const GROUPS: [(&str, &[u32]); 7] = [
-    ("rotation", &[1, 3, 6]),
-    ("translation", &[11, 15, 21]),
-    ("breaks", &[8]),
-    ("tapping", &[24, 25]),
-    ("vibration", &[26]),
-    ("stationary magnet", &[28, 30]),
-    ("attached magnet", &[32, 34]),
-];
 
 /// One trial at one rate.
 struct Trial {

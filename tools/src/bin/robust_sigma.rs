@@ -21,19 +21,8 @@
 //! The sigma is a side model: no setting here changes the orientation.
 
 use orient::{Config, Filter, Kind, Quat, Sample};
-use orient_tools::eval::{csv_files, error_angles, Recording};
+use orient_tools::eval::{csv_files, error_angles, Recording, GROUPS};
 use std::path::PathBuf;
-
-/// BROAD's groups among the shared trials (as `robust_cv`).
-const GROUPS: [(&str, &[u32]); 7] = [
-    ("rotation", &[1, 3, 6]),
-    ("translation", &[11, 15, 21]),
-    ("breaks", &[8]),
-    ("tapping", &[24, 25]),
-    ("vibration", &[26]),
-    ("stationary magnet", &[28, 30]),
-    ("attached magnet", &[32, 34]),
-];
 
 struct Trial {
     number: u32,
