@@ -381,10 +381,15 @@ impl Madgwick {
         self.q = q;
     }
 
-    /// After a gap: the re-acquired estimate, rest detection started over, bias kept.
+    /// After a gap: the re-acquired estimate, rest detection started over, bias kept; for
+    /// the rest watch's re-acquisition of a still sensor with the rest-bias learner on, the
+    /// bias is the gyroscope's reading.
     pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
         self.q = q;
+        if let Some(g) = r.still.filter(|_| self.settings.rest_bias_tau > 0.0) {
+            self.bias = g;
+        }
         self.rest.restart();
         used_mag
     }

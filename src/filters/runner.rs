@@ -10,6 +10,7 @@ use super::host::Host;
 use super::params::{id, Settings, MAX_PARAMS};
 use super::sample::{check_quaternion, check_vector, Checked, SampleView, Usual};
 use super::state::{self, Codec, Reader, StateError, Writer};
+use super::watch::Watch;
 use super::{flags, holds, Config, Diagnostics, Error, Field, Init, Kind, Sample};
 use super::{MAX_ACCEL, MAX_DT, MAX_GYRO, MAX_MAG, MIN_DT};
 use crate::math::frame::{no_heading, NO_HEADING_SINE};
@@ -115,13 +116,15 @@ pub(crate) struct Runner<E: Estimator> {
     /// when first set (or when `same_instant` is switched on), never in an update: a
     /// filter without them carries 8 bytes here.
     pub(crate) extras: ExtrasBox,
+    /// The rest watch ([`super::watch`]).
+    watch: Watch,
 }
 
 /// Field by field, except that [`Runner::HOSTED`] is left out: it says whether the
 /// extras' box is made, and [`ExtrasBox`]'s equality already takes no box for a plain one.
 impl<E: Estimator> PartialEq for Runner<E> {
     fn eq(&self, o: &Runner<E>) -> bool {
-        let Runner { core, flags, frame, bits, policy, common, last_accel, given, extras } = self;
+        let Runner { core, flags, frame, bits, policy, common, last_accel, given, extras, watch } = self;
         let kept = !Self::HOSTED;
         *core == o.core
             && *flags == o.flags
@@ -132,6 +135,7 @@ impl<E: Estimator> PartialEq for Runner<E> {
             && *last_accel == o.last_accel
             && *given == o.given
             && *extras == o.extras
+            && *watch == o.watch
     }
 }
 
@@ -222,6 +226,7 @@ impl<E: Estimator> Runner<E> {
                 _ => None,
             },
             extras: ExtrasBox(None),
+            watch: Watch::default(),
         };
         r.set_policies(config.slots());
         r.set_frame_rotation();
@@ -349,6 +354,7 @@ impl<E: Estimator> Runner<E> {
         }
         self.last_accel = Vec3::ZERO;
         self.set_has_accel(false);
+        self.watch.restart();
         self.flags = 0;
         self.sync_state();
         match self.init() {
@@ -392,6 +398,7 @@ impl<E: Estimator> Runner<E> {
             None => q,
         };
         self.core.set_quaternion(native);
+        self.watch.restart();
         self.flags |= flags::INITIALIZED;
         self.sync_state();
     }
@@ -538,6 +545,7 @@ impl<E: Estimator> Runner<E> {
         if let Some(u) = if self.usual_state() { self.usual(s) } else { None } {
             if let Some(flags) = self.core.update_usual(&u) {
                 self.stepped(flags, u.accel.map(|a| a.v));
+                self.watched(u.dt, u.gyro, u.accel.map(|a| a.v));
                 return Ok(());
             }
         }
@@ -572,6 +580,28 @@ impl<E: Estimator> Runner<E> {
             self.bits |= Self::HAS_ACCEL;
         }
         self.flags = flags;
+    }
+
+    /// The rest watch's count of an accepted step past initialisation (`dt`, its
+    /// gyroscope and accelerometer readings), and its look every
+    /// [`super::watch::WATCH_EVERY`] steps.
+    #[inline(always)]
+    fn watched(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>) {
+        if self.watch.tick() {
+            self.look(dt, gyro, accel);
+        }
+    }
+
+    /// The rest watch's look ([`super::watch`]): a re-acquisition left pending when the
+    /// estimate has stayed off the accelerometer's vertical at rest.
+    #[cold]
+    #[inline(never)]
+    fn look(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>) {
+        let q = self.core.absolute_quaternion();
+        if self.watch.look(dt, gyro, accel, q, E::NATIVE.up(), self.common.gravity) {
+            self.flags |= flags::REACQUIRE_PENDING;
+            self.sync_state();
+        }
     }
 
     /// One step. On error nothing changes: the state is bit-identical to before.
@@ -673,6 +703,7 @@ impl<E: Estimator> Runner<E> {
             return match self.core.update(dt, gyro, accel, mag) {
                 Some(step) => {
                     self.stepped(step.flags(accel.is_some(), mag.is_some()), accel);
+                    self.watched(dt, gyro, accel);
                     Ok(())
                 }
                 None => Err(Error::Numeric),
@@ -716,6 +747,7 @@ impl<E: Estimator> Runner<E> {
             Some(step) => {
                 let gap_flag = if gap { flags::GAP } else { 0 };
                 self.stepped(step.flags(accel.is_some(), mag.is_some()) | gap_flag | pending, accel);
+                self.watched(dt, gyro, accel);
                 Ok(())
             }
             None => Err(Error::Numeric),
@@ -803,8 +835,10 @@ impl<E: Estimator> Runner<E> {
         let before = self.core.absolute_quaternion();
         let keep = (twist_about(before * tilt.conj(), native.up()) * tilt).normalized();
         let with_mag = mag.and_then(|m| native.attitude_from(accel, Some(m)));
-        let r = Reacquisition { keep, with_mag, dt, gyro, accel, mag };
+        let still = self.watch.still(gyro);
+        let r = Reacquisition { keep, with_mag, dt, gyro, accel, mag, still };
         let used_mag = self.core.reacquire(&r);
+        self.watch.restart();
         let flags = flags::INITIALIZED
             | flags::ACCEL_USED
             | flags::REACQUIRED
@@ -834,6 +868,7 @@ impl<E: Estimator> Runner<E> {
     /// What a lane step with the sample `u` leaves besides the core's state.
     pub(crate) fn lane_done(&mut self, u: &Usual, step: Step) {
         self.stepped(step.flags(true, u.mag.is_some()), u.accel.map(|a| a.v));
+        self.watched(u.dt, u.gyro, u.accel.map(|a| a.v));
     }
 
     pub(crate) fn diagnostic_fields(&self) -> u32 {
@@ -870,6 +905,8 @@ impl<E: Estimator> Runner<E> {
         self.put_extras(x);
         self.refresh_models();
         self.core.codec(c);
+        // Since format version 8: the rest watch.
+        self.watch.codec(c);
     }
 
     fn kind_byte() -> u8 {
@@ -914,6 +951,7 @@ impl<E: Estimator> Runner<E> {
         fresh.put_extras(x);
         fresh.refresh_models();
         fresh.core.codec(&mut r);
+        fresh.watch.codec(&mut r);
         // Slots this kind does not use are zero in every snapshot it writes: a blob of
         // another kind relabelled (with a fresh checksum) has its own kind's slots set.
         let foreign =
