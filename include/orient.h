@@ -79,6 +79,13 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_SENSOR_MAG 2
 
 /**
+ * Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
+ * kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
+ * EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
+ */
+#define ORIENT_MAX_PARAMS 128
+
+/**
  * Parameter slot (every kind): Gravity magnitude for the gravity and linear-acceleration
  * outputs; default 9.80665 (orient: standard gravity, CGPM 1901).
  *
@@ -642,13 +649,6 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_ABI_VERSION 1
 
 /**
- * Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
- * kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
- * EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
- */
-#define ORIENT_MAX_PARAMS 128
-
-/**
  * `OrientSample.flags`: the gyroscope field holds a reading (every filter needs one).
  */
 #define ORIENT_SAMPLE_GYRO 1
@@ -664,13 +664,30 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_SAMPLE_MAG 4
 
 /**
- * `orient_filter_flags`: the filter has an orientation (clear while it waits for its
- * first accelerometer sample under `ORIENT_INIT_ACC_MAG`, and through the start-up
- * period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK, ORIENT_PARAM_*_INIT_DURATION
- * seconds of samples with an accelerometer reading: their readings are averaged into the
- * initial orientation, and each such sample sets ORIENT_FLAG_ACCEL_USED and, for the
- * magnetometer, ORIENT_FLAG_MAG_USED or ORIENT_FLAG_MAG_REJECTED as the period will use
- * it; the dt = 0 samples of ORIENT_PARAM_SAME_INSTANT are samples of the period too).
+ * `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
+ * smallest value that has it on.
+ */
+#define ORIENT_PARAM_FLAG_ZERO_OFF 1
+
+/**
+ * OrientUncertainty.present: heading holds a value.
+ */
+#define ORIENT_UNCERTAINTY_HEADING 1
+
+/**
+ * OrientUncertainty.present: inclination holds a value.
+ */
+#define ORIENT_UNCERTAINTY_INCLINATION 2
+
+/**
+ * `orient_filter_flags`: the filter has an orientation. Clear while it waits for its
+ * first accelerometer sample (the default initialisation, from the accelerometer and
+ * magnetometer), and through the start-up period of the complementary and GMVDK kinds,
+ * ORIENT_PARAM_*_INIT_DURATION seconds of samples with an accelerometer reading: their
+ * readings are averaged into the initial orientation, and each such sample sets
+ * ORIENT_FLAG_ACCEL_USED and, for the magnetometer, ORIENT_FLAG_MAG_USED or
+ * ORIENT_FLAG_MAG_REJECTED as the period will use it; the dt = 0 samples of
+ * ORIENT_PARAM_SAME_INSTANT are samples of the period too.
  */
 #define ORIENT_FLAG_INITIALIZED 1
 
@@ -689,19 +706,19 @@ typedef struct OrientFilter OrientFilter;
  * ORIENT_PARAM_GAP_DT). Nothing was integrated over the gap, whose motion is unknown:
  * the update re-acquired the orientation (ORIENT_FLAG_REACQUIRED) or, on a sample
  * without an accelerometer reading, held it (ORIENT_FLAG_REACQUIRE_PENDING). During the
- * start-up period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK the period started
- * over with the sample instead (not at a gap right after a gap: where every sample is
- * one, it goes on, and its stillness test alone starts it over).
+ * start-up period of the complementary and GMVDK kinds the period started over with the
+ * sample instead (not at a gap right after a gap: where every sample is one, it goes on,
+ * and its stillness test alone starts it over).
  */
 #define ORIENT_FLAG_GAP 8
 
 /**
  * `orient_filter_flags`: the last accepted update re-acquired the orientation after a
- * gap: inclination from its accelerometer reading, heading from its magnetometer
- * reading when it has one (every kind but the robust one, whose magnetic disturbance
- * test may refuse the reading, and the complementary one, which uses it only with
- * align_heading), else the heading held before the gap. The kind's low-passes and
- * detectors start over; its bias estimate is kept.
+ * gap: inclination from its accelerometer reading, heading from its magnetometer reading
+ * when it has one (every kind but the robust one, whose magnetic disturbance test may
+ * refuse the reading, and the complementary one, which uses it only with
+ * ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING), else the heading held before the gap. The
+ * kind's low-passes and detectors start over; its bias estimate is kept.
  */
 #define ORIENT_FLAG_REACQUIRED 16
 
@@ -728,14 +745,16 @@ typedef struct OrientFilter OrientFilter;
 
 /**
  * `orient_filter_flags`: the kind counts the magnetic field as disturbed now (the robust
- * kind: the last reading failed its norm and dip tests, hard iron compensated).
+ * kind: the last reading failed its norm and dip tests, hard iron compensated). Read
+ * from the state, not stored.
  */
 #define ORIENT_FLAG_MAG_DISTURBED 256
 
 /**
  * `orient_filter_flags`: the kind counts the sensor as resting now (McGinnis' and the
  * robust kind's rest detection; the EKF, Madgwick and Mahony with their rest options on,
- * rest_rate_std and rest_bias_tau; GMVDK never sets it).
+ * ORIENT_PARAM_EKF_REST_RATE_STD and ORIENT_PARAM_*_REST_BIAS_TAU; GMVDK never sets it).
+ * Read from the state, not stored.
  */
 #define ORIENT_FLAG_REST 512
 
@@ -754,12 +773,6 @@ typedef struct OrientFilter OrientFilter;
  * its gyroscope reading is averaged into that sample's step.
  */
 #define ORIENT_FLAG_SAME_INSTANT 2048
-
-/**
- * `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
- * smallest value that has it on.
- */
-#define ORIENT_PARAM_FLAG_ZERO_OFF 1
 
 /**
  * OrientDiagnostics.present: gyro_bias holds a value.
@@ -800,16 +813,6 @@ typedef struct OrientFilter OrientFilter;
  * OrientDiagnostics.present: covariance holds values.
  */
 #define ORIENT_DIAG_COVARIANCE 128
-
-/**
- * OrientUncertainty.present: heading holds a value.
- */
-#define ORIENT_UNCERTAINTY_HEADING 1
-
-/**
- * OrientUncertainty.present: inclination holds a value.
- */
-#define ORIENT_UNCERTAINTY_INCLINATION 2
 
 /**
  * Result of every fallible call. Numbers are fixed and never reused. On any status but

@@ -26,6 +26,7 @@ echo "== header and exports"
 scripts/check-header.sh
 echo "== C# P/Invoke layer generated from the header"
 scripts/check-csharp.sh
+scripts/check-python-native.sh
 echo "== ABI against the committed baseline"
 scripts/check-abi.sh
 echo "== cargo test (the library and the tools crate)"

@@ -1,6 +1,12 @@
-//! Parameter slot numbers for C. Generated from the parameter tables (each kind's
-//! `settings!` and `params::COMMON`) by the test `param_ids_are_generated_from_the_tables`;
-//! do not edit. Regenerate: ORIENT_BLESS=1 cargo test -p orient --lib param_ids
+//! Parameter slots for C. Generated from the parameter tables (each kind's `settings!`,
+//! `params::COMMON` and the slot map `params::BLOCKS`) by the test
+//! `param_ids_are_generated_from_the_tables` in `src/ffi/render.rs`; do not edit.
+//! Regenerate: ORIENT_BLESS=1 cargo test -p orient --lib generated_from_the_tables
+
+/// Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
+/// kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
+/// EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
+pub const ORIENT_MAX_PARAMS: usize = 128;
 
 /// Parameter slot (every kind): Gravity magnitude for the gravity and linear-acceleration
 /// outputs; default 9.80665 (orient: standard gravity, CGPM 1901).
