@@ -108,7 +108,7 @@ impl RigSpec {
     pub fn parse(text: &str) -> Result<RigSpec, String> {
         let v = json::parse(text).map_err(|e| e.to_string())?;
         let rate_hz = v.get("rate_hz").and_then(Value::as_f64).ok_or("rate_hz: a number is required")?;
-        if !(rate_hz > 0.0) {
+        if rate_hz.is_nan() || rate_hz <= 0.0 {
             return Err(format!("rate_hz: must be positive, got {rate_hz}"));
         }
         let reference_pose = match v.get("reference_pose") {
@@ -120,7 +120,7 @@ impl RigSpec {
                         .ok_or(format!("reference_pose.{k}: a number is required"))
                 };
                 let (start, end) = (f("start")?, f("end")?);
-                if !(end > start) {
+                if end <= start {
                     return Err(format!("reference_pose: end {end} is not after start {start}"));
                 }
                 let note = r.get("note").and_then(Value::as_str).unwrap_or("").to_string();
@@ -195,13 +195,13 @@ impl RigSpec {
             });
         }
         // A cycle: walking up from any sensor takes more steps than there are joints.
-        for start in 0..sensors.len() {
+        for (start, first) in sensors.iter().enumerate() {
             let (mut s, mut steps) = (start, 0);
             while let Some(j) = joints.iter().find(|j| j.child == s) {
                 s = j.parent;
                 steps += 1;
                 if steps > joints.len() {
-                    return Err(format!("joints: a cycle through '{}'", sensors[start].name));
+                    return Err(format!("joints: a cycle through '{}'", first.name));
                 }
             }
         }
@@ -584,21 +584,21 @@ pub fn run_rig(
     let mut rejected = 0;
     let start = Instant::now();
     for i in 0..rows {
-        for s in 0..n {
-            row_samples[s] = samples[s][i];
-            if !filters[s].update(&row_samples[s]) {
+        for ((f, sample), from) in filters.iter_mut().zip(row_samples.iter_mut()).zip(&samples) {
+            *sample = from[i];
+            if !f.update(sample) {
                 rejected += 1;
             }
         }
         if Some(i) == align_row {
             align_headings(spec, filters, &mut offsets);
         }
-        for s in 0..n {
-            q[s] = offsets[s] * filters[s].sensor_quaternion();
+        for ((q, f), o) in q.iter_mut().zip(filters.iter()).zip(&offsets) {
+            *q = *o * f.sensor_quaternion();
         }
         stage.update(i, &row_samples, &mut q);
-        for s in 0..n {
-            out[s].push(q[s]);
+        for (out, q) in out.iter_mut().zip(&q) {
+            out.push(*q);
         }
     }
     RigRun { sensors: out, rejected, elapsed: start.elapsed(), aligned_at: align_row }

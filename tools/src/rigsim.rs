@@ -20,9 +20,8 @@
 //!
 //! Readings: the gyroscope gives the rotation vector of each sample interval divided by
 //! its length, `log(q(t−dt)⁻¹ q(t))/dt` (what a strapdown integration recovers exactly),
-//! plus a per-sensor bias (random direction, norm up to 0.75 of
-//! [`SimConfig::bias_deg_s`], drifting slowly by up to a quarter of it) and white
-//! noise; the accelerometer the specific force at the sensor's position (second
+//! plus a per-sensor bias (each axis uniform within ±0.8 of [`SimConfig::bias_deg_s`],
+//! drifting slowly by up to ±0.2 of it, so no axis exceeds the bound) and white noise; the accelerometer the specific force at the sensor's position (second
 //! difference of the position, so the lever arms' tangential and centripetal terms are
 //! in it) plus noise; the magnetometer the earth's field, optionally with a dipole under
 //! the desk and a hard-iron offset per sensor (the glove's electronics), plus noise. The
@@ -226,7 +225,7 @@ pub struct SimConfig {
     /// The fraction of the moving time the palm (the pelvis, on a leg) is turned
     /// sideways, its lateral axes near vertical; 0 for ordinary motion.
     pub sideways: f64,
-    /// Bound on each sensor's gyroscope bias norm, deg/s.
+    /// Bound on each axis of each sensor's gyroscope bias, deg/s.
     pub bias_deg_s: f64,
     /// Angle by which each axis in rig.json is off the true one, degrees.
     pub axis_error_deg: f64,
@@ -288,7 +287,7 @@ impl SimConfig {
         Some(match name {
             "100hz" => base,
             "60hz-vigorous" => SimConfig { rate_hz: 60.0, vigorous: true, ..base },
-            "palm-sideways" => SimConfig { sideways: 0.5, ..base },
+            "palm-sideways" => SimConfig { sideways: 0.45, ..base },
             "bias-3dps" => SimConfig { bias_deg_s: 3.0, ..base },
             "axes-5deg-off" => SimConfig { axis_error_deg: 5.0, ..base },
             "leg" => {
@@ -440,9 +439,8 @@ impl Simulation {
             let w = deg(config.wobble_deg);
             let wobble = [0, 1, 2].map(|_| Bounded::new(rng, band(0.5, 4.0), -w, w));
             let b = deg(config.bias_deg_s);
-            let bias0 = rng.direction() * (b * rng.range(0.3, 0.75));
-            let d = 0.25 * b / 3f64.sqrt();
-            let drift = [0, 1, 2].map(|_| Bounded::new(rng, (1.0 / 600.0, 1.0 / 60.0), -d, d));
+            let bias0 = Vec3::new(rng.range(-0.8, 0.8), rng.range(-0.8, 0.8), rng.range(-0.8, 0.8)) * b;
+            let drift = [0, 1, 2].map(|_| Bounded::new(rng, (1.0 / 600.0, 1.0 / 60.0), -0.2 * b, 0.2 * b));
             let hard_iron = if config.magnet { rng.direction() * rng.range(0.5, 3.0) } else { Vec3::ZERO };
             segs.push(Segment {
                 name,
@@ -460,7 +458,6 @@ impl Simulation {
             segs.len() - 1
         };
         let lax = config.laxity_deg;
-        let root;
         match config.body {
             Body::Glove { dip } => {
                 let hand = add(
@@ -529,7 +526,6 @@ impl Simulation {
                         );
                     }
                 }
-                root = hand;
             }
             Body::Leg => {
                 let pelvis = add(
@@ -578,10 +574,8 @@ impl Simulation {
                     vec![(z(), lax)],
                     &mut motion,
                 );
-                root = pelvis;
             }
         }
-        let _ = root;
         let leg = config.body == Body::Leg;
         let (yaw_a, pitch_a, roll_a) = if leg {
             (90.0, 15.0, 10.0)
@@ -630,8 +624,8 @@ impl Simulation {
         let field = Vec3::new(0.0, 49.0 * deg(65.0).cos(), -49.0 * deg(65.0).sin());
         let magnet = config.magnet.then(|| {
             (
-                root_motion.pos0 + Vec3::new(misc.range(-0.1, 0.1), misc.range(-0.1, 0.1), -0.25),
-                misc.direction() * 0.8,
+                root_motion.pos0 + Vec3::new(misc.range(-0.1, 0.1), misc.range(-0.1, 0.1), -0.2),
+                misc.direction() * 1.5,
             )
         });
         Simulation {
@@ -853,7 +847,7 @@ fn normal_quantile(p: f64) -> f64 {
         -3.969683028665376e1,
         2.209460984245205e2,
         -2.759285104469687e2,
-        1.383577518672690e2,
+        1.38357751867269e2,
         -3.066479806614716e1,
         2.506628277459239,
     ];

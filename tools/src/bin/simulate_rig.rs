@@ -93,7 +93,7 @@ fn main() {
             _ => unreachable!(),
         }
     }
-    if !(c.rate_hz >= 1.0) || !(c.duration_s > 0.0) {
+    if c.rate_hz < 1.0 || c.duration_s <= 0.0 {
         fail("--rate must be at least 1 Hz and --duration positive");
     }
     let start = Instant::now();
@@ -119,6 +119,24 @@ fn main() {
         "hinge axes > 60 deg from horizontal {:.1} % of the time; still {:.1} % of the time",
         100.0 * vertical_hinge_fraction(&sim, 60.0),
         100.0 * rest
+    );
+    // Motion statistics over the moving rows: angular rate and acceleration beyond gravity.
+    let (mut w, mut a) = (Vec::new(), Vec::new());
+    for r in &sim.recording.sensors {
+        for i in (0..r.len()).filter(|i| sim.activity[*i] > 0.0) {
+            w.push(r.gyro[i].norm().to_degrees());
+            a.push((r.truth[i].rotate(r.accel[i]) - orient::Vec3::new(0.0, 0.0, 9.81)).norm());
+        }
+    }
+    let stats = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        let rms = (v.iter().map(|x| x * x).sum::<f64>() / v.len().max(1) as f64).sqrt();
+        (rms, v.get(v.len() * 99 / 100).copied().unwrap_or(f64::NAN))
+    };
+    let ((wr, w99), (ar, a99)) = (stats(&mut w), stats(&mut a));
+    println!(
+        "moving: angular rate RMS {wr:.0} deg/s (99th percentile {w99:.0}), acceleration RMS {ar:.1} m/s² \
+         (99th percentile {a99:.1})"
     );
     println!(
         "simulated in {:.2} s, written in {:.2} s",
