@@ -246,8 +246,9 @@ pub struct SimConfig {
     pub magnet: bool,
     /// Length of the still reference pose at the start, seconds.
     pub reference_s: f64,
-    /// The fraction of the time after the reference pose spent in rests.
-    pub rest_fraction: f64,
+    /// Rests between moving episodes (of 10-30 s): the mean time (s) each holds still,
+    /// uniform within ±50 %, after a ramp of 1 s down; 0 for no rests.
+    pub rest_s: f64,
 }
 
 /// The presets: the cases of issue 42's table (`100hz`, `60hz-vigorous`, `palm-sideways`,
@@ -277,7 +278,7 @@ impl SimConfig {
             mag_noise: 0.5,
             magnet: true,
             reference_s: 5.0,
-            rest_fraction: 0.15,
+            rest_s: 2.5,
         }
     }
 
@@ -614,10 +615,9 @@ impl Simulation {
             levels.push((t, lv));
             let mean_move = 20.0;
             t += misc.range(0.5, 1.5) * mean_move;
-            if config.rest_fraction > 0.0 {
+            if config.rest_s > 0.0 {
                 levels.push((t, 0.0));
-                let rest = mean_move * config.rest_fraction / (1.0 - config.rest_fraction);
-                t += misc.range(0.5, 1.5) * rest.max(ramp);
+                t += ramp + misc.range(0.5, 1.5) * config.rest_s;
             }
         }
         let schedule = Schedule::new(&levels, ramp);

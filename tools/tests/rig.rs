@@ -296,3 +296,52 @@ fn replay_rig_scores_what_a_direct_computation_gives() {
     assert!(joints.lines().next().unwrap().contains("index_mcp_1,index_mcp_2,index_pip"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn replay_rig_refuses_bad_descriptions_and_arguments_with_status_2() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("rig-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = "t,gyr_x,gyr_y,gyr_z,acc_x,acc_y,acc_z\n0,0,0,0,0,0,9.81\n0.01,0,0,0,0,0,9.81\n";
+    for f in ["a.csv", "b.csv"] {
+        std::fs::write(dir.join(f), csv).unwrap();
+    }
+    std::fs::write(dir.join("short.csv"), &csv[..csv.rfind("0.01").unwrap()]).unwrap();
+    let rig = |joints: &str, b_file: &str| {
+        format!(
+            "{{\"rate_hz\": 100, \"sensors\": [{{\"name\": \"a\", \"file\": \"a.csv\"}}, \
+             {{\"name\": \"b\", \"file\": \"{b_file}\"}}], \"joints\": [{joints}]}}"
+        )
+    };
+    let hinge = |p: &str, c: &str| {
+        format!("{{\"name\": \"j{p}{c}\", \"type\": \"hinge\", \"parent\": \"{p}\", \"child\": \"{c}\", \"axis_parent\": [0, 1, 0], \"axis_child\": [0, 1, 0]}}")
+    };
+    let run = |json: &str, extra: &[&str]| {
+        let path = dir.join("rig.json");
+        std::fs::write(&path, json).unwrap();
+        Command::new(env!("CARGO_BIN_EXE_replay"))
+            .args(["--rig", path.to_str().unwrap(), "--no-mag"])
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = dir.join("out");
+    let out = out.to_str().unwrap();
+    // A good one first: no truth, nothing to score, status 0, one row per input row.
+    let o = run(&rig(&hinge("a", "b"), "b.csv"), &["--out-dir", out]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("nothing to score"));
+    assert_eq!(std::fs::read_to_string(dir.join("out/b.csv")).unwrap().lines().count(), 3);
+    for (json, extra, needle) in [
+        (rig(&[hinge("a", "b"), hinge("b", "a")].join(","), "b.csv"), vec!["--out-dir", out], "cycle"),
+        (rig(&hinge("a", "b"), "short.csv"), vec!["--out-dir", out], "rows"),
+        (rig(&hinge("a", "b"), "b.csv"), vec![], "--out-dir"),
+        (rig(&hinge("a", "b"), "b.csv"), vec!["--out-dir", out, "--kind", "kalman"], "unknown kind"),
+        (rig(&hinge("a", "b"), "b.csv"), vec!["--out-dir", out, "--svg", "x.svg"], "no truth"),
+    ] {
+        let o = run(&json, &extra);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{needle}: {err}");
+        assert!(err.contains(needle), "{needle}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! cargo run --release -p orient-tools --bin simulate_rig -- --out DIR [--preset NAME]
-//!     [--seed N] [--body glove|glove-dip|leg] [--rate HZ] [--duration S]
+//!     [--seed N] [--body glove|glove-dip|leg] [--rate HZ] [--duration S] [--rest S]
 //!     [--vigorous] [--sideways FRACTION] [--bias DEG_S] [--axis-error DEG]
 //!     [--mounting-error DEG] [--laxity DEG] [--axial-play DEG] [--wobble DEG]
 //!     [--no-magnet]
@@ -12,6 +12,7 @@
 //! - `--preset`: one of 100hz (default), 60hz-vigorous, palm-sideways, bias-3dps,
 //!   axes-5deg-off (issue 42's cases, gloves of 10 minutes) or leg; the other options
 //!   change the preset.
+//! - `--rest S`: the mean still time of each rest between moving episodes (default 2.5 s).
 //! - `--sideways`: the fraction of the time with the palm sideways (0 for ordinary motion).
 //! - Prints what it wrote, the fraction of time hinge axes spend more than 60 deg from
 //!   horizontal, and the time taken.
@@ -24,7 +25,7 @@ use std::process::exit;
 use std::time::Instant;
 
 const USAGE: &str = "usage: simulate_rig --out DIR [--preset NAME] [--seed N] [--body glove|glove-dip|leg] \
-                     [--rate HZ] [--duration S] [--vigorous] [--sideways F] [--bias DEG_S] [--axis-error DEG] \
+                     [--rate HZ] [--duration S] [--rest S] [--vigorous] [--sideways F] [--bias DEG_S] [--axis-error DEG] \
                      [--mounting-error DEG] [--laxity DEG] [--axial-play DEG] [--wobble DEG] [--no-magnet]";
 
 fn fail(message: impl std::fmt::Display) -> ! {
@@ -48,7 +49,7 @@ fn main() {
             "--seed" => seed = value("--seed").parse().unwrap_or_else(|_| fail("--seed: not a whole number")),
             "--out" => out = Some(PathBuf::from(value("--out"))),
             "--vigorous" | "--no-magnet" => changes.push((a.clone(), String::new())),
-            "--body" | "--rate" | "--duration" | "--sideways" | "--bias" | "--axis-error"
+            "--body" | "--rate" | "--duration" | "--rest" | "--sideways" | "--bias" | "--axis-error"
             | "--mounting-error" | "--laxity" | "--axial-play" | "--wobble" => {
                 let v = value(&a);
                 changes.push((a.clone(), v));
@@ -83,6 +84,7 @@ fn main() {
             }
             "--rate" => c.rate_hz = num(),
             "--duration" => c.duration_s = num(),
+            "--rest" => c.rest_s = num(),
             "--sideways" => c.sideways = num().min(0.95),
             "--bias" => c.bias_deg_s = num(),
             "--axis-error" => c.axis_error_deg = num(),
