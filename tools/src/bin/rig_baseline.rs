@@ -119,7 +119,7 @@ fn main() {
     let mut vertical = vec![0.0; CASES.len()];
     // Issue 42 item 7: per sensor, heading offset removed, on the 60 Hz vigorous glove.
     const OWN: [&str; 3] = ["hand", "index_proximal", "index_middle"];
-    let mut own = vec![[(0.0, 0.0); OWN.len()]; 2];
+    let mut own = [[(0.0, 0.0); OWN.len()]; 2];
     let (mut sim_time, mut filter_time) = (0.0, 0.0);
     for (c, (preset, _)) in CASES.iter().enumerate() {
         for seed in 1..=seeds {
