@@ -23,15 +23,12 @@
  * Recovery
  *   Accepted input (a sample, a setting, a state blob) never leaves a filter stuck:
  *   still samples with an accelerometer bring its inclination back within 2 degrees in
- *   60 s (tests/recovery.rs), with these exceptions, measured there and by the fuzz
- *   target. Madgwick's correction turns the estimate at most beta rad/s (its paper's
- *   design), so a 180-degree error takes at least pi / beta (77 s at the default beta);
- *   it is within 2 degrees after 2 pi / beta (153 s) except near a saddle: Madgwick's
- *   and Mahony's magnetometer corrections have one near a 180-degree heading error,
- *   where the inclination can stay off for minutes (17.7 degrees, converging after
- *   220 s, in tests/recovery.rs; 64 degrees after 153 s in a fuzzed input); Mahony's
- *   bias integrator (ki, rest_bias_tau) can ring for as long. The EKF, set 159 degrees
- *   off with a small covariance, was 5 degrees off after 60 s (converging).
+ *   60 s, in every kind and with every option (tests/recovery.rs, and the fuzz target).
+ *   Where a kind's own correction is slow (Madgwick's turns the estimate at most beta
+ *   rad/s, its paper's design) or has a stationary point away from the truth
+ *   (Madgwick's and Mahony's magnetometer terms near a 180-degree heading error, the
+ *   EKF's gravity update near an upside-down estimate), the rest watch brings it back:
+ *   see ORIENT_FLAG_REACQUIRE_PENDING. In motion, recovery runs at the kind's own pace.
  *
  * Threads
  *   Functions without a handle are thread-safe. A handle may be used from any thread,
@@ -713,19 +710,28 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_FLAG_GAP 8
 
 /**
- * `orient_filter_flags`: the last accepted update re-acquired the orientation after a
- * gap: inclination from its accelerometer reading, heading from its magnetometer reading
- * when it has one (every kind but the robust one, whose magnetic disturbance test may
- * refuse the reading, and the complementary one, which uses it only with
- * ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING), else the heading held before the gap. The
- * kind's low-passes and detectors start over; its bias estimate is kept.
+ * `orient_filter_flags`: the last accepted update re-acquired the orientation (after a
+ * gap, a gyroscope saturation or the rest watch, see ORIENT_FLAG_REACQUIRE_PENDING):
+ * inclination from its accelerometer reading, heading from its magnetometer reading when
+ * it has one (every kind but the robust one, whose magnetic disturbance test may refuse
+ * the reading, and the complementary one, which uses it only with
+ * ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING), else the heading held before. The kind's
+ * low-passes and detectors start over; its bias estimate is kept, but after the rest
+ * watch a bias that Madgwick or Mahony learns becomes the still sample's gyroscope
+ * reading.
  */
 #define ORIENT_FLAG_REACQUIRED 16
 
 /**
- * `orient_filter_flags`: a gap ended on a sample without an accelerometer reading; the
- * orientation is held, then integrated from the gyroscope, until the next sample with an
- * accelerometer reading, which re-acquires it (ORIENT_FLAG_REACQUIRED).
+ * `orient_filter_flags`: the next sample with an accelerometer reading re-acquires the
+ * orientation (ORIENT_FLAG_REACQUIRED); until then it is integrated from the gyroscope.
+ * Set when a gap ends on a sample without an accelerometer reading (the orientation is
+ * held over the gap), after gyroscope saturation, and by the rest watch: when the sensor
+ * lies still (gyroscope below 3 °/s, accelerometer norm within 5 % of the configured
+ * gravity) and the estimate's vertical has stayed more than 10° from the
+ * accelerometer's for 5 s, looked at every 32nd sample. An estimate can rest there at a
+ * stationary point of its kind's correction (Madgwick's and Mahony's magnetometer terms
+ * near a 180° heading error, the EKF's gravity update near an upside-down estimate).
  */
 #define ORIENT_FLAG_REACQUIRE_PENDING 32
 

@@ -859,19 +859,28 @@ namespace Orient.Native
         public const uint FlagGap = 8;
 
         /// <summary>
-        /// `orient_filter_flags`: the last accepted update re-acquired the orientation after a
-        /// gap: inclination from its accelerometer reading, heading from its magnetometer reading
-        /// when it has one (every kind but the robust one, whose magnetic disturbance test may
-        /// refuse the reading, and the complementary one, which uses it only with
-        /// ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING), else the heading held before the gap. The
-        /// kind's low-passes and detectors start over; its bias estimate is kept.
+        /// `orient_filter_flags`: the last accepted update re-acquired the orientation (after a
+        /// gap, a gyroscope saturation or the rest watch, see ORIENT_FLAG_REACQUIRE_PENDING):
+        /// inclination from its accelerometer reading, heading from its magnetometer reading when
+        /// it has one (every kind but the robust one, whose magnetic disturbance test may refuse
+        /// the reading, and the complementary one, which uses it only with
+        /// ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING), else the heading held before. The kind's
+        /// low-passes and detectors start over; its bias estimate is kept, but after the rest
+        /// watch a bias that Madgwick or Mahony learns becomes the still sample's gyroscope
+        /// reading.
         /// </summary>
         public const uint FlagReacquired = 16;
 
         /// <summary>
-        /// `orient_filter_flags`: a gap ended on a sample without an accelerometer reading; the
-        /// orientation is held, then integrated from the gyroscope, until the next sample with an
-        /// accelerometer reading, which re-acquires it (ORIENT_FLAG_REACQUIRED).
+        /// `orient_filter_flags`: the next sample with an accelerometer reading re-acquires the
+        /// orientation (ORIENT_FLAG_REACQUIRED); until then it is integrated from the gyroscope.
+        /// Set when a gap ends on a sample without an accelerometer reading (the orientation is
+        /// held over the gap), after gyroscope saturation, and by the rest watch: when the sensor
+        /// lies still (gyroscope below 3 °/s, accelerometer norm within 5 % of the configured
+        /// gravity) and the estimate's vertical has stayed more than 10° from the
+        /// accelerometer's for 5 s, looked at every 32nd sample. An estimate can rest there at a
+        /// stationary point of its kind's correction (Madgwick's and Mahony's magnetometer terms
+        /// near a 180° heading error, the EKF's gravity update near an upside-down estimate).
         /// </summary>
         public const uint FlagReacquirePending = 32;
 
