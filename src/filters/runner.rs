@@ -201,6 +201,10 @@ impl<E: Estimator> Runner<E> {
     /// it wherever either flag may change; the usual step and the lane step find it clear
     /// and leave it so.
     const UNSETTLED: u8 = 16;
+    /// The rest watch looks at the next sample ([`Runner::look`]). Not a policy: kept in
+    /// [`Runner::policy`] so that the sample takes the policies' path, and the usual
+    /// step's only cost of the watch is its count.
+    const WATCH: u8 = 32;
 
     pub(crate) fn new(config: &Config) -> Result<Runner<E>, Error> {
         debug_assert_eq!(config.kind(), E::KIND);
@@ -241,7 +245,8 @@ impl<E: Estimator> Runner<E> {
         let recover = if slots[id::SATURATION_RECOVERY as usize] != 0.0 { Self::RECOVER } else { 0 };
         let same_instant = if slots[id::SAME_INSTANT as usize] != 0.0 { Self::SAME_INSTANT } else { 0 };
         let option = if self.core.usual_settings() { 0 } else { Self::KIND_OPTION };
-        self.policy = (self.policy & (Self::MODELS | Self::UNSETTLED)) | recover | same_instant | option;
+        self.policy =
+            (self.policy & (Self::MODELS | Self::UNSETTLED | Self::WATCH)) | recover | same_instant | option;
         if self.same_instant() {
             self.extras_mut();
         } else if let Some(x) = &mut self.extras.0 {
@@ -545,7 +550,6 @@ impl<E: Estimator> Runner<E> {
         if let Some(u) = if self.usual_state() { self.usual(s) } else { None } {
             if let Some(flags) = self.core.update_usual(&u) {
                 self.stepped(flags, u.accel.map(|a| a.v));
-                self.watched(u.dt, u.gyro, u.accel.map(|a| a.v));
                 return Ok(());
             }
         }
@@ -580,25 +584,21 @@ impl<E: Estimator> Runner<E> {
             self.bits |= Self::HAS_ACCEL;
         }
         self.flags = flags;
-    }
-
-    /// The rest watch's count of an accepted step past initialisation (`dt`, its
-    /// gyroscope and accelerometer readings), and its look every
-    /// [`super::watch::WATCH_EVERY`] steps.
-    #[inline(always)]
-    fn watched(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>) {
         if self.watch.tick() {
-            self.look(dt, gyro, accel);
+            self.policy |= Self::WATCH;
         }
     }
 
-    /// The rest watch's look ([`super::watch`]): a re-acquisition left pending when the
-    /// estimate has stayed off the accelerometer's vertical at rest.
-    #[cold]
-    #[inline(never)]
+    /// The rest watch's look ([`super::watch`]) at an accepted sample (its `dt` and
+    /// gyroscope reading, the accelerometer reading the step took): a re-acquisition
+    /// left pending when the estimate has stayed off the accelerometer's vertical at
+    /// rest. Taken by the sample after the count ran out ([`Runner::WATCH`]), on the
+    /// policies' path, so that the usual step only counts.
     fn look(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>) {
+        self.policy &= !Self::WATCH;
+        let initialized = self.flags & flags::INITIALIZED != 0;
         let q = self.core.absolute_quaternion();
-        if self.watch.look(dt, gyro, accel, q, E::NATIVE.up(), self.common.gravity) {
+        if self.watch.look(dt, gyro, accel.filter(|_| initialized), q, E::NATIVE.up(), self.common.gravity) {
             self.flags |= flags::REACQUIRE_PENDING;
             self.sync_state();
         }
@@ -610,7 +610,7 @@ impl<E: Estimator> Runner<E> {
         // Issue 20's policies, out of line behind one test of the byte that says which
         // are on (the kind's option bit needs nothing here: the plain update takes the
         // kind's own update; nor does UNSETTLED: the plain update tests the flags
-        // themselves).
+        // themselves). The rest watch's look takes this path too.
         if self.policy & !(Self::KIND_OPTION | Self::UNSETTLED) != 0 {
             return self.update_with_policies(s);
         }
@@ -631,6 +631,11 @@ impl<E: Estimator> Runner<E> {
         } else {
             self.update_plain(s)
         };
+        if result.is_ok() && self.policy & Self::WATCH != 0 {
+            // The accelerometer reading as the step took it (a sensor model applied).
+            let accel = s.accel().map(|_| self.last_accel);
+            self.look(s.dt(), s.gyro().unwrap_or_default(), accel);
+        }
         // The policies write the flags themselves (a clipped gyroscope reading leaves a
         // re-acquisition pending).
         self.sync_state();
@@ -703,7 +708,6 @@ impl<E: Estimator> Runner<E> {
             return match self.core.update(dt, gyro, accel, mag) {
                 Some(step) => {
                     self.stepped(step.flags(accel.is_some(), mag.is_some()), accel);
-                    self.watched(dt, gyro, accel);
                     Ok(())
                 }
                 None => Err(Error::Numeric),
@@ -747,7 +751,6 @@ impl<E: Estimator> Runner<E> {
             Some(step) => {
                 let gap_flag = if gap { flags::GAP } else { 0 };
                 self.stepped(step.flags(accel.is_some(), mag.is_some()) | gap_flag | pending, accel);
-                self.watched(dt, gyro, accel);
                 Ok(())
             }
             None => Err(Error::Numeric),
@@ -868,7 +871,6 @@ impl<E: Estimator> Runner<E> {
     /// What a lane step with the sample `u` leaves besides the core's state.
     pub(crate) fn lane_done(&mut self, u: &Usual, step: Step) {
         self.stepped(step.flags(true, u.mag.is_some()), u.accel.map(|a| a.v));
-        self.watched(u.dt, u.gyro, u.accel.map(|a| a.v));
     }
 
     pub(crate) fn diagnostic_fields(&self) -> u32 {
@@ -952,6 +954,9 @@ impl<E: Estimator> Runner<E> {
         fresh.refresh_models();
         fresh.core.codec(&mut r);
         fresh.watch.codec(&mut r);
+        if fresh.watch.looks_next() {
+            fresh.policy |= Self::WATCH;
+        }
         // Slots this kind does not use are zero in every snapshot it writes: a blob of
         // another kind relabelled (with a fresh checksum) has its own kind's slots set.
         let foreign =

@@ -9,7 +9,7 @@
 //! local to a paper's equations leaves such a point quickly, so the lifecycle watches for
 //! what every kind at rest must agree with: the accelerometer's vertical.
 //!
-//! Every [`WATCH_EVERY`] accepted samples, the watch looks at the sample just taken. The
+//! After every [`WATCH_EVERY`] accepted samples, the watch looks at the next one. The
 //! sensor counts as lying still when the gyroscope reads less than [`STILL_RATE`] and the
 //! accelerometer's norm is the configured gravity's within [`STILL_GRAVITY`]. While it
 //! lies still and the estimate's vertical is more than [`OFF_ANGLE`] from the
@@ -65,10 +65,17 @@ impl Default for Watch {
 }
 
 impl Watch {
-    /// Counts an accepted sample; true when it is the one to look at.
+    /// Counts an accepted step; true when the count runs out: the next sample is the one
+    /// to look at. (That sample's step counts on past 0; the look then starts the count
+    /// over.)
     #[inline(always)]
     pub(crate) fn tick(&mut self) -> bool {
-        self.countdown -= 1;
+        self.countdown = self.countdown.wrapping_sub(1);
+        self.countdown == 0
+    }
+
+    /// The count ran out: the next sample is looked at.
+    pub(crate) fn looks_next(&self) -> bool {
         self.countdown == 0
     }
 
@@ -119,7 +126,7 @@ impl Watch {
     pub(crate) fn codec(&mut self, c: &mut dyn Codec) {
         let mut countdown = u32::from(self.countdown);
         c.u32(&mut countdown);
-        self.countdown = countdown.clamp(1, u32::from(WATCH_EVERY)) as u16;
+        self.countdown = countdown.min(u32::from(u16::MAX)) as u16;
         c.bool(&mut self.due);
         let mut off = f64::from(self.off);
         c.f64(&mut off);
