@@ -424,3 +424,35 @@ fn the_rest_watch_leaves_a_good_estimate_alone() {
         }
     }
 }
+
+#[test]
+#[cfg_attr(miri, ignore = "long loops")]
+fn madgwick_wanders_by_beta_dt_at_rest() {
+    // The parameters' docs: the step follows the normalised gradient, so the estimate
+    // wanders by about beta * dt rad RMS at rest (0.6° at beta 1 and 100 Hz).
+    for beta in [1.0, 5.0] {
+        for with_mag in [false, true] {
+            let mut c = Config::new(Kind::Madgwick).unwrap();
+            c.set("beta_imu", beta).unwrap().unwrap();
+            c.set("beta_marg", beta).unwrap().unwrap();
+            let mut f = Filter::new(&c).unwrap();
+            let mut rng = Noise(0xbe7a);
+            let q = Quat::from_axis_angle(Vec3::new(0.0, 1.0, 0.0), 0.5);
+            let (mut sum, mut n) = (0.0, 0);
+            for i in 0..6000 {
+                let mut s = at(q, 0.01, rng.vec(0.005), &mut rng);
+                if !with_mag {
+                    s.mag = None;
+                }
+                f.update(&s).unwrap();
+                if i >= 3000 {
+                    sum += inclination_error(&f, q).powi(2);
+                    n += 1;
+                }
+            }
+            let rms = (sum / n as f64).sqrt();
+            let ratio = rms / (beta * 0.01);
+            assert!((0.5..=1.5).contains(&ratio), "beta {beta}, magnetometer {with_mag}: {rms} rad RMS");
+        }
+    }
+}
