@@ -7,7 +7,7 @@
 # against the replay tool, the plot). Prints how long each part took.
 #   scripts/test-python.sh [OUT]     (default target/wheels)
 # The library is compiled with CI's lighter profile (opt-level 1, no LTO; Rust never
-# fuses multiply-add, so the results are the same bits) in target/python, which later
+# fuses multiply-add, so the results are the same bits) in target/ci-light (shared with scripts/test-conan.sh), which later
 # runs reuse for everything but orient itself.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,16 +23,11 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/orient-python.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 pip=(python3 -m pip --disable-pip-version-check)
 
-# The build tool for the sdist, pinned, in a venv of its own (pip builds wheels itself).
-tools="$root/target/python-tools"
-if [ ! -x "$tools/bin/pyproject-build" ]; then
-  python3 -m venv "$tools"
-  "$tools/bin/python" -m pip install --quiet --disable-pip-version-check build==1.6.1
-fi
+tools=$(scripts/python-tools.sh)
 
 step=$EPOCHREALTIME
 rm -f "$out"/orient_imu-*
-"$tools/bin/pyproject-build" --sdist --outdir "$out" . >"$work/sdist.log" 2>&1 || { cat "$work/sdist.log"; exit 1; }
+"$tools/pyproject-build" --sdist --outdir "$out" . >"$work/sdist.log" 2>&1 || { cat "$work/sdist.log"; exit 1; }
 sdist="$out/orient_imu-$version.tar.gz"
 [ -f "$sdist" ] || { echo "FAIL no $sdist" >&2; exit 1; }
 echo "sdist: $sdist ($(du -k "$sdist" | cut -f1) KiB, $(tar tzf "$sdist" | wc -l) files, $(elapsed "$step") s)"
@@ -44,7 +39,7 @@ tar xzf "$sdist" -C "$work"
 find "$work/orient_imu-$version" -type f -exec touch {} +
 CARGO_PROFILE_RELEASE_OPT_LEVEL=1 CARGO_PROFILE_RELEASE_LTO=off CARGO_PROFILE_RELEASE_CODEGEN_UNITS=16 \
   "${pip[@]}" wheel --no-deps --wheel-dir "$out" "$work/orient_imu-$version" \
-  -C cmake.define.ORIENT_CARGO_TARGET_DIR="$root/target/python" >"$work/wheel.log" 2>&1 ||
+  -C cmake.define.ORIENT_CARGO_TARGET_DIR="$root/target/ci-light" >"$work/wheel.log" 2>&1 ||
   { cat "$work/wheel.log"; exit 1; }
 wheel=$(ls "$out"/orient_imu-"$version"-py3-none-*.whl)
 echo "wheel from the sdist: $(basename "$wheel") ($(du -k "$wheel" | cut -f1) KiB, $(elapsed "$step") s)"
