@@ -8,6 +8,8 @@
 #   README.md  SHA256SUMS (every other file, archives included)
 #   lib/<platform>/   the libraries, cmake/ (CMake package) and pkgconfig/
 #   unity/com.orient.filters/   the Unity package (scripts/package-unity.sh)
+#   python/   orient_imu-VERSION.tar.gz (sdist) and py3-none wheels: manylinux2014 x86_64
+#       and aarch64, macOS universal2, win_amd64 (scripts/release-wheels.sh)
 #   archives/orient-VERSION-<platform>.tar.gz (.zip for Windows), com.orient.filters-VERSION.tgz
 #
 # Platforms (platform folder: what, how):
@@ -187,6 +189,9 @@ for entry in aarch64-apple-ios:ios-arm64 aarch64-linux-android:android-arm64-v8a
   strip_static "$(built $t)/liborient.a" "$rel/lib/$p/liborient.a"
   configure "$p" "$(cat "$work/$t.native")" "" "" "" liborient.a
 done
+
+# --- Python: the sdist and the wheels of the libraries above ----------------------------
+scripts/release-wheels.sh "$rel" "$rel/python"
 
 # --- shared files, Unity package, archives, checksums ---------------------------------
 mkdir -p "$rel/include" "$rel/bindings/cpp"
