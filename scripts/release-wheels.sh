@@ -20,6 +20,8 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/orient-wheels.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$out"
 rm -f "$out"/orient_imu-*
+# Byte-identical wheels from the same commit: file times from the commit's time.
+export SOURCE_DATE_EPOCH="${SOURCE_DATE_EPOCH:-$(git log -1 --format=%ct 2>/dev/null || echo 315532800)}"
 
 "$tools/pyproject-build" --sdist --no-isolation --outdir "$out" . >"$work/sdist.log" 2>&1 || { cat "$work/sdist.log"; exit 1; }
 
