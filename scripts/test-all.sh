@@ -5,7 +5,8 @@
 # (with and without exceptions), the C# binding under Mono and the Unity scripts
 # against a stub, the examples in every language, the install layout with CMake and
 # pkg-config consumers, golden vectors, and the BROAD recordings in ../shared/data;
-# the Python package built as a wheel and tested with pytest in a fresh venv;
+# the Python package's sdist built into a wheel and tested with pytest in a fresh venv;
+# the Conan recipe (conan create with its CMake consumer);
 # then the same suite for aarch64 and armv7 under qemu-user (the golden vectors must
 # match bit for bit there too); then the release for every platform, built with CI's
 # lighter profile and checked: exports, glibc floor, Unity .meta files, the C ABI test
@@ -33,6 +34,8 @@ echo "== cargo test (the library and the tools crate)"
 cargo test
 echo "== Python package: wheel, fresh virtual environment, pytest"
 scripts/test-python.sh
+echo "== Conan recipe: conan create and the test_package consumer"
+scripts/test-conan.sh
 echo "== Miri on the library's unit tests (unsafe FFI code included)"
 # Tree Borrows: nalgebra's matrix views break the stricter Stacked Borrows model
 # inside nalgebra itself (cholesky -> gemv), which is not orient's code.
