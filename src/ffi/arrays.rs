@@ -6,7 +6,7 @@ use super::{
     diagnostics_to, fail, fail_item, from_core, guard, handle_mut, null, quat_to, OrientDiagnostics,
     OrientFilter, OrientQuaternion, OrientStatus,
 };
-use crate::filters::SampleView;
+use crate::filters::pipeline::sample::SampleView;
 use crate::math::Vec3;
 
 /// One row of the arrays, read in place.

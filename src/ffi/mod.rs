@@ -51,7 +51,8 @@ pub use snapshot::*;
 pub use types::*;
 pub use update::*;
 
-use crate::filters::{Config, Filter, Init, Kind, SampleView};
+use crate::filters::pipeline::sample::SampleView;
+use crate::filters::{Config, Filter, Init, Kind};
 use crate::math::{Frame, Quat, Vec3};
 use core::ffi::{c_char, CStr};
 use error::{detail_ptr, fail, from_core, from_state, guard, guard_value, status_message};

@@ -167,7 +167,7 @@ pub unsafe extern "C" fn orient_filters_update(
         while i < n {
             let group = &handles[i..n.min(i + LANES)];
             // Where the lanes do not pay (LANES_PAY), one filter at a time.
-            let distinct = crate::filters::LANES_PAY
+            let distinct = crate::filters::pipeline::filter::LANES_PAY
                 && group.len() == LANES
                 && (0..LANES).all(|a| (a + 1..LANES).all(|b| group[a] != group[b]));
             if distinct {

@@ -1,7 +1,8 @@
 //! A filter's configuration.
 
-use super::params::MAX_PARAMS;
-use super::{Error, Kind};
+use crate::filters::error::Error;
+use crate::filters::kind::Kind;
+use crate::filters::params::MAX_PARAMS;
 use crate::math::{Frame, Quat};
 
 /// How the filter gets its first orientation.

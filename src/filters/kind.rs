@@ -1,8 +1,8 @@
 //! The filter kinds and what each one has: parameters, diagnostics.
 
-use super::estimator::Estimator;
-use super::filter::with_kind;
-use super::params::{ParamSpec, Settings, COMMON};
+use crate::filters::params::{ParamSpec, Settings, COMMON};
+use crate::filters::pipeline::estimator::Estimator;
+use crate::filters::pipeline::filter::with_kind;
 
 /// The filter kinds. Hosts swap filters by changing this value alone.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

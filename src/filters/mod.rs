@@ -12,43 +12,27 @@
 #![forbid(unsafe_code)]
 
 pub mod calibration;
-pub mod complementary;
-pub mod ekf;
-pub mod gmvdk;
-pub mod madgwick;
-pub mod mahony;
+pub mod kinds;
 pub mod params;
-mod rest;
-pub mod robust;
-mod startup;
+pub(crate) mod pipeline;
 pub mod state;
 
 mod config;
 mod diagnostics;
 mod error;
-pub(crate) mod estimator;
-mod filter;
 pub mod flags;
-pub(crate) mod holds;
-mod host;
 mod kind;
-pub(crate) mod runner;
-mod sample;
-mod saturation;
-mod watch;
 
+// The public paths of the kinds and of what every kind shares.
 pub use config::{Config, Init};
 pub use diagnostics::{diag, Diagnostics, Uncertainty};
 pub use error::{Error, Field};
-pub(crate) use estimator::twist_about;
-pub(crate) use estimator::Reacquisition;
-pub use estimator::Step;
-pub use filter::Filter;
-pub(crate) use filter::LANES_PAY;
-pub use host::RigHeading;
 pub use kind::Kind;
-pub(crate) use sample::{check_quaternion, SampleView};
-pub use sample::{Sample, MAX_ACCEL, MAX_DT, MAX_GYRO, MAX_MAG, MIN_DT};
+pub use kinds::{complementary, ekf, gmvdk, madgwick, mahony, robust};
+pub use pipeline::estimator::Step;
+pub use pipeline::filter::Filter;
+pub use pipeline::host::RigHeading;
+pub use pipeline::sample::{Sample, MAX_ACCEL, MAX_DT, MAX_GYRO, MAX_MAG, MIN_DT};
 
 #[cfg(test)]
 mod tests;

@@ -3,17 +3,21 @@
 //! [`Runner`] of its kind, so its memory is that kind's state and a few words (see
 //! [`Filter::memory`]); every call is one match on the kind and the kind's own code.
 
-use super::complementary::Complementary;
-use super::ekf::Ekf;
-use super::estimator::Estimator;
-use super::gmvdk::Gmvdk;
-use super::madgwick::{Madgwick, LANES};
-use super::mahony::Mahony;
-use super::robust::Robust;
-use super::runner::Runner;
-use super::sample::SampleView;
-use super::state::StateError;
-use super::{Config, Diagnostics, Error, Kind, Sample};
+use crate::filters::config::Config;
+use crate::filters::diagnostics::Diagnostics;
+use crate::filters::error::Error;
+use crate::filters::kind::Kind;
+use crate::filters::kinds::complementary::Complementary;
+use crate::filters::kinds::ekf::Ekf;
+use crate::filters::kinds::gmvdk::Gmvdk;
+use crate::filters::kinds::madgwick::{Madgwick, LANES};
+use crate::filters::kinds::mahony::Mahony;
+use crate::filters::kinds::robust::Robust;
+use crate::filters::pipeline::estimator::Estimator;
+use crate::filters::pipeline::runner::Runner;
+use crate::filters::pipeline::sample::Sample;
+use crate::filters::pipeline::sample::SampleView;
+use crate::filters::state::StateError;
 use crate::math::{Euler, Quat, Vec3};
 
 /// One runner per kind, boxed: a handle takes what its kind needs.
@@ -47,28 +51,28 @@ macro_rules! each {
 macro_rules! with_kind {
     ($kind:expr, $E:ident => $body:expr) => {
         match $kind {
-            $crate::filters::Kind::Madgwick => {
-                type $E = $crate::filters::madgwick::Madgwick;
+            $crate::filters::kind::Kind::Madgwick => {
+                type $E = $crate::filters::kinds::madgwick::Madgwick;
                 $body
             }
-            $crate::filters::Kind::Mahony => {
-                type $E = $crate::filters::mahony::Mahony;
+            $crate::filters::kind::Kind::Mahony => {
+                type $E = $crate::filters::kinds::mahony::Mahony;
                 $body
             }
-            $crate::filters::Kind::Complementary => {
-                type $E = $crate::filters::complementary::Complementary;
+            $crate::filters::kind::Kind::Complementary => {
+                type $E = $crate::filters::kinds::complementary::Complementary;
                 $body
             }
-            $crate::filters::Kind::Ekf => {
-                type $E = $crate::filters::ekf::Ekf;
+            $crate::filters::kind::Kind::Ekf => {
+                type $E = $crate::filters::kinds::ekf::Ekf;
                 $body
             }
-            $crate::filters::Kind::Gmvdk => {
-                type $E = $crate::filters::gmvdk::Gmvdk;
+            $crate::filters::kind::Kind::Gmvdk => {
+                type $E = $crate::filters::kinds::gmvdk::Gmvdk;
                 $body
             }
-            $crate::filters::Kind::Robust => {
-                type $E = $crate::filters::robust::Robust;
+            $crate::filters::kind::Kind::Robust => {
+                type $E = $crate::filters::kinds::robust::Robust;
                 $body
             }
         }
@@ -302,11 +306,11 @@ impl Filter {
     /// is against the kind's reference (magnetic north once a magnetometer was used, else
     /// the start heading); offsets the host sets (heading, declination, rig calibration,
     /// mounting, frame) are exact and add none.
-    pub fn uncertainty(&self) -> super::Uncertainty {
+    pub fn uncertainty(&self) -> crate::filters::diagnostics::Uncertainty {
         each!(&self.0, r => r.uncertainty())
     }
 
-    /// The [`super::diag`] bits of the [`Diagnostics`] fields this filter reports with its
+    /// The [`crate::filters::diagnostics::diag`] bits of the [`Diagnostics`] fields this filter reports with its
     /// settings: [`Kind::diagnostics`] less those of an option that is off (Madgwick's bias
     /// and rest, Mahony's and the EKF's rest without their rest options). GMVDK's μ values
     /// are among them, though absent until its first magnetometer reading.
@@ -333,10 +337,10 @@ impl Filter {
 
     /// True once the filter has an orientation.
     pub fn is_initialized(&self) -> bool {
-        self.flags() & super::flags::INITIALIZED != 0
+        self.flags() & crate::filters::flags::INITIALIZED != 0
     }
 
-    /// [`super::flags`] bits.
+    /// [`crate::filters::flags`] bits.
     pub fn flags(&self) -> u32 {
         each!(&self.0, r => r.flags())
     }
@@ -360,20 +364,20 @@ impl Filter {
         each!(&self.0, r => r.frame())
     }
 
-    pub(crate) fn host(&self) -> super::host::Host {
+    pub(crate) fn host(&self) -> crate::filters::pipeline::host::Host {
         each!(&self.0, r => r.host())
     }
 
     /// The host's frames, made when first set (not in an update).
-    pub(crate) fn host_mut(&mut self) -> &mut super::host::Host {
+    pub(crate) fn host_mut(&mut self) -> &mut crate::filters::pipeline::host::Host {
         each!(&mut self.0, r => &mut r.extras_mut().host)
     }
 
-    pub(crate) fn models(&self) -> super::calibration::Models {
+    pub(crate) fn models(&self) -> crate::filters::calibration::Models {
         each!(&self.0, r => r.models())
     }
 
-    pub(crate) fn models_mut(&mut self) -> &mut super::calibration::Models {
+    pub(crate) fn models_mut(&mut self) -> &mut crate::filters::calibration::Models {
         each!(&mut self.0, r => &mut r.extras_mut().models)
     }
 

@@ -2,17 +2,29 @@
 //! state `E` and a head of a few words (flags, the common settings, the last
 //! accelerometer reading, the output frame), and does for every kind what is not in a
 //! paper: the checks, the start from the first sample, gaps, frames, flags, snapshots and
-//! the outputs. [`super::Filter`] holds one `Runner` of its kind.
+//! the outputs. [`crate::filters::pipeline::filter::Filter`] holds one `Runner` of its kind.
 
-use super::calibration::{self, Models};
-use super::estimator::{twist_about, Estimator, Reacquisition, Step};
-use super::host::Host;
-use super::params::{id, Settings, MAX_PARAMS};
-use super::sample::{check_quaternion, check_vector, Checked, SampleView, Usual};
-use super::state::{self, Codec, Reader, StateError, Writer};
-use super::watch::Watch;
-use super::{flags, holds, Config, Diagnostics, Error, Field, Init, Kind, Sample};
-use super::{MAX_ACCEL, MAX_DT, MAX_GYRO, MAX_MAG, MIN_DT};
+use crate::filters::calibration::{self, Models};
+use crate::filters::config::Config;
+use crate::filters::config::Init;
+use crate::filters::diagnostics::Diagnostics;
+use crate::filters::error::Error;
+use crate::filters::error::Field;
+use crate::filters::flags;
+use crate::filters::kind::Kind;
+use crate::filters::params::{id, Settings, MAX_PARAMS};
+use crate::filters::pipeline::estimator::{twist_about, Estimator, Reacquisition, Step};
+use crate::filters::pipeline::host::Host;
+use crate::filters::pipeline::sample::Sample;
+use crate::filters::pipeline::sample::MAX_ACCEL;
+use crate::filters::pipeline::sample::MAX_DT;
+use crate::filters::pipeline::sample::MAX_GYRO;
+use crate::filters::pipeline::sample::MAX_MAG;
+use crate::filters::pipeline::sample::MIN_DT;
+use crate::filters::pipeline::sample::{check_quaternion, check_vector, Checked, SampleView, Usual};
+use crate::filters::pipeline::watch::Watch;
+use crate::filters::state::holds;
+use crate::filters::state::{self, Codec, Reader, StateError, Writer};
 use crate::math::frame::{no_heading, NO_HEADING_SINE};
 use crate::math::{Frame, Quat, Vec3};
 
@@ -116,7 +128,7 @@ pub(crate) struct Runner<E: Estimator> {
     /// when first set (or when `same_instant` is switched on), never in an update: a
     /// filter without them carries 8 bytes here.
     pub(crate) extras: ExtrasBox,
-    /// The rest watch ([`super::watch`]).
+    /// The rest watch ([`crate::filters::pipeline::watch`]).
     watch: Watch,
 }
 
@@ -153,9 +165,9 @@ impl PartialEq for ExtrasBox {
 }
 
 /// What a filter has around its kind when a host sets it: mounting, heading offset and
-/// declination ([`super::host`]), sensor models ([`super::calibration`]), and the
+/// declination ([`crate::filters::pipeline::host`]), sensor models ([`crate::filters::calibration`]), and the
 /// gyroscope readings of dt = 0 samples waiting for the next step (sum, count;
-/// [`super::saturation`]).
+/// [`crate::filters::pipeline::saturation`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Extras {
     pub host: Host,
@@ -589,7 +601,7 @@ impl<E: Estimator> Runner<E> {
         }
     }
 
-    /// The rest watch's look ([`super::watch`]) at an accepted sample (its `dt` and
+    /// The rest watch's look ([`crate::filters::pipeline::watch`]) at an accepted sample (its `dt` and
     /// gyroscope reading, the accelerometer reading the step took): a re-acquisition
     /// left pending when the estimate has stayed off the accelerometer's vertical at
     /// rest. Taken by the sample after the count ran out ([`Runner::WATCH`]), on the
@@ -856,7 +868,7 @@ impl<E: Estimator> Runner<E> {
         Ok(())
     }
 
-    /// The sample when the lanes of [`super::Filter::update_group`] may take this filter's
+    /// The sample when the lanes of [`crate::filters::pipeline::filter::Filter::update_group`] may take this filter's
     /// step with it: the conditions of [`Runner::update_outline`]'s usual step
     /// (initialised, nothing pending, no policy or kind option, a sample the quick check
     /// passes with no gap), and an accelerometer reading.
@@ -885,9 +897,9 @@ impl<E: Estimator> Runner<E> {
     }
 
     /// The kind's error model; none before initialisation.
-    pub(crate) fn uncertainty(&self) -> super::Uncertainty {
+    pub(crate) fn uncertainty(&self) -> crate::filters::diagnostics::Uncertainty {
         if self.flags() & flags::INITIALIZED == 0 {
-            return super::Uncertainty::default();
+            return crate::filters::diagnostics::Uncertainty::default();
         }
         self.core.uncertainty()
     }

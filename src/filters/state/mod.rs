@@ -19,6 +19,8 @@
 //! Loading checks everything before it changes anything: magic, version, kind, length,
 //! checksum, and that every decoded value is one the filter could hold.
 
+pub(crate) mod holds;
+
 use crate::math::{Quat, Vec3};
 
 pub const MAGIC: [u8; 4] = *b"ORST";

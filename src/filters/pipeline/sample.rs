@@ -1,6 +1,7 @@
 //! Samples, the physical bounds on them, and the checks of vectors and quaternions.
 
-use super::{Error, Field};
+use crate::filters::error::Error;
+use crate::filters::error::Field;
 use crate::math::{Quat, Vec3};
 
 /// One sensor sample. Units: gyro rad/s, accel m/s², mag any unit (consistent over a

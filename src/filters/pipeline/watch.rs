@@ -26,7 +26,7 @@
 //! more slowly. A correct estimate at rest is within a degree or two of the
 //! accelerometer's vertical; [`OFF_ANGLE`] is five times that.
 
-use super::state::Codec;
+use crate::filters::state::Codec;
 use crate::math::{Quat, Vec3};
 
 /// How many accepted samples lie between two looks: the cost of the watch is a count per

@@ -9,10 +9,14 @@
 //! hard-iron offset (Fusion's `FusionCalibrationMagnetic`, MATLAB `magcal`'s `A` and
 //! `b`, with `S = Aᵀ` for its row vectors).
 
-use super::estimator::Estimator;
-use super::runner::Runner;
-use super::state::Codec;
-use super::{Error, Field, Filter, Sample, SampleView};
+use crate::filters::error::Error;
+use crate::filters::error::Field;
+use crate::filters::pipeline::estimator::Estimator;
+use crate::filters::pipeline::filter::Filter;
+use crate::filters::pipeline::runner::Runner;
+use crate::filters::pipeline::sample::Sample;
+use crate::filters::pipeline::sample::SampleView;
+use crate::filters::state::Codec;
 use crate::math::Vec3;
 use nalgebra::{Matrix3, SMatrix, SVector};
 
@@ -49,14 +53,14 @@ impl Model {
     ///   (no reading lies there);
     /// - gyroscope: TooLarge unless every reading of at most [`PLAUSIBLE_GYRO`] (a still
     ///   sensor's 0 among them) calibrates with each component under
-    ///   [`MAX_GYRO`](super::MAX_GYRO);
+    ///   [`MAX_GYRO`](crate::filters::pipeline::sample::MAX_GYRO);
     /// - accelerometer: a reading of standard gravity ([`PLAUSIBLE_GRAVITY`]) in any
-    ///   direction must calibrate with each component under [`MAX_ACCEL`](super::MAX_ACCEL)
+    ///   direction must calibrate with each component under [`MAX_ACCEL`](crate::filters::pipeline::sample::MAX_ACCEL)
     ///   (else TooLarge) and to a nonzero vector, `|calibrated|² ≥ f64::MIN_POSITIVE` (the
     ///   zero threshold of every reading; else ZeroVector);
     /// - magnetometer (any unit): the earth's field at any strength of
     ///   [`PLAUSIBLE_FIELD`] (gauss to nanotesla) in any direction, read with the hard-iron
-    ///   offset added, must calibrate with each component under [`MAX_MAG`](super::MAX_MAG)
+    ///   offset added, must calibrate with each component under [`MAX_MAG`](crate::filters::pipeline::sample::MAX_MAG)
     ///   (else TooLarge) and to a nonzero vector (else ZeroVector).
     ///
     /// Over the readings `r = c + ρ u` around a centre `c` (0, or the offset for the
@@ -99,9 +103,15 @@ impl Model {
             return Err(Error::ZeroVector(field));
         }
         let (bound, (centre, lo, hi)) = match field {
-            Field::Gyro => (super::MAX_GYRO, (Vec3::ZERO, 0.0, PLAUSIBLE_GYRO)),
-            Field::Accel => (super::MAX_ACCEL, (Vec3::ZERO, PLAUSIBLE_GRAVITY, PLAUSIBLE_GRAVITY)),
-            _ => (super::MAX_MAG, (self.offset, PLAUSIBLE_FIELD.0, PLAUSIBLE_FIELD.1)),
+            Field::Gyro => (crate::filters::pipeline::sample::MAX_GYRO, (Vec3::ZERO, 0.0, PLAUSIBLE_GYRO)),
+            Field::Accel => (
+                crate::filters::pipeline::sample::MAX_ACCEL,
+                (Vec3::ZERO, PLAUSIBLE_GRAVITY, PLAUSIBLE_GRAVITY),
+            ),
+            _ => (
+                crate::filters::pipeline::sample::MAX_MAG,
+                (self.offset, PLAUSIBLE_FIELD.0, PLAUSIBLE_FIELD.1),
+            ),
         };
         if self.offset.max_abs() >= bound {
             return Err(Error::TooLarge(field));
@@ -496,11 +506,11 @@ impl MagCalibrator {
 
     /// Adds one reading (any unit). The filters' magnetometer check first (NonFinite for
     /// a NaN or infinite component, ZeroVector for a zero or subnormal norm, TooLarge for
-    /// a component at or beyond [`MAX_MAG`](super::MAX_MAG) or a norm that overflows);
+    /// a component at or beyond [`MAX_MAG`](crate::filters::pipeline::sample::MAX_MAG) or a norm that overflows);
     /// nothing changes then. An accepted reading is kept or, by the outlier gate (see
     /// [`MagCalibrator`]), set aside and counted in [`MagCalibrator::rejected`].
     pub fn add(&mut self, m: Vec3) -> Result<(), Error> {
-        super::sample::check_mag(m)?;
+        crate::filters::pipeline::sample::check_mag(m)?;
         if self.count == 0 {
             self.scale = m.norm();
             self.keep(m);
@@ -682,9 +692,9 @@ pub struct GyroOffset {
 impl GyroOffset {
     /// Adds one gyroscope reading (rad/s) taken while the sensor is still. The filters'
     /// gyroscope check first: NonFinite for a NaN or infinite component, TooLarge for one
-    /// at or beyond [`MAX_GYRO`](super::MAX_GYRO); nothing changes then.
+    /// at or beyond [`MAX_GYRO`](crate::filters::pipeline::sample::MAX_GYRO); nothing changes then.
     pub fn add(&mut self, g: Vec3) -> Result<(), Error> {
-        super::sample::check_gyro(g)?;
+        crate::filters::pipeline::sample::check_gyro(g)?;
         self.count += 1;
         let delta = g - self.mean;
         self.mean = self.mean + delta * (1.0 / self.count as f64);
@@ -714,51 +724,4 @@ impl GyroOffset {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
-    fn a_model_is_matrix_times_offset_removed() {
-        let m = Model {
-            matrix: [[2.0, 0.0, 0.0], [0.0, 1.0, 0.5], [0.0, 0.0, 1.0]],
-            offset: Vec3::new(1.0, 1.0, 1.0),
-        };
-        assert_eq!(m.apply(Vec3::new(2.0, 3.0, 5.0)), Vec3::new(2.0, 4.0, 4.0));
-        let singular =
-            Model { matrix: [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 0.0, 1.0]], offset: Vec3::ZERO };
-        assert_eq!(singular.check(Field::Mag), Err(Error::ZeroVector(Field::Mag)));
-    }
-
-    #[test]
-    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
-    fn the_gyro_offset_is_the_still_mean() {
-        let mut g = GyroOffset::default();
-        assert_eq!(g.offset(), None);
-        for i in 0..100 {
-            let s = if i % 2 == 0 { 0.001 } else { -0.001 };
-            g.add(Vec3::new(0.01 + s, -0.02, 0.03 - s)).unwrap();
-        }
-        let o = g.offset().unwrap();
-        assert!((o - Vec3::new(0.01, -0.02, 0.03)).norm() < 1e-12);
-        assert!((g.spread() - 0.001 * (2.0f64 / 3.0).sqrt()).abs() < 1e-5, "{}", g.spread());
-        assert_eq!(g.add(Vec3::new(f64::NAN, 0.0, 0.0)), Err(Error::NonFinite(Field::Gyro)));
-    }
-
-    #[test]
-    #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
-    fn too_few_or_planar_samples_give_no_fit() {
-        let mut c = MagCalibrator::new();
-        for i in 0..9 {
-            c.add(Vec3::new(i as f64, 1.0, 2.0)).unwrap();
-        }
-        assert!(c.solve().is_none());
-        let mut c = MagCalibrator::new();
-        for i in 0..100 {
-            let a = i as f64 * 0.1;
-            c.add(Vec3::new(a.cos(), a.sin(), 0.0)).unwrap();
-        }
-        assert!(c.solve().is_none(), "a circle does not fix an ellipsoid");
-        assert_eq!(MagCalibrator::new().add(Vec3::ZERO), Err(Error::ZeroVector(Field::Mag)));
-    }
-}
+mod tests;

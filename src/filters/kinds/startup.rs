@@ -49,7 +49,7 @@ pub(crate) fn stationary_norm(g0: f64, gravity: f64) -> f64 {
 /// tenth of the field.
 pub(crate) const MAG_STILL: f64 = 0.1;
 
-use super::state::Codec;
+use crate::filters::state::Codec;
 use crate::math::Vec3;
 
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -135,7 +135,10 @@ impl StartupMeans {
 
     /// Values `add` could leave: sums of bounded readings, counts that match.
     pub fn valid(&self) -> bool {
-        use super::{holds, MAX_ACCEL, MAX_GYRO, MAX_MAG};
+        use crate::filters::pipeline::sample::MAX_ACCEL;
+        use crate::filters::pipeline::sample::MAX_GYRO;
+        use crate::filters::pipeline::sample::MAX_MAG;
+        use crate::filters::state::holds;
         let n = f64::from(self.n).max(1.0);
         self.time >= 0.0
             && self.elapsed >= self.time

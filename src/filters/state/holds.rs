@@ -1,7 +1,9 @@
 //! What a decoded snapshot may hold (see [`crate::Filter::load`]): the checks each kind's
 //! `valid` is built from. The codec already refuses NaN and infinities.
 
-use super::{MAX_ACCEL, MAX_GYRO, MAX_MAG};
+use crate::filters::pipeline::sample::MAX_ACCEL;
+use crate::filters::pipeline::sample::MAX_GYRO;
+use crate::filters::pipeline::sample::MAX_MAG;
 use crate::math::{Quat, Vec3};
 
 /// A unit quaternion, as every update leaves one (normalised to rounding).

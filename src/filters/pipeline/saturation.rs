@@ -4,9 +4,15 @@
 //! magnetometer) through the gap path's re-acquisition, as x-io Fusion's angular-rate
 //! recovery re-initialises. Readings at or beyond the physical bounds stay errors.
 
-use super::estimator::Estimator;
-use super::runner::Runner;
-use super::{flags, Error, Sample, SampleView, MAX_ACCEL, MAX_GYRO, MIN_DT};
+use crate::filters::error::Error;
+use crate::filters::flags;
+use crate::filters::pipeline::estimator::Estimator;
+use crate::filters::pipeline::runner::Runner;
+use crate::filters::pipeline::sample::Sample;
+use crate::filters::pipeline::sample::SampleView;
+use crate::filters::pipeline::sample::MAX_ACCEL;
+use crate::filters::pipeline::sample::MAX_GYRO;
+use crate::filters::pipeline::sample::MIN_DT;
 use crate::math::Vec3;
 
 /// The largest value under `range` (> 0).

@@ -1,10 +1,12 @@
 //! The trait every filter kind implements, and what its update and re-acquisition
 //! exchange with the common lifecycle ([`super::Runner`]).
 
-use super::params::Settings;
-use super::sample::Usual;
-use super::state::Codec;
-use super::{Diagnostics, Kind, Uncertainty};
+use crate::filters::diagnostics::Diagnostics;
+use crate::filters::diagnostics::Uncertainty;
+use crate::filters::kind::Kind;
+use crate::filters::params::Settings;
+use crate::filters::pipeline::sample::Usual;
+use crate::filters::state::Codec;
 use crate::math::{Frame, Quat, Vec3};
 
 /// One filter kind: its settings and parameter table, its native frame, and its state
@@ -106,12 +108,12 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     fn uncertainty(&self) -> Uncertainty {
         Uncertainty::default()
     }
-    /// True when the kind counts the sensor as resting now ([`super::flags::REST`]).
+    /// True when the kind counts the sensor as resting now ([`crate::filters::flags::REST`]).
     fn at_rest(&self) -> bool {
         false
     }
     /// True when the kind counts the magnetic field as disturbed now
-    /// ([`super::flags::MAG_DISTURBED`]).
+    /// ([`crate::filters::flags::MAG_DISTURBED`]).
     fn mag_disturbed(&self) -> bool {
         false
     }
@@ -136,7 +138,7 @@ pub(crate) struct Reacquisition {
     pub mag: Option<Vec3>,
     /// The rest watch asked for this re-acquisition and the sensor still lies still: its
     /// gyroscope reading, a bias estimate for a kind that learns one
-    /// ([`super::watch::Watch::still`]).
+    /// ([`crate::filters::pipeline::watch::Watch::still`]).
     pub still: Option<Vec3>,
 }
 
@@ -168,7 +170,7 @@ pub struct Step {
 }
 
 impl Step {
-    /// The [`super::flags`] an update past initialisation leaves: initialised, and each
+    /// The [`crate::filters::flags`] an update past initialisation leaves: initialised, and each
     /// reading the sample had either used or rejected.
     #[inline(always)]
     pub(crate) fn flags(self, had_accel: bool, had_mag: bool) -> u32 {
@@ -181,9 +183,19 @@ impl Step {
                 0
             }
         };
-        super::flags::INITIALIZED
-            | bit(self.used_accel, had_accel, super::flags::ACCEL_USED, super::flags::ACCEL_REJECTED)
-            | bit(self.used_mag, had_mag, super::flags::MAG_USED, super::flags::MAG_REJECTED)
+        crate::filters::flags::INITIALIZED
+            | bit(
+                self.used_accel,
+                had_accel,
+                crate::filters::flags::ACCEL_USED,
+                crate::filters::flags::ACCEL_REJECTED,
+            )
+            | bit(
+                self.used_mag,
+                had_mag,
+                crate::filters::flags::MAG_USED,
+                crate::filters::flags::MAG_REJECTED,
+            )
     }
 }
 
@@ -197,7 +209,7 @@ macro_rules! estimator {
     // A kind with a usual step: also the forwards to its inherent `update_usual` and
     // `usual_settings`.
     (impl for $T:ident { settings: $S:ty, native: $frame:ident, own_startup: $own:expr, diagnostics: $d:expr, usual: true $(,)? } { $($item:tt)* }) => {
-        $crate::filters::estimator::estimator!(impl for $T { settings: $S, native: $frame, own_startup: $own, diagnostics: $d } {
+        $crate::filters::pipeline::estimator::estimator!(impl for $T { settings: $S, native: $frame, own_startup: $own, diagnostics: $d } {
             const USUAL: bool = true;
 
             fn usual_settings(&self) -> bool {
@@ -205,7 +217,7 @@ macro_rules! estimator {
             }
 
             #[inline(always)]
-            fn update_usual(&mut self, s: &$crate::filters::sample::Usual) -> Option<u32> {
+            fn update_usual(&mut self, s: &$crate::filters::pipeline::sample::Usual) -> Option<u32> {
                 $T::update_usual(self, s)
             }
 
@@ -213,14 +225,14 @@ macro_rules! estimator {
         });
     };
     (impl for $T:ident { settings: $S:ty, native: $frame:ident, own_startup: $own:expr, diagnostics: $d:expr $(,)? } { $($item:tt)* }) => {
-        impl $crate::filters::estimator::Estimator for $T {
+        impl $crate::filters::pipeline::estimator::Estimator for $T {
             type Settings = $S;
-            const KIND: $crate::filters::Kind = $crate::filters::Kind::$T;
+            const KIND: $crate::filters::Kind = $crate::filters::kind::Kind::$T;
             const NATIVE: $crate::math::Frame = $crate::math::Frame::$frame;
             const OWN_STARTUP: bool = $own;
             const DIAGNOSTICS: u32 = {
                 #[allow(unused_imports)]
-                use $crate::filters::diag::*;
+                use $crate::filters::diagnostics::diag::*;
                 $d
             };
 
@@ -245,7 +257,7 @@ macro_rules! estimator {
                 $T::set_quaternion(self, q)
             }
 
-            fn reacquire(&mut self, r: &$crate::filters::estimator::Reacquisition) -> bool {
+            fn reacquire(&mut self, r: &$crate::filters::pipeline::estimator::Reacquisition) -> bool {
                 $T::reacquire(self, r)
             }
 

@@ -7,7 +7,7 @@
 //! began. The last test keeps a slow turn, whose rate is below a bias's size, from
 //! being taken for rest: at rest gravity keeps its direction in the sensor frame.
 
-use super::state::Codec;
+use crate::filters::state::Codec;
 use crate::math::Vec3;
 
 /// The gain of a first-order low-pass for one step of `dt` with time constant `tau`:
@@ -47,7 +47,7 @@ pub struct RestDetector {
 impl RestDetector {
     /// Values an update could leave (see `filters::holds`).
     pub(crate) fn valid(&self) -> bool {
-        use super::holds;
+        use crate::filters::state::holds;
         holds::rate(self.gyro_lp)
             && holds::accel(self.acc_lp)
             && holds::accel(self.acc_ref)

@@ -107,9 +107,9 @@
 //!   accelerometer cannot tell tilt from acceleration. It costs 58 instructions per
 //!   update (callgrind, baseline ISA: IMU 4620 to 4678, MARG 5274 to 5332).
 
-use super::params::settings;
-use super::rest::{lp_gain, RestDetector, RestThresholds};
-use super::Step;
+use crate::filters::kinds::rest::{lp_gain, RestDetector, RestThresholds};
+use crate::filters::params::settings;
+use crate::filters::pipeline::estimator::Step;
 use crate::math::lanes::Lanes;
 use crate::math::{cos_and_sinc, cos_minus_sinc_over_x2, one_minus_exp_neg};
 use crate::math::{Quat, Vec3};
@@ -901,7 +901,7 @@ impl Ekf {
     /// After a gap: the re-acquired orientation, ω from this gyroscope reading less the
     /// drift estimate δ (kept), the covariance back to its initial value (the orientation
     /// is as uncertain as at start-up), rest detection and adaptation started over.
-    pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
+    pub(crate) fn reacquire(&mut self, r: &crate::filters::pipeline::estimator::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
         let omega = r.gyro - self.drift();
         self.x.q = vector_of((), q);
@@ -918,7 +918,7 @@ impl Ekf {
     /// and a covariance that is a covariance: symmetric, positive semi-definite (a
     /// Cholesky factorisation of P + 1e-9·max(diag P)·I succeeds).
     pub(crate) fn valid(&self) -> bool {
-        use super::holds;
+        use crate::filters::state::holds;
         let mut p = self.p.clone();
         let mut m = [[0.0; 10]; 10];
         for (r, row) in m.iter_mut().enumerate() {
@@ -938,7 +938,7 @@ impl Ekf {
 
     /// Visits the state as ten values [q, ω, δ], then P as a full 10×10 matrix in
     /// column-major order (the snapshot layout of format version 1).
-    pub(crate) fn codec(&mut self, c: &mut dyn super::state::Codec) {
+    pub(crate) fn codec(&mut self, c: &mut dyn crate::filters::state::Codec) {
         for v in self.x.values_mut() {
             c.f64(v);
         }
@@ -1726,10 +1726,10 @@ mod tests {
     }
 }
 
-/// The common lifecycle's view of this kind (see [`super::estimator::Estimator`]).
+/// The common lifecycle's view of this kind (see [`crate::filters::pipeline::estimator::Estimator`]).
 mod estimator_impl {
     use super::*;
-    use crate::filters::estimator::estimator;
+    use crate::filters::pipeline::estimator::estimator;
     use crate::filters::Diagnostics;
 
     estimator!(impl for Ekf { settings: EkfSettings, native: Ned, own_startup: false, diagnostics: GYRO_BIAS | REST | RATE | COVARIANCE } {
