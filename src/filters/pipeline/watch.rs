@@ -67,7 +67,7 @@ impl Default for Watch {
 impl Watch {
     /// Counts an accepted step; true when the count runs out: the next sample is the one
     /// to look at. (That sample's step counts on past 0; the look then starts the count
-    /// over.)
+    /// over, so that one sample in [`WATCH_EVERY`] is looked at.)
     #[inline(always)]
     pub(crate) fn tick(&mut self) -> bool {
         self.countdown = self.countdown.wrapping_sub(1);
@@ -91,7 +91,8 @@ impl Watch {
         up: Vec3,
         gravity: f64,
     ) -> bool {
-        self.countdown = WATCH_EVERY;
+        // This sample's own step counted past 0: the next look is WATCH_EVERY samples on.
+        self.countdown = WATCH_EVERY - 1;
         let off = accel.is_some_and(|a| {
             let n = a.norm();
             let still = gyro.norm_squared() < STILL_RATE * STILL_RATE
