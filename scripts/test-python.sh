@@ -15,8 +15,10 @@ cargo build --release -p orient --lib --quiet
 rm -f "$out"/orient_imu-*.whl
 wheel=$(python3 bindings/python/build_wheel.py --lib target/release/liborient.so --out "$out")
 echo "wheel: $wheel ($(du -k "$wheel" | cut -f1) KiB, $(elapsed "$wheel_start") s with the library build)"
-# The BROAD test compares with the replay tool (the tools crate; a no-op when up to date).
-cargo build --quiet -p orient-tools --bin replay
+# The BROAD test compares with the replay tool (the tools crate), built with cargo test's
+# profile: a no-op after `cargo test`, which built it, and no second build of every
+# dependency at another optimisation level.
+cargo build --quiet --profile test -p orient-tools --bin replay
 replay=target/debug/replay
 # A fresh environment outside the source tree, removed afterwards.
 venv=$(mktemp -d "${TMPDIR:-/tmp}/orient-venv.XXXXXX")
