@@ -40,12 +40,14 @@ step() {
   return "$status"
 }
 step_table() {
-  local i
+  local i failed=0
   echo "== step times (wall, s; load average at the end: $(cut -d' ' -f1-3 /proc/loadavg))"
   for i in "${!step_names[@]}"; do
     printf '%8s  %-14s %s\n' "${step_times[$i]}" "${step_names[$i]}" "${step_states[$i]}"
+    [ "${step_states[$i]}" = ok ] || failed=$((failed + 1))
   done
   printf '%8s  %s\n' "$(seconds_since "$run_start")" "in all"
+  echo "steps: $((${#step_names[@]} - failed)) passed, $failed failed"
 }
 trap step_table EXIT
 
