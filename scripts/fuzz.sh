@@ -13,8 +13,8 @@
 # The mutations follow FUZZ_SEED (default 1), so that a run is repeatable and CI's short
 # run is not a lottery: a breach it finds, a run with the same seed finds again. Explore
 # with another seed (FUZZ_SEED=0: libFuzzer picks one from the clock) and a longer time.
-# To refresh the seeds from a long run's finds (keep them few: the set-cover merge keeps
-# every feature with about half the inputs a plain merge keeps):
+# To refresh the seeds from a long run's finds (keep them few: the set-cover merge kept
+# 36,522 of 36,525 features with 630 inputs where a plain merge keeps 1,254):
 #   cd fuzz && cargo +nightly fuzz cmin abi_calls corpus/abi_calls -- -set_cover_merge=1
 # after copying run-corpus/abi_calls/* into corpus/abi_calls; commit the result (git add -f:
 # .gitignore keeps what runs add to the seed corpus out of git).
