@@ -23,15 +23,12 @@
  * Recovery
  *   Accepted input (a sample, a setting, a state blob) never leaves a filter stuck:
  *   still samples with an accelerometer bring its inclination back within 2 degrees in
- *   60 s (tests/recovery.rs), with these exceptions, measured there and by the fuzz
- *   target. Madgwick's correction turns the estimate at most beta rad/s (its paper's
- *   design), so a 180-degree error takes at least pi / beta (77 s at the default beta);
- *   it is within 2 degrees after 2 pi / beta (153 s) except near a saddle: Madgwick's
- *   and Mahony's magnetometer corrections have one near a 180-degree heading error,
- *   where the inclination can stay off for minutes (17.7 degrees, converging after
- *   220 s, in tests/recovery.rs; 64 degrees after 153 s in a fuzzed input); Mahony's
- *   bias integrator (ki, rest_bias_tau) can ring for as long. The EKF, set 159 degrees
- *   off with a small covariance, was 5 degrees off after 60 s (converging).
+ *   60 s, in every kind and with every option (tests/recovery.rs, and the fuzz target).
+ *   Where a kind's own correction is slow (Madgwick's turns the estimate at most beta
+ *   rad/s, its paper's design) or has a stationary point away from the truth
+ *   (Madgwick's and Mahony's magnetometer terms near a 180-degree heading error, the
+ *   EKF's gravity update near an upside-down estimate), the rest watch brings it back:
+ *   see ORIENT_FLAG_REACQUIRE_PENDING. In motion, recovery runs at the kind's own pace.
  *
  * Threads
  *   Functions without a handle are thread-safe. A handle may be used from any thread,
@@ -77,6 +74,13 @@ typedef struct OrientFilter OrientFilter;
  * The magnetometer.
  */
 #define ORIENT_SENSOR_MAG 2
+
+/**
+ * Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
+ * kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
+ * EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
+ */
+#define ORIENT_MAX_PARAMS 128
 
 /**
  * Parameter slot (every kind): Gravity magnitude for the gravity and linear-acceleration
@@ -145,7 +149,9 @@ typedef struct OrientFilter OrientFilter;
 /**
  * Parameter slot (madgwick): Gradient step beta for steps without magnetometer, eq.
  * (30); default 0.041 (paper: Madgwick 2010, section V, optimum of the IMU
- * implementation). beta = sqrt(3/4) * max gyro error, eq. (33).
+ * implementation). beta = sqrt(3/4) * max gyro error, eq. (33). The step follows the
+ * normalised gradient, so the estimate wanders by about beta * dt rad RMS at rest (0.6
+ * deg at beta 1 and 100 Hz).
  *
  * Unit rad/s; range 0 to 100; default 0.041.
  */
@@ -156,7 +162,7 @@ typedef struct OrientFilter OrientFilter;
  * default 0.041, the paper's IMU optimum (section V). The paper's MARG optimum, 0.033,
  * was found for its own sensor (beta scales with gyro error, eq. (33)); on BROAD it
  * scores 7.79 deg against 7.22 for 0.041, which is also the Python ahrs reference's
- * value.
+ * value. At rest the estimate wanders by about beta * dt rad RMS, as with beta_imu.
  *
  * Unit rad/s; range 0 to 100; default 0.041.
  */
@@ -642,13 +648,6 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_ABI_VERSION 1
 
 /**
- * Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
- * kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
- * EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
- */
-#define ORIENT_MAX_PARAMS 128
-
-/**
  * `OrientSample.flags`: the gyroscope field holds a reading (every filter needs one).
  */
 #define ORIENT_SAMPLE_GYRO 1
@@ -664,13 +663,30 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_SAMPLE_MAG 4
 
 /**
- * `orient_filter_flags`: the filter has an orientation (clear while it waits for its
- * first accelerometer sample under `ORIENT_INIT_ACC_MAG`, and through the start-up
- * period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK, ORIENT_PARAM_*_INIT_DURATION
- * seconds of samples with an accelerometer reading: their readings are averaged into the
- * initial orientation, and each such sample sets ORIENT_FLAG_ACCEL_USED and, for the
- * magnetometer, ORIENT_FLAG_MAG_USED or ORIENT_FLAG_MAG_REJECTED as the period will use
- * it; the dt = 0 samples of ORIENT_PARAM_SAME_INSTANT are samples of the period too).
+ * `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
+ * smallest value that has it on.
+ */
+#define ORIENT_PARAM_FLAG_ZERO_OFF 1
+
+/**
+ * OrientUncertainty.present: heading holds a value.
+ */
+#define ORIENT_UNCERTAINTY_HEADING 1
+
+/**
+ * OrientUncertainty.present: inclination holds a value.
+ */
+#define ORIENT_UNCERTAINTY_INCLINATION 2
+
+/**
+ * `orient_filter_flags`: the filter has an orientation. Clear while it waits for its
+ * first accelerometer sample (the default initialisation, from the accelerometer and
+ * magnetometer), and through the start-up period of the complementary and GMVDK kinds,
+ * ORIENT_PARAM_*_INIT_DURATION seconds of samples with an accelerometer reading: their
+ * readings are averaged into the initial orientation, and each such sample sets
+ * ORIENT_FLAG_ACCEL_USED and, for the magnetometer, ORIENT_FLAG_MAG_USED or
+ * ORIENT_FLAG_MAG_REJECTED as the period will use it; the dt = 0 samples of
+ * ORIENT_PARAM_SAME_INSTANT are samples of the period too.
  */
 #define ORIENT_FLAG_INITIALIZED 1
 
@@ -689,26 +705,35 @@ typedef struct OrientFilter OrientFilter;
  * ORIENT_PARAM_GAP_DT). Nothing was integrated over the gap, whose motion is unknown:
  * the update re-acquired the orientation (ORIENT_FLAG_REACQUIRED) or, on a sample
  * without an accelerometer reading, held it (ORIENT_FLAG_REACQUIRE_PENDING). During the
- * start-up period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK the period started
- * over with the sample instead (not at a gap right after a gap: where every sample is
- * one, it goes on, and its stillness test alone starts it over).
+ * start-up period of the complementary and GMVDK kinds the period started over with the
+ * sample instead (not at a gap right after a gap: where every sample is one, it goes on,
+ * and its stillness test alone starts it over).
  */
 #define ORIENT_FLAG_GAP 8
 
 /**
- * `orient_filter_flags`: the last accepted update re-acquired the orientation after a
- * gap: inclination from its accelerometer reading, heading from its magnetometer
- * reading when it has one (every kind but the robust one, whose magnetic disturbance
- * test may refuse the reading, and the complementary one, which uses it only with
- * align_heading), else the heading held before the gap. The kind's low-passes and
- * detectors start over; its bias estimate is kept.
+ * `orient_filter_flags`: the last accepted update re-acquired the orientation (after a
+ * gap, a gyroscope saturation or the rest watch, see ORIENT_FLAG_REACQUIRE_PENDING):
+ * inclination from its accelerometer reading, heading from its magnetometer reading when
+ * it has one (every kind but the robust one, whose magnetic disturbance test may refuse
+ * the reading, and the complementary one, which uses it only with
+ * ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING), else the heading held before. The kind's
+ * low-passes and detectors start over; its bias estimate is kept, but after the rest
+ * watch a bias that Madgwick or Mahony learns becomes the still sample's gyroscope
+ * reading.
  */
 #define ORIENT_FLAG_REACQUIRED 16
 
 /**
- * `orient_filter_flags`: a gap ended on a sample without an accelerometer reading; the
- * orientation is held, then integrated from the gyroscope, until the next sample with an
- * accelerometer reading, which re-acquires it (ORIENT_FLAG_REACQUIRED).
+ * `orient_filter_flags`: the next sample with an accelerometer reading re-acquires the
+ * orientation (ORIENT_FLAG_REACQUIRED); until then it is integrated from the gyroscope.
+ * Set when a gap ends on a sample without an accelerometer reading (the orientation is
+ * held over the gap), after gyroscope saturation, and by the rest watch: when the sensor
+ * lies still (gyroscope below 3 °/s, accelerometer norm within 5 % of the configured
+ * gravity) and the estimate's vertical has stayed more than 10° from the
+ * accelerometer's for 5 s, looked at every 32nd sample. An estimate can rest there at a
+ * stationary point of its kind's correction (Madgwick's and Mahony's magnetometer terms
+ * near a 180° heading error, the EKF's gravity update near an upside-down estimate).
  */
 #define ORIENT_FLAG_REACQUIRE_PENDING 32
 
@@ -728,14 +753,16 @@ typedef struct OrientFilter OrientFilter;
 
 /**
  * `orient_filter_flags`: the kind counts the magnetic field as disturbed now (the robust
- * kind: the last reading failed its norm and dip tests, hard iron compensated).
+ * kind: the last reading failed its norm and dip tests, hard iron compensated). Read
+ * from the state, not stored.
  */
 #define ORIENT_FLAG_MAG_DISTURBED 256
 
 /**
  * `orient_filter_flags`: the kind counts the sensor as resting now (McGinnis' and the
  * robust kind's rest detection; the EKF, Madgwick and Mahony with their rest options on,
- * rest_rate_std and rest_bias_tau; GMVDK never sets it).
+ * ORIENT_PARAM_EKF_REST_RATE_STD and ORIENT_PARAM_*_REST_BIAS_TAU; GMVDK never sets it).
+ * Read from the state, not stored.
  */
 #define ORIENT_FLAG_REST 512
 
@@ -754,12 +781,6 @@ typedef struct OrientFilter OrientFilter;
  * its gyroscope reading is averaged into that sample's step.
  */
 #define ORIENT_FLAG_SAME_INSTANT 2048
-
-/**
- * `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
- * smallest value that has it on.
- */
-#define ORIENT_PARAM_FLAG_ZERO_OFF 1
 
 /**
  * OrientDiagnostics.present: gyro_bias holds a value.
@@ -800,16 +821,6 @@ typedef struct OrientFilter OrientFilter;
  * OrientDiagnostics.present: covariance holds values.
  */
 #define ORIENT_DIAG_COVARIANCE 128
-
-/**
- * OrientUncertainty.present: heading holds a value.
- */
-#define ORIENT_UNCERTAINTY_HEADING 1
-
-/**
- * OrientUncertainty.present: inclination holds a value.
- */
-#define ORIENT_UNCERTAINTY_INCLINATION 2
 
 /**
  * Result of every fallible call. Numbers are fixed and never reused. On any status but

@@ -17,6 +17,9 @@ Unity: every asset and folder has a .meta and every .meta an asset; GUIDs are un
 and derived from the asset's path (so they stay the same from release to release);
 each plugin's import settings enable exactly the platform and CPU of its folder;
 package.json is complete and names the recommended kind.
+Python (python/): the sdist and the manylinux2014 x86_64 and aarch64, macOS universal2 and
+win_amd64 wheels; each holds every file of bindings/python/orient and a library that
+passes the checks above (exports, glibc floor, SONAME, architectures).
 It prints one line per library with its size and what was checked.
 """
 import hashlib
@@ -288,6 +291,46 @@ def check_release(rel):
     if not os.path.isfile(os.path.join(rel, "archives", "com.orient.filters-%s.tgz" % version)):
         fail("Unity package archive missing")
     check_unity(os.path.join(rel, "unity", "com.orient.filters"), version, want)
+    check_python(os.path.join(rel, "python"), version, want)
+
+
+# --- Python ---------------------------------------------------------------------------
+
+# Wheel platform tag (a pattern) -> (the library it bundles, the platform folder it came from).
+PYTHON_WHEELS = {
+    r"manylinux2014_x86_64\.manylinux_2_17_x86_64": ("orient/liborient.so", "linux-x86_64"),
+    r"manylinux2014_aarch64\.manylinux_2_17_aarch64": ("orient/liborient.so", "linux-aarch64"),
+    r"macosx_\d+_\d+_universal2": ("orient/liborient.dylib", "macos-universal"),
+    r"win_amd64": ("orient/orient.dll", "windows-x86_64"),
+}
+
+
+def check_python(py, version, want):
+    """The sdist and one py3-none wheel per platform; each wheel holds every file of
+    bindings/python/orient and a library that exports exactly the header's functions
+    (for the wheels no Python here can load: macOS and Windows)."""
+    import tempfile
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    package = {"orient/" + f for f in os.listdir(os.path.join(root, "bindings", "python", "orient"))
+               if os.path.isfile(os.path.join(root, "bindings", "python", "orient", f)) and not f.endswith(".pyc")}
+    files = sorted(os.listdir(py)) if os.path.isdir(py) else []
+    if "orient_imu-%s.tar.gz" % version not in files:
+        fail("python/orient_imu-%s.tar.gz (sdist) missing" % version)
+    for tag, (lib, platform) in PYTHON_WHEELS.items():
+        found = [f for f in files if re.fullmatch(r"orient_imu-%s-py3-none-%s\.whl" % (re.escape(version), tag), f)]
+        if len(found) != 1:
+            fail("python: want one wheel tagged %s, found %s" % (tag, found))
+            continue
+        z = zipfile.ZipFile(os.path.join(py, found[0]))
+        names = set(z.namelist())
+        for f in sorted((package | {lib}) - names):
+            fail("%s lacks %s" % (found[0], f))
+        if lib in names:
+            with tempfile.TemporaryDirectory() as tmp:
+                path = os.path.join(tmp, found[0][:-4] + "-" + os.path.basename(lib))
+                with open(path, "wb") as out:
+                    out.write(z.read(lib))
+                check_library(path, platform, want)
 
 
 # --- Unity ----------------------------------------------------------------------------

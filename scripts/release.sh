@@ -8,6 +8,8 @@
 #   README.md  SHA256SUMS (every other file, archives included)
 #   lib/<platform>/   the libraries, cmake/ (CMake package) and pkgconfig/
 #   unity/com.orient.filters/   the Unity package (scripts/package-unity.sh)
+#   python/   orient_imu-VERSION.tar.gz (sdist) and py3-none wheels: manylinux2014 x86_64
+#       and aarch64, macOS universal2, win_amd64 (scripts/release-wheels.sh)
 #   archives/orient-VERSION-<platform>.tar.gz (.zip for Windows), com.orient.filters-VERSION.tgz
 #
 # Platforms (platform folder: what, how):
@@ -22,7 +24,8 @@
 #   macos-universal  liborient.dylib (arm64 + x86_64, install name @rpath/liborient.dylib),
 #       linked by rust-lld against zig's libSystem stub (zig's own Mach-O linker ignores
 #       the export list, so it would export every Rust symbol)
-#   ios-arm64, android-arm64-v8a, android-armeabi-v7a   liborient.a (no linker needed)
+#   ios-arm64, android-arm64-v8a, android-armeabi-v7a   liborient.a (no linker needed);
+#       with an Android NDK (ANDROID_NDK_HOME) also liborient.so, 16 KB page aligned
 #
 # --ci builds with a lighter profile (opt-level 1, no LTO, 16 codegen units) into
 # target/release-ci; the layout and checks are the same. scripts/check-dist.py
@@ -178,15 +181,32 @@ mkdir -p "$d"
 llvm-lipo-14 -create "${slices[@]}" -output "$d/liborient.dylib"
 configure macos-universal "" liborient.dylib @rpath/liborient.dylib "" ""
 
-# --- iOS and Android static libraries -------------------------------------------------
-for entry in aarch64-apple-ios:ios-arm64 aarch64-linux-android:android-arm64-v8a \
-  armv7-linux-androideabi:android-armeabi-v7a; do
-  IFS=: read -r t p <<<"$entry"
-  build cargo "$t" staticlib
+# --- iOS and Android static libraries; Android shared libraries when an NDK is there ------
+# The static libraries need no linker. An Android liborient.so needs the NDK's clang
+# (ANDROID_NDK_HOME or ANDROID_NDK_ROOT; Debian has no NDK, so CI here has none): it is
+# linked for 16 KB pages (build.rs) and checked by scripts/check-page-size.py.
+ndk="${ANDROID_NDK_HOME:-${ANDROID_NDK_ROOT:-}}"
+ndk_bin=$(ls -d "$ndk"/toolchains/llvm/prebuilt/*/bin 2>/dev/null | head -n 1 || true)
+for entry in aarch64-apple-ios:ios-arm64: aarch64-linux-android:android-arm64-v8a:aarch64-linux-android21-clang \
+  armv7-linux-androideabi:android-armeabi-v7a:armv7a-linux-androideabi21-clang; do
+  IFS=: read -r t p clang <<<"$entry"
   mkdir -p "$rel/lib/$p"
+  if [ -n "$clang" ] && [ -n "$ndk_bin" ]; then
+    build cargo "$t" cdylib,staticlib -C linker="$ndk_bin/$clang"
+    "$llvm/llvm-strip" --strip-unneeded -o "$rel/lib/$p/liborient.so" "$(built $t)/liborient.so"
+    scripts/check-page-size.py "$rel/lib/$p/liborient.so"
+    shared=liborient.so
+  else
+    if [ -n "$clang" ]; then echo "== $p: no Android NDK (ANDROID_NDK_HOME), static library only"; fi
+    build cargo "$t" staticlib
+    shared=""
+  fi
   strip_static "$(built $t)/liborient.a" "$rel/lib/$p/liborient.a"
-  configure "$p" "$(cat "$work/$t.native")" "" "" "" liborient.a
+  configure "$p" "$(cat "$work/$t.native")" "$shared" "$shared" "" liborient.a
 done
+
+# --- Python: the sdist and the wheels of the libraries above ----------------------------
+scripts/release-wheels.sh "$rel" "$rel/python"
 
 # --- shared files, Unity package, archives, checksums ---------------------------------
 mkdir -p "$rel/include" "$rel/bindings/cpp"

@@ -5,8 +5,9 @@
 # doc tests, the C test program against the .so and the .a, the C++ wrapper (with and
 # without exceptions), the C# binding under Mono and the Unity scripts against a stub, the
 # examples in every language, the install layout with CMake and pkg-config consumers,
-# golden vectors, and the BROAD recordings in ../shared/data; the Python package built as
-# a wheel and tested with pytest in a fresh venv; Miri on the unsafe FFI code; the fuzz
+# golden vectors, and the BROAD recordings in ../shared/data; the Python package's sdist
+# built into a wheel and tested with pytest in a fresh venv; the Conan recipe (conan
+# create with its CMake consumer); Miri on the unsafe FFI code; the fuzz
 # target's regression inputs and a short fuzz run; then, for aarch64 and armv7 under
 # qemu-user, what can differ on a board (golden vectors bit for bit, the ABI's behaviour,
 # the unit tests; scripts/test-cross.sh says what stays native and why); then the release
@@ -59,11 +60,13 @@ step clippy -- cargo clippy --workspace --all-targets --quiet -- -D warnings
 step rustdoc -- env RUSTDOCFLAGS="-D warnings" cargo doc -p orient --no-deps --quiet
 step header -- scripts/check-header.sh
 step csharp -- scripts/check-csharp.sh
+step python-native -- scripts/check-python-native.sh
 step abi -- scripts/check-abi.sh
 # The library and the tools crate: every test, the slow sweeps (the day-long runs, the
 # BROAD recordings, the recovery and property sweeps) run here and only here.
 step test -- cargo test
 step python -- scripts/test-python.sh
+step conan -- scripts/test-conan.sh
 # Miri: the unit tests of the modules that hold unsafe code (scripts/miri.sh says which).
 step miri -- scripts/miri.sh
 # Every input in fuzz/regressions, then a short deterministic run (FUZZ_SEED, default 1;

@@ -13,6 +13,9 @@
 #     targets, find_package(orient 2) and find_package(orient 0.1) fail; orient-static.pc
 #     links the archive; MinGW CMake finds the DLL and its import library
 #   - C#: the binding's tests under Mono full AOT (the nearest stand-in for IL2CPP)
+#   - Python: the manylinux2014 wheels' tests, x86_64 natively, aarch64 under qemu
+#   - 16 KB page alignment of the aarch64 and Android shared libraries, and of an Android
+#     link with a stand-in for the NDK's clang (scripts/check-android-link.sh)
 #   scripts/test-release.sh [--release | --no-build] [OUT]
 # (--no-build tests what an earlier run left in OUT.)
 set -euo pipefail
@@ -34,6 +37,12 @@ fi
 version=$(sed -n 's/^version = "\(.*\)"/\1/p' Cargo.toml | head -n 1)
 rel="$out/orient-$version"
 scripts/check-dist.py "$rel"
+
+echo "== Python wheels: manylinux2014 x86_64 natively, aarch64 under qemu"
+scripts/test-release-python.sh "$rel"
+echo "== 16 KB pages: the aarch64 and Android shared libraries"
+scripts/check-page-size.py $(ls "$rel"/lib/linux-aarch64/liborient.so.*.*.* "$rel"/lib/android-*/liborient.so 2>/dev/null)
+scripts/check-android-link.sh
 
 golden="$root/tests/golden/filters.golden"
 work="$out/test"

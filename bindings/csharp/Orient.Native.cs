@@ -225,6 +225,13 @@ namespace Orient.Native
         public const uint SensorMag = 2;
 
         /// <summary>
+        /// Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
+        /// kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
+        /// EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
+        /// </summary>
+        public const uint MaxParams = 128;
+
+        /// <summary>
         /// Parameter slot (every kind): Gravity magnitude for the gravity and linear-acceleration
         /// outputs; default 9.80665 (orient: standard gravity, CGPM 1901).
         ///
@@ -291,7 +298,9 @@ namespace Orient.Native
         /// <summary>
         /// Parameter slot (madgwick): Gradient step beta for steps without magnetometer, eq.
         /// (30); default 0.041 (paper: Madgwick 2010, section V, optimum of the IMU
-        /// implementation). beta = sqrt(3/4) * max gyro error, eq. (33).
+        /// implementation). beta = sqrt(3/4) * max gyro error, eq. (33). The step follows the
+        /// normalised gradient, so the estimate wanders by about beta * dt rad RMS at rest (0.6
+        /// deg at beta 1 and 100 Hz).
         ///
         /// Unit rad/s; range 0 to 100; default 0.041.
         /// </summary>
@@ -302,7 +311,7 @@ namespace Orient.Native
         /// default 0.041, the paper's IMU optimum (section V). The paper's MARG optimum, 0.033,
         /// was found for its own sensor (beta scales with gyro error, eq. (33)); on BROAD it
         /// scores 7.79 deg against 7.22 for 0.041, which is also the Python ahrs reference's
-        /// value.
+        /// value. At rest the estimate wanders by about beta * dt rad RMS, as with beta_imu.
         ///
         /// Unit rad/s; range 0 to 100; default 0.041.
         /// </summary>
@@ -788,13 +797,6 @@ namespace Orient.Native
         public const uint AbiVersion = 1;
 
         /// <summary>
-        /// Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
-        /// kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
-        /// EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
-        /// </summary>
-        public const uint MaxParams = 128;
-
-        /// <summary>
         /// `OrientSample.flags`: the gyroscope field holds a reading (every filter needs one).
         /// </summary>
         public const uint SampleGyro = 1;
@@ -810,13 +812,30 @@ namespace Orient.Native
         public const uint SampleMag = 4;
 
         /// <summary>
-        /// `orient_filter_flags`: the filter has an orientation (clear while it waits for its
-        /// first accelerometer sample under `ORIENT_INIT_ACC_MAG`, and through the start-up
-        /// period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK, ORIENT_PARAM_*_INIT_DURATION
-        /// seconds of samples with an accelerometer reading: their readings are averaged into the
-        /// initial orientation, and each such sample sets ORIENT_FLAG_ACCEL_USED and, for the
-        /// magnetometer, ORIENT_FLAG_MAG_USED or ORIENT_FLAG_MAG_REJECTED as the period will use
-        /// it; the dt = 0 samples of ORIENT_PARAM_SAME_INSTANT are samples of the period too).
+        /// `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
+        /// smallest value that has it on.
+        /// </summary>
+        public const uint ParamFlagZeroOff = 1;
+
+        /// <summary>
+        /// OrientUncertainty.present: heading holds a value.
+        /// </summary>
+        public const uint UncertaintyHeading = 1;
+
+        /// <summary>
+        /// OrientUncertainty.present: inclination holds a value.
+        /// </summary>
+        public const uint UncertaintyInclination = 2;
+
+        /// <summary>
+        /// `orient_filter_flags`: the filter has an orientation. Clear while it waits for its
+        /// first accelerometer sample (the default initialisation, from the accelerometer and
+        /// magnetometer), and through the start-up period of the complementary and GMVDK kinds,
+        /// ORIENT_PARAM_*_INIT_DURATION seconds of samples with an accelerometer reading: their
+        /// readings are averaged into the initial orientation, and each such sample sets
+        /// ORIENT_FLAG_ACCEL_USED and, for the magnetometer, ORIENT_FLAG_MAG_USED or
+        /// ORIENT_FLAG_MAG_REJECTED as the period will use it; the dt = 0 samples of
+        /// ORIENT_PARAM_SAME_INSTANT are samples of the period too.
         /// </summary>
         public const uint FlagInitialized = 1;
 
@@ -835,26 +854,35 @@ namespace Orient.Native
         /// ORIENT_PARAM_GAP_DT). Nothing was integrated over the gap, whose motion is unknown:
         /// the update re-acquired the orientation (ORIENT_FLAG_REACQUIRED) or, on a sample
         /// without an accelerometer reading, held it (ORIENT_FLAG_REACQUIRE_PENDING). During the
-        /// start-up period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK the period started
-        /// over with the sample instead (not at a gap right after a gap: where every sample is
-        /// one, it goes on, and its stillness test alone starts it over).
+        /// start-up period of the complementary and GMVDK kinds the period started over with the
+        /// sample instead (not at a gap right after a gap: where every sample is one, it goes on,
+        /// and its stillness test alone starts it over).
         /// </summary>
         public const uint FlagGap = 8;
 
         /// <summary>
-        /// `orient_filter_flags`: the last accepted update re-acquired the orientation after a
-        /// gap: inclination from its accelerometer reading, heading from its magnetometer
-        /// reading when it has one (every kind but the robust one, whose magnetic disturbance
-        /// test may refuse the reading, and the complementary one, which uses it only with
-        /// align_heading), else the heading held before the gap. The kind's low-passes and
-        /// detectors start over; its bias estimate is kept.
+        /// `orient_filter_flags`: the last accepted update re-acquired the orientation (after a
+        /// gap, a gyroscope saturation or the rest watch, see ORIENT_FLAG_REACQUIRE_PENDING):
+        /// inclination from its accelerometer reading, heading from its magnetometer reading when
+        /// it has one (every kind but the robust one, whose magnetic disturbance test may refuse
+        /// the reading, and the complementary one, which uses it only with
+        /// ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING), else the heading held before. The kind's
+        /// low-passes and detectors start over; its bias estimate is kept, but after the rest
+        /// watch a bias that Madgwick or Mahony learns becomes the still sample's gyroscope
+        /// reading.
         /// </summary>
         public const uint FlagReacquired = 16;
 
         /// <summary>
-        /// `orient_filter_flags`: a gap ended on a sample without an accelerometer reading; the
-        /// orientation is held, then integrated from the gyroscope, until the next sample with an
-        /// accelerometer reading, which re-acquires it (ORIENT_FLAG_REACQUIRED).
+        /// `orient_filter_flags`: the next sample with an accelerometer reading re-acquires the
+        /// orientation (ORIENT_FLAG_REACQUIRED); until then it is integrated from the gyroscope.
+        /// Set when a gap ends on a sample without an accelerometer reading (the orientation is
+        /// held over the gap), after gyroscope saturation, and by the rest watch: when the sensor
+        /// lies still (gyroscope below 3 °/s, accelerometer norm within 5 % of the configured
+        /// gravity) and the estimate's vertical has stayed more than 10° from the
+        /// accelerometer's for 5 s, looked at every 32nd sample. An estimate can rest there at a
+        /// stationary point of its kind's correction (Madgwick's and Mahony's magnetometer terms
+        /// near a 180° heading error, the EKF's gravity update near an upside-down estimate).
         /// </summary>
         public const uint FlagReacquirePending = 32;
 
@@ -874,14 +902,16 @@ namespace Orient.Native
 
         /// <summary>
         /// `orient_filter_flags`: the kind counts the magnetic field as disturbed now (the robust
-        /// kind: the last reading failed its norm and dip tests, hard iron compensated).
+        /// kind: the last reading failed its norm and dip tests, hard iron compensated). Read
+        /// from the state, not stored.
         /// </summary>
         public const uint FlagMagDisturbed = 256;
 
         /// <summary>
         /// `orient_filter_flags`: the kind counts the sensor as resting now (McGinnis' and the
         /// robust kind's rest detection; the EKF, Madgwick and Mahony with their rest options on,
-        /// rest_rate_std and rest_bias_tau; GMVDK never sets it).
+        /// ORIENT_PARAM_EKF_REST_RATE_STD and ORIENT_PARAM_*_REST_BIAS_TAU; GMVDK never sets it).
+        /// Read from the state, not stored.
         /// </summary>
         public const uint FlagRest = 512;
 
@@ -900,12 +930,6 @@ namespace Orient.Native
         /// its gyroscope reading is averaged into that sample's step.
         /// </summary>
         public const uint FlagSameInstant = 2048;
-
-        /// <summary>
-        /// `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
-        /// smallest value that has it on.
-        /// </summary>
-        public const uint ParamFlagZeroOff = 1;
 
         /// <summary>
         /// OrientDiagnostics.present: gyro_bias holds a value.
@@ -946,16 +970,6 @@ namespace Orient.Native
         /// OrientDiagnostics.present: covariance holds values.
         /// </summary>
         public const uint DiagCovariance = 128;
-
-        /// <summary>
-        /// OrientUncertainty.present: heading holds a value.
-        /// </summary>
-        public const uint UncertaintyHeading = 1;
-
-        /// <summary>
-        /// OrientUncertainty.present: inclination holds a value.
-        /// </summary>
-        public const uint UncertaintyInclination = 2;
     }
 
     /// <summary>

@@ -25,13 +25,19 @@ mod offline;
 mod outputs;
 mod param_ids;
 mod registry;
+#[cfg(test)]
+mod render;
 mod rig; // issue 20
 mod snapshot;
 mod strings;
 mod types;
+// Declared after `types` so that the header lists the flag and diagnostics bits after
+// the C API's own constants.
+mod bits;
 mod update;
 
 pub use arrays::*;
+pub use bits::*;
 pub use calib::*; // issue 20
 pub use config::*;
 pub(crate) use convert::*;
@@ -53,7 +59,6 @@ use error::{detail_ptr, fail, from_core, from_state, guard, guard_value, status_
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::filters::params;
 
     /// A new Madgwick filter with the default configuration.
     unsafe fn new_madgwick() -> *mut OrientFilter {
@@ -64,193 +69,10 @@ mod tests {
         h
     }
 
-    /// The C constants of the parameter slots, rendered from the kinds' tables (each
-    /// kind's `settings!` and `params::COMMON`): the text of `src/ffi/param_ids.rs`.
-    pub(crate) fn render_param_ids() -> String {
-        use crate::filters::params::{ParamSpec, COMMON};
-        use std::fmt::Write;
-        let mut out = String::from(
-            "//! Parameter slot numbers for C. Generated from the parameter tables (each kind's\n\
-             //! `settings!` and `params::COMMON`) by the test `param_ids_are_generated_from_the_tables`;\n\
-             //! do not edit. Regenerate: ORIENT_BLESS=1 cargo test -p orient --lib param_ids\n",
-        );
-        // Lines of at most 86 characters (90 with the comment marker).
-        fn wrap(text: &str) -> Vec<String> {
-            let mut lines = vec![String::new()];
-            for word in text.split_whitespace() {
-                let last = lines.last_mut().expect("one line");
-                if !last.is_empty() && last.len() + 1 + word.len() > 86 {
-                    lines.push(word.to_string());
-                } else {
-                    if !last.is_empty() {
-                        last.push(' ');
-                    }
-                    last.push_str(word);
-                }
-            }
-            lines
-        }
-        let mut entry = |prefix: &str, who: &str, p: &ParamSpec| {
-            let name = format!("ORIENT_PARAM_{prefix}{}", p.name.to_ascii_uppercase());
-            let range = if p.zero_off {
-                format!("0 (off) or {} to {}", p.min, p.max)
-            } else {
-                format!("{} to {}", p.min, p.max)
-            };
-            out.push('\n');
-            for line in wrap(&format!("Parameter slot ({who}): {}", p.doc)) {
-                let _ = writeln!(out, "/// {line}");
-            }
-            let _ = writeln!(out, "///\n/// Unit {}; range {range}; default {}.", p.unit, p.default);
-            let _ = writeln!(out, "pub const {name}: u32 = {};", p.id);
-        };
-        for p in COMMON.iter() {
-            entry("", "every kind", p);
-        }
-        for kind in Kind::ALL {
-            let prefix = format!("{}_", kind.name().to_ascii_uppercase());
-            for p in kind.params().skip(COMMON.len()) {
-                entry(&prefix, kind.name(), p);
-            }
-        }
-        out
-    }
-
-    /// The committed constants are the tables' (one place per parameter). With
-    /// ORIENT_BLESS=1 the file is written instead.
     #[test]
-    #[cfg_attr(miri, ignore = "reads a file")]
-    fn param_ids_are_generated_from_the_tables() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/ffi/param_ids.rs");
-        let want = render_param_ids();
-        if std::env::var_os("ORIENT_BLESS").is_some() {
-            std::fs::write(path, &want).unwrap();
-        }
-        let have = std::fs::read_to_string(path).unwrap();
-        assert!(
-            have == want,
-            "src/ffi/param_ids.rs is stale: ORIENT_BLESS=1 cargo test -p orient --lib param_ids"
-        );
-    }
-
-    #[test]
-    fn header_constants_match_the_core() {
-        assert_eq!(ORIENT_MAX_PARAMS, params::MAX_PARAMS);
-        assert_eq!(ORIENT_PARAM_GRAVITY, params::id::GRAVITY);
-        assert_eq!(ORIENT_PARAM_GYRO_RANGE, params::id::GYRO_RANGE);
-        assert_eq!(ORIENT_PARAM_ACCEL_RANGE, params::id::ACCEL_RANGE);
-        assert_eq!(ORIENT_PARAM_MADGWICK_BETA_IMU, params::id::MADGWICK_BETA_IMU);
-        assert_eq!(ORIENT_PARAM_MADGWICK_BETA_MARG, params::id::MADGWICK_BETA_MARG);
-        use crate::filters::flags;
-        assert_eq!(ORIENT_FLAG_INITIALIZED, flags::INITIALIZED);
-        assert_eq!(ORIENT_FLAG_ACCEL_USED, flags::ACCEL_USED);
-        assert_eq!(ORIENT_FLAG_MAG_USED, flags::MAG_USED);
-        assert_eq!(ORIENT_FLAG_GAP, flags::GAP);
-        assert_eq!(ORIENT_FLAG_REACQUIRED, flags::REACQUIRED);
-        assert_eq!(ORIENT_FLAG_REACQUIRE_PENDING, flags::REACQUIRE_PENDING);
-        assert_eq!(ORIENT_PARAM_GAP_DT, params::id::GAP_DT);
-        assert_eq!(ORIENT_PARAM_SATURATION_RECOVERY, params::id::SATURATION_RECOVERY);
-        assert_eq!(ORIENT_FLAG_SATURATED, flags::SATURATED);
-        assert_eq!(ORIENT_FLAG_SAME_INSTANT, flags::SAME_INSTANT);
-        assert_eq!(ORIENT_PARAM_SAME_INSTANT, params::id::SAME_INSTANT);
+    fn the_structs_have_the_sizes_their_docs_give() {
         assert_eq!(core::mem::size_of::<OrientSample>(), 88);
         assert_eq!(core::mem::size_of::<OrientConfig>(), 1072);
-        use crate::filters::diag;
-        assert_eq!(ORIENT_FLAG_ACCEL_REJECTED, flags::ACCEL_REJECTED);
-        assert_eq!(ORIENT_FLAG_MAG_REJECTED, flags::MAG_REJECTED);
-        assert_eq!(ORIENT_FLAG_MAG_DISTURBED, flags::MAG_DISTURBED);
-        assert_eq!(ORIENT_FLAG_REST, flags::REST);
-        assert_eq!(ORIENT_DIAG_GYRO_BIAS, diag::GYRO_BIAS);
-        assert_eq!(ORIENT_DIAG_REST, diag::REST);
-        assert_eq!(ORIENT_DIAG_ALPHA, diag::ALPHA);
-        assert_eq!(ORIENT_DIAG_MU_KA, diag::MU_KA);
-        assert_eq!(ORIENT_DIAG_MU_KM, diag::MU_KM);
-        assert_eq!(ORIENT_DIAG_MU_K, diag::MU_K);
-        assert_eq!(ORIENT_DIAG_RATE, diag::RATE);
-        assert_eq!(ORIENT_DIAG_COVARIANCE, diag::COVARIANCE);
-        let slots = [
-            (ORIENT_PARAM_MAHONY_KP, params::id::MAHONY_KP),
-            (ORIENT_PARAM_MAHONY_KI, params::id::MAHONY_KI),
-            (ORIENT_PARAM_MAHONY_REST_BIAS_TAU, params::id::MAHONY_REST_BIAS_TAU),
-            (ORIENT_PARAM_MADGWICK_REST_BIAS_TAU, params::id::MADGWICK_REST_BIAS_TAU),
-            (ORIENT_PARAM_COMPLEMENTARY_KP, params::id::COMPLEMENTARY_KP),
-            (ORIENT_PARAM_COMPLEMENTARY_KI, params::id::COMPLEMENTARY_KI),
-            (ORIENT_PARAM_COMPLEMENTARY_GYRO_REST, params::id::COMPLEMENTARY_GYRO_REST),
-            (ORIENT_PARAM_COMPLEMENTARY_ACCEL_REST, params::id::COMPLEMENTARY_ACCEL_REST),
-            (ORIENT_PARAM_COMPLEMENTARY_INIT_DURATION, params::id::COMPLEMENTARY_INIT_DURATION),
-            (ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING, params::id::COMPLEMENTARY_ALIGN_HEADING),
-            (ORIENT_PARAM_EKF_TAU_OMEGA, params::id::EKF_TAU_OMEGA),
-            (ORIENT_PARAM_EKF_OMEGA_STD, params::id::EKF_OMEGA_STD),
-            (ORIENT_PARAM_EKF_TAU_DRIFT, params::id::EKF_TAU_DRIFT),
-            (ORIENT_PARAM_EKF_DRIFT_STD, params::id::EKF_DRIFT_STD),
-            (ORIENT_PARAM_EKF_GYRO_NOISE, params::id::EKF_GYRO_NOISE),
-            (ORIENT_PARAM_EKF_ACCEL_NOISE, params::id::EKF_ACCEL_NOISE),
-            (ORIENT_PARAM_EKF_ACCEL_MOTION, params::id::EKF_ACCEL_MOTION),
-            (ORIENT_PARAM_EKF_HEADING_STD, params::id::EKF_HEADING_STD),
-            (ORIENT_PARAM_EKF_MOTION_TAU, params::id::EKF_MOTION_TAU),
-            (ORIENT_PARAM_EKF_HEADING_TAU, params::id::EKF_HEADING_TAU),
-            (ORIENT_PARAM_EKF_REST_RATE_STD, params::id::EKF_REST_RATE_STD),
-            (ORIENT_PARAM_EKF_ACCEL_ADAPT_TAU, params::id::EKF_ACCEL_ADAPT_TAU),
-            (ORIENT_PARAM_EKF_HEADING_ADAPT_TAU, params::id::EKF_HEADING_ADAPT_TAU),
-            (ORIENT_PARAM_GMVDK_SLOPE_ALPHA, params::id::GMVDK_SLOPE_ALPHA),
-            (ORIENT_PARAM_GMVDK_SLOPE_MUK, params::id::GMVDK_SLOPE_MUK),
-            (ORIENT_PARAM_GMVDK_MU_WINDOW, params::id::GMVDK_MU_WINDOW),
-            (ORIENT_PARAM_GMVDK_INIT_DURATION, params::id::GMVDK_INIT_DURATION),
-            (ORIENT_PARAM_GMVDK_ACTIVITY_TAU, params::id::GMVDK_ACTIVITY_TAU),
-            (ORIENT_PARAM_GMVDK_GYRO_ACTIVITY, params::id::GMVDK_GYRO_ACTIVITY),
-            (ORIENT_PARAM_GMVDK_ACCEL_ACTIVITY, params::id::GMVDK_ACCEL_ACTIVITY),
-            (ORIENT_PARAM_GMVDK_BIAS_WINDOW, params::id::GMVDK_BIAS_WINDOW),
-            (ORIENT_PARAM_GMVDK_STATIC_ALPHA, params::id::GMVDK_STATIC_ALPHA),
-            (ORIENT_PARAM_GMVDK_RELATIVE_OUTPUT, params::id::GMVDK_RELATIVE_OUTPUT),
-            (ORIENT_PARAM_ROBUST_TAU_ACC, params::id::ROBUST_TAU_ACC),
-            (ORIENT_PARAM_ROBUST_TAU_MAG, params::id::ROBUST_TAU_MAG),
-            (ORIENT_PARAM_ROBUST_REST_GYRO, params::id::ROBUST_REST_GYRO),
-            (ORIENT_PARAM_ROBUST_REST_ACCEL, params::id::ROBUST_REST_ACCEL),
-            (ORIENT_PARAM_ROBUST_REST_TIME, params::id::ROBUST_REST_TIME),
-            (ORIENT_PARAM_ROBUST_REST_TAU, params::id::ROBUST_REST_TAU),
-            (ORIENT_PARAM_ROBUST_BIAS_TAU_REST, params::id::ROBUST_BIAS_TAU_REST),
-            (ORIENT_PARAM_ROBUST_BIAS_TAU_MOTION, params::id::ROBUST_BIAS_TAU_MOTION),
-            (ORIENT_PARAM_ROBUST_BIAS_LIMIT, params::id::ROBUST_BIAS_LIMIT),
-            (ORIENT_PARAM_ROBUST_MAG_NORM_TH, params::id::ROBUST_MAG_NORM_TH),
-            (ORIENT_PARAM_ROBUST_MAG_DIP_TH, params::id::ROBUST_MAG_DIP_TH),
-            (ORIENT_PARAM_ROBUST_HARD_IRON_TIME, params::id::ROBUST_HARD_IRON_TIME),
-            (ORIENT_PARAM_ROBUST_REST_TILT, params::id::ROBUST_REST_TILT),
-            (ORIENT_PARAM_ROBUST_GYRO_NOISE, params::id::ROBUST_GYRO_NOISE),
-            (ORIENT_PARAM_ROBUST_BIAS_SIGMA, params::id::ROBUST_BIAS_SIGMA),
-            (ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST, params::id::ROBUST_BIAS_SIGMA_REST),
-            (ORIENT_PARAM_ROBUST_BIAS_WALK, params::id::ROBUST_BIAS_WALK),
-            (ORIENT_PARAM_ROBUST_MAG_HEADING_SIGMA, params::id::ROBUST_MAG_HEADING_SIGMA),
-            (ORIENT_PARAM_ROBUST_MAG_DEVIATION_GAIN, params::id::ROBUST_MAG_DEVIATION_GAIN),
-            (ORIENT_PARAM_ROBUST_GYRO_SCALE_SIGMA, params::id::ROBUST_GYRO_SCALE_SIGMA),
-        ];
-        for (c, r) in slots {
-            assert_eq!(c, r);
-        }
-        // Every parameter of every kind has its ORIENT_PARAM_* constant above (the
-        // common six and Madgwick's two are checked first).
-        let all: std::collections::BTreeSet<u32> =
-            Kind::ALL.iter().flat_map(|k| k.params().map(|p| p.id)).collect();
-        assert_eq!(all.len(), slots.len() + 8);
-    }
-
-    #[test]
-    fn every_kind_keeps_to_its_block_of_parameter_slots() {
-        // ORIENT_MAX_PARAMS' documentation: 0-7 common, then one block per kind.
-        let blocks = [
-            (Kind::Madgwick, 8..16),
-            (Kind::Mahony, 16..24),
-            (Kind::Complementary, 24..40),
-            (Kind::Ekf, 40..56),
-            (Kind::Gmvdk, 56..80),
-            (Kind::Robust, 80..104),
-        ];
-        assert_eq!(blocks.len(), Kind::ALL.len());
-        assert!(params::COMMON.iter().all(|p| p.id < 8));
-        for (kind, block) in blocks {
-            for p in kind.params().skip(params::COMMON.len()) {
-                assert!(block.contains(&p.id), "{kind:?}: {} in slot {}", p.name, p.id);
-            }
-        }
     }
 
     #[test]

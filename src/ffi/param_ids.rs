@@ -1,6 +1,12 @@
-//! Parameter slot numbers for C. Generated from the parameter tables (each kind's
-//! `settings!` and `params::COMMON`) by the test `param_ids_are_generated_from_the_tables`;
-//! do not edit. Regenerate: ORIENT_BLESS=1 cargo test -p orient --lib param_ids
+//! Parameter slots for C. Generated from the parameter tables (each kind's `settings!`,
+//! `params::COMMON` and the slot map `params::BLOCKS`) by the test
+//! `param_ids_are_generated_from_the_tables` in `src/ffi/render.rs`; do not edit.
+//! Regenerate: ORIENT_BLESS=1 cargo test -p orient --lib generated_from_the_tables
+
+/// Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
+/// kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
+/// EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
+pub const ORIENT_MAX_PARAMS: usize = 128;
 
 /// Parameter slot (every kind): Gravity magnitude for the gravity and linear-acceleration
 /// outputs; default 9.80665 (orient: standard gravity, CGPM 1901).
@@ -56,7 +62,9 @@ pub const ORIENT_PARAM_SAME_INSTANT: u32 = 5;
 
 /// Parameter slot (madgwick): Gradient step beta for steps without magnetometer, eq.
 /// (30); default 0.041 (paper: Madgwick 2010, section V, optimum of the IMU
-/// implementation). beta = sqrt(3/4) * max gyro error, eq. (33).
+/// implementation). beta = sqrt(3/4) * max gyro error, eq. (33). The step follows the
+/// normalised gradient, so the estimate wanders by about beta * dt rad RMS at rest (0.6
+/// deg at beta 1 and 100 Hz).
 ///
 /// Unit rad/s; range 0 to 100; default 0.041.
 pub const ORIENT_PARAM_MADGWICK_BETA_IMU: u32 = 8;
@@ -65,7 +73,7 @@ pub const ORIENT_PARAM_MADGWICK_BETA_IMU: u32 = 8;
 /// default 0.041, the paper's IMU optimum (section V). The paper's MARG optimum, 0.033,
 /// was found for its own sensor (beta scales with gyro error, eq. (33)); on BROAD it
 /// scores 7.79 deg against 7.22 for 0.041, which is also the Python ahrs reference's
-/// value.
+/// value. At rest the estimate wanders by about beta * dt rad RMS, as with beta_imu.
 ///
 /// Unit rad/s; range 0 to 100; default 0.041.
 pub const ORIENT_PARAM_MADGWICK_BETA_MARG: u32 = 9;

@@ -1,15 +1,13 @@
-//! The C types: plain `#[repr(C)]` data with fixed layout, and the constants of the header.
+//! The C types: plain `#[repr(C)]` data with fixed layout, and the constants of the header
+//! that only the C API has (the flag and diagnostics bits are rendered from the core's
+//! tables into `bits.rs`, the parameter slots into `param_ids.rs`).
 
+use super::param_ids::ORIENT_MAX_PARAMS;
 use core::ffi::c_char;
 
 /// Version of the C ABI described by this header. It changes only when an existing
 /// function, struct layout or constant changes meaning; additions keep it.
 pub const ORIENT_ABI_VERSION: u32 = 1;
-
-/// Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
-/// kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
-/// EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
-pub const ORIENT_MAX_PARAMS: usize = 128;
 
 /// `OrientSample.flags`: the gyroscope field holds a reading (every filter needs one).
 pub const ORIENT_SAMPLE_GYRO: u32 = 1;
@@ -18,83 +16,9 @@ pub const ORIENT_SAMPLE_ACCEL: u32 = 2;
 /// `OrientSample.flags`: the magnetometer field holds a reading.
 pub const ORIENT_SAMPLE_MAG: u32 = 4;
 
-/// `orient_filter_flags`: the filter has an orientation (clear while it waits for its
-/// first accelerometer sample under `ORIENT_INIT_ACC_MAG`, and through the start-up
-/// period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK, ORIENT_PARAM_*_INIT_DURATION
-/// seconds of samples with an accelerometer reading: their readings are averaged into the
-/// initial orientation, and each such sample sets ORIENT_FLAG_ACCEL_USED and, for the
-/// magnetometer, ORIENT_FLAG_MAG_USED or ORIENT_FLAG_MAG_REJECTED as the period will use
-/// it; the dt = 0 samples of ORIENT_PARAM_SAME_INSTANT are samples of the period too).
-pub const ORIENT_FLAG_INITIALIZED: u32 = 1;
-/// `orient_filter_flags`: the last accepted update used the accelerometer.
-pub const ORIENT_FLAG_ACCEL_USED: u32 = 2;
-/// `orient_filter_flags`: the last accepted update used the magnetometer.
-pub const ORIENT_FLAG_MAG_USED: u32 = 4;
-/// `orient_filter_flags`: the last accepted update followed a gap (dt above
-/// ORIENT_PARAM_GAP_DT). Nothing was integrated over the gap, whose motion is unknown:
-/// the update re-acquired the orientation (ORIENT_FLAG_REACQUIRED) or, on a sample
-/// without an accelerometer reading, held it (ORIENT_FLAG_REACQUIRE_PENDING). During the
-/// start-up period of ORIENT_KIND_COMPLEMENTARY and ORIENT_KIND_GMVDK the period started
-/// over with the sample instead (not at a gap right after a gap: where every sample is
-/// one, it goes on, and its stillness test alone starts it over).
-pub const ORIENT_FLAG_GAP: u32 = 8;
-/// `orient_filter_flags`: the last accepted update re-acquired the orientation after a
-/// gap: inclination from its accelerometer reading, heading from its magnetometer
-/// reading when it has one (every kind but the robust one, whose magnetic disturbance
-/// test may refuse the reading, and the complementary one, which uses it only with
-/// align_heading), else the heading held before the gap. The kind's low-passes and
-/// detectors start over; its bias estimate is kept.
-pub const ORIENT_FLAG_REACQUIRED: u32 = 16;
-/// `orient_filter_flags`: a gap ended on a sample without an accelerometer reading; the
-/// orientation is held, then integrated from the gyroscope, until the next sample with an
-/// accelerometer reading, which re-acquires it (ORIENT_FLAG_REACQUIRED).
-pub const ORIENT_FLAG_REACQUIRE_PENDING: u32 = 32;
-/// `orient_filter_flags`: the last accepted sample had an accelerometer reading that the
-/// update did not use (the kind's own test turned it down, e.g. the robust kind's and the
-/// EKF's gating of linear acceleration, GMVDK's trust, McGinnis' rest gate).
-pub const ORIENT_FLAG_ACCEL_REJECTED: u32 = 64;
-/// `orient_filter_flags`: the last accepted sample had a magnetometer reading that the
-/// update did not use (the kind has no heading correction, the field defines no north, or
-/// the kind turned it down).
-pub const ORIENT_FLAG_MAG_REJECTED: u32 = 128;
-/// `orient_filter_flags`: the kind counts the magnetic field as disturbed now (the robust
-/// kind: the last reading failed its norm and dip tests, hard iron compensated).
-pub const ORIENT_FLAG_MAG_DISTURBED: u32 = 256;
-/// `orient_filter_flags`: the kind counts the sensor as resting now (McGinnis' and the
-/// robust kind's rest detection; the EKF, Madgwick and Mahony with their rest options on,
-/// rest_rate_std and rest_bias_tau; GMVDK never sets it).
-pub const ORIENT_FLAG_REST: u32 = 512;
-/// `orient_filter_flags`: the last update had a reading at or beyond its configured range
-/// and used it clipped (ORIENT_PARAM_SATURATION_RECOVERY = 1): a gyroscope reading
-/// clipped just under the range, an accelerometer reading left out. After gyroscope
-/// saturation ORIENT_FLAG_REACQUIRE_PENDING is set too: the next unsaturated sample with
-/// an accelerometer reading re-acquires the orientation (ORIENT_FLAG_REACQUIRED).
-pub const ORIENT_FLAG_SATURATED: u32 = 1024;
-/// `orient_filter_flags`: the last sample had dt = 0 and was taken as the same instant as
-/// the next sample with dt > 0 (ORIENT_PARAM_SAME_INSTANT = 1): nothing was integrated;
-/// its gyroscope reading is averaged into that sample's step.
-pub const ORIENT_FLAG_SAME_INSTANT: u32 = 2048;
-
 /// `OrientParamInfo.flags`: 0 is also accepted and turns the feature off; `min` is the
 /// smallest value that has it on.
 pub const ORIENT_PARAM_FLAG_ZERO_OFF: u32 = 1;
-
-/// OrientDiagnostics.present: gyro_bias holds a value.
-pub const ORIENT_DIAG_GYRO_BIAS: u32 = 1;
-/// OrientDiagnostics.present: rest holds a value.
-pub const ORIENT_DIAG_REST: u32 = 2;
-/// OrientDiagnostics.present: alpha holds a value.
-pub const ORIENT_DIAG_ALPHA: u32 = 4;
-/// OrientDiagnostics.present: mu_ka holds a value.
-pub const ORIENT_DIAG_MU_KA: u32 = 8;
-/// OrientDiagnostics.present: mu_km holds a value.
-pub const ORIENT_DIAG_MU_KM: u32 = 16;
-/// OrientDiagnostics.present: mu_k holds a value.
-pub const ORIENT_DIAG_MU_K: u32 = 32;
-/// OrientDiagnostics.present: rate holds a value.
-pub const ORIENT_DIAG_RATE: u32 = 64;
-/// OrientDiagnostics.present: covariance holds values.
-pub const ORIENT_DIAG_COVARIANCE: u32 = 128;
 
 /// OrientUncertainty.present: heading holds a value.
 pub const ORIENT_UNCERTAINTY_HEADING: u32 = 1;

@@ -2,16 +2,27 @@
 
 use crate::math::Vec3;
 
-/// Bits of [`Diagnostics::present`] and [`Kind::diagnostics`](crate::Kind::diagnostics).
+/// Bits of [`Diagnostics::present`] and [`Kind::diagnostics`](crate::Kind::diagnostics),
+/// also the header's `ORIENT_DIAG_*` (rendered from this table, see `src/ffi/bits.rs`).
 pub mod diag {
-    pub const GYRO_BIAS: u32 = 1;
-    pub const REST: u32 = 2;
-    pub const ALPHA: u32 = 4;
-    pub const MU_KA: u32 = 8;
-    pub const MU_KM: u32 = 16;
-    pub const MU_K: u32 = 32;
-    pub const RATE: u32 = 64;
-    pub const COVARIANCE: u32 = 128;
+    crate::filters::flags::bits! {
+        /// gyro_bias holds a value.
+        GYRO_BIAS = 1;
+        /// rest holds a value.
+        REST = 2;
+        /// alpha holds a value.
+        ALPHA = 4;
+        /// mu_ka holds a value.
+        MU_KA = 8;
+        /// mu_km holds a value.
+        MU_KM = 16;
+        /// mu_k holds a value.
+        MU_K = 32;
+        /// rate holds a value.
+        RATE = 64;
+        /// covariance holds values.
+        COVARIANCE = 128;
+    }
 }
 
 /// Internal states a host may show, the same struct for every kind. A field whose bit in

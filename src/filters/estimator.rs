@@ -134,6 +134,10 @@ pub(crate) struct Reacquisition {
     pub gyro: Vec3,
     pub accel: Vec3,
     pub mag: Option<Vec3>,
+    /// The rest watch asked for this re-acquisition and the sensor still lies still: its
+    /// gyroscope reading, a bias estimate for a kind that learns one
+    /// ([`super::watch::Watch::still`]).
+    pub still: Option<Vec3>,
 }
 
 impl Reacquisition {

@@ -78,7 +78,9 @@ settings! {
             zero_off: false,
             doc: "Gradient step beta for steps without magnetometer, eq. (30); default 0.041 \
                  (paper: Madgwick 2010, section V, optimum of the IMU implementation). \
-                 beta = sqrt(3/4) * max gyro error, eq. (33).",
+                 beta = sqrt(3/4) * max gyro error, eq. (33). The step follows the normalised \
+                 gradient, so the estimate wanders by about beta * dt rad RMS at rest (0.6 deg at \
+                 beta 1 and 100 Hz).",
         },
         beta_marg: f64 = MADGWICK_BETA_MARG 9 {
             unit: "rad/s",
@@ -89,7 +91,8 @@ settings! {
             doc: "Gradient step beta for steps with magnetometer, eq. (30); default 0.041, the \
                  paper's IMU optimum (section V). The paper's MARG optimum, 0.033, was found for \
                  its own sensor (beta scales with gyro error, eq. (33)); on BROAD it scores 7.79 \
-                 deg against 7.22 for 0.041, which is also the Python ahrs reference's value.",
+                 deg against 7.22 for 0.041, which is also the Python ahrs reference's value. \
+                 At rest the estimate wanders by about beta * dt rad RMS, as with beta_imu.",
         },
         rest_bias_tau: f64 = MADGWICK_REST_BIAS_TAU 10 {
             unit: "s",
@@ -381,10 +384,15 @@ impl Madgwick {
         self.q = q;
     }
 
-    /// After a gap: the re-acquired estimate, rest detection started over, bias kept.
+    /// After a gap: the re-acquired estimate, rest detection started over, bias kept; for
+    /// the rest watch's re-acquisition of a still sensor with the rest-bias learner on, the
+    /// bias is the gyroscope's reading.
     pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
         self.q = q;
+        if let Some(g) = r.still.filter(|_| self.settings.rest_bias_tau > 0.0) {
+            self.bias = g;
+        }
         self.rest.restart();
         used_mag
     }

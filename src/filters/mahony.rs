@@ -86,10 +86,16 @@ impl Mahony {
     }
 
     /// After a gap: the re-acquired estimate, rest detection started over; the bias b
-    /// (the integral term) is kept.
+    /// (the integral term) is kept, but for the rest watch's re-acquisition of a still
+    /// sensor, where a bias the filter learns (`ki` or `rest_bias_tau` set) is the
+    /// gyroscope's reading: an integral wound up while the estimate was off would turn it
+    /// away again.
     pub(crate) fn reacquire(&mut self, r: &super::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
         self.q = q;
+        if let Some(g) = r.still.filter(|_| self.ki() || self.settings.rest_bias_tau > 0.0) {
+            self.bias = g;
+        }
         self.rest.restart();
         used_mag
     }

@@ -35,6 +35,7 @@ mod kind;
 pub(crate) mod runner;
 mod sample;
 mod saturation;
+mod watch;
 
 pub use config::{Config, Init};
 pub use diagnostics::{diag, Diagnostics, Uncertainty};

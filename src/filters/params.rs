@@ -2,14 +2,42 @@
 //! that hosts (a Unity inspector, the replay tool's `--set`) can list and set them by
 //! name without knowing each filter.
 //!
-//! Slots 0-7 are common to every kind; each kind has its own block (Madgwick 8-15,
-//! Mahony 16-23, complementary 24-39, EKF 40-55, GMVDK 56-79, robust 80-103; 104-127 free). A slot
-//! number is never reused for a different meaning.
+//! The first slots are common to every kind, then each kind has its own block, then the
+//! rest are free for later versions: [`BLOCKS`] is that map. A slot number is never reused
+//! for a different meaning.
 
 /// Number of parameter slots in a configuration.
 pub const MAX_PARAMS: usize = 128;
 
-/// Slot numbers. Common slots first, then one block per kind.
+/// A run of parameter slots and whom it belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SlotBlock {
+    /// `common` (the [`COMMON`] settings), a kind's name ([`crate::Kind::name`]), or
+    /// `free`.
+    pub owner: &'static str,
+    /// How documentation names the owner.
+    pub label: &'static str,
+    /// The first slot.
+    pub first: u32,
+    /// One past the last slot.
+    pub end: u32,
+}
+
+/// Which slots belong to whom, in slot order, covering every slot once. The one place
+/// this map is written: the header's `ORIENT_MAX_PARAMS` documentation is rendered from
+/// it, and a test holds every parameter to its owner's block.
+pub const BLOCKS: [SlotBlock; 8] = [
+    SlotBlock { owner: "common", label: "common to every kind", first: 0, end: 8 },
+    SlotBlock { owner: "madgwick", label: "Madgwick", first: 8, end: 16 },
+    SlotBlock { owner: "mahony", label: "Mahony", first: 16, end: 24 },
+    SlotBlock { owner: "complementary", label: "complementary", first: 24, end: 40 },
+    SlotBlock { owner: "ekf", label: "EKF", first: 40, end: 56 },
+    SlotBlock { owner: "gmvdk", label: "GMVDK", first: 56, end: 80 },
+    SlotBlock { owner: "robust", label: "robust", first: 80, end: 104 },
+    SlotBlock { owner: "free", label: "free for later versions", first: 104, end: 128 },
+];
+
+/// Slot numbers. Common slots first, then one block per kind ([`BLOCKS`]).
 pub mod id {
     /// Magnitude of gravity used for the gravity and linear-acceleration outputs.
     pub const GRAVITY: u32 = 0;

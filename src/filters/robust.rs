@@ -2092,6 +2092,7 @@ mod tests {
             gyro: Vec3::ZERO,
             accel: a,
             mag,
+            still: None,
         };
         assert!(f.reacquire(&gap(Some(q.rotate_inverse(FIELD)))));
         assert_eq!(f.heading_sigma(), s.mag_heading_sigma);

@@ -10,6 +10,7 @@ use super::host::Host;
 use super::params::{id, Settings, MAX_PARAMS};
 use super::sample::{check_quaternion, check_vector, Checked, SampleView, Usual};
 use super::state::{self, Codec, Reader, StateError, Writer};
+use super::watch::Watch;
 use super::{flags, holds, Config, Diagnostics, Error, Field, Init, Kind, Sample};
 use super::{MAX_ACCEL, MAX_DT, MAX_GYRO, MAX_MAG, MIN_DT};
 use crate::math::frame::{no_heading, NO_HEADING_SINE};
@@ -115,13 +116,15 @@ pub(crate) struct Runner<E: Estimator> {
     /// when first set (or when `same_instant` is switched on), never in an update: a
     /// filter without them carries 8 bytes here.
     pub(crate) extras: ExtrasBox,
+    /// The rest watch ([`super::watch`]).
+    watch: Watch,
 }
 
 /// Field by field, except that [`Runner::HOSTED`] is left out: it says whether the
 /// extras' box is made, and [`ExtrasBox`]'s equality already takes no box for a plain one.
 impl<E: Estimator> PartialEq for Runner<E> {
     fn eq(&self, o: &Runner<E>) -> bool {
-        let Runner { core, flags, frame, bits, policy, common, last_accel, given, extras } = self;
+        let Runner { core, flags, frame, bits, policy, common, last_accel, given, extras, watch } = self;
         let kept = !Self::HOSTED;
         *core == o.core
             && *flags == o.flags
@@ -132,6 +135,7 @@ impl<E: Estimator> PartialEq for Runner<E> {
             && *last_accel == o.last_accel
             && *given == o.given
             && *extras == o.extras
+            && *watch == o.watch
     }
 }
 
@@ -197,6 +201,10 @@ impl<E: Estimator> Runner<E> {
     /// it wherever either flag may change; the usual step and the lane step find it clear
     /// and leave it so.
     const UNSETTLED: u8 = 16;
+    /// The rest watch looks at the next sample ([`Runner::look`]). Not a policy: kept in
+    /// [`Runner::policy`] so that the sample takes the policies' path, and the usual
+    /// step's only cost of the watch is its count.
+    const WATCH: u8 = 32;
 
     pub(crate) fn new(config: &Config) -> Result<Runner<E>, Error> {
         debug_assert_eq!(config.kind(), E::KIND);
@@ -222,6 +230,7 @@ impl<E: Estimator> Runner<E> {
                 _ => None,
             },
             extras: ExtrasBox(None),
+            watch: Watch::default(),
         };
         r.set_policies(config.slots());
         r.set_frame_rotation();
@@ -236,7 +245,8 @@ impl<E: Estimator> Runner<E> {
         let recover = if slots[id::SATURATION_RECOVERY as usize] != 0.0 { Self::RECOVER } else { 0 };
         let same_instant = if slots[id::SAME_INSTANT as usize] != 0.0 { Self::SAME_INSTANT } else { 0 };
         let option = if self.core.usual_settings() { 0 } else { Self::KIND_OPTION };
-        self.policy = (self.policy & (Self::MODELS | Self::UNSETTLED)) | recover | same_instant | option;
+        self.policy =
+            (self.policy & (Self::MODELS | Self::UNSETTLED | Self::WATCH)) | recover | same_instant | option;
         if self.same_instant() {
             self.extras_mut();
         } else if let Some(x) = &mut self.extras.0 {
@@ -349,6 +359,7 @@ impl<E: Estimator> Runner<E> {
         }
         self.last_accel = Vec3::ZERO;
         self.set_has_accel(false);
+        self.watch.restart();
         self.flags = 0;
         self.sync_state();
         match self.init() {
@@ -392,6 +403,7 @@ impl<E: Estimator> Runner<E> {
             None => q,
         };
         self.core.set_quaternion(native);
+        self.watch.restart();
         self.flags |= flags::INITIALIZED;
         self.sync_state();
     }
@@ -572,6 +584,24 @@ impl<E: Estimator> Runner<E> {
             self.bits |= Self::HAS_ACCEL;
         }
         self.flags = flags;
+        if self.watch.tick() {
+            self.policy |= Self::WATCH;
+        }
+    }
+
+    /// The rest watch's look ([`super::watch`]) at an accepted sample (its `dt` and
+    /// gyroscope reading, the accelerometer reading the step took): a re-acquisition
+    /// left pending when the estimate has stayed off the accelerometer's vertical at
+    /// rest. Taken by the sample after the count ran out ([`Runner::WATCH`]), on the
+    /// policies' path, so that the usual step only counts.
+    fn look(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>) {
+        self.policy &= !Self::WATCH;
+        let initialized = self.flags & flags::INITIALIZED != 0;
+        let q = self.core.absolute_quaternion();
+        if self.watch.look(dt, gyro, accel.filter(|_| initialized), q, E::NATIVE.up(), self.common.gravity) {
+            self.flags |= flags::REACQUIRE_PENDING;
+            self.sync_state();
+        }
     }
 
     /// One step. On error nothing changes: the state is bit-identical to before.
@@ -580,7 +610,7 @@ impl<E: Estimator> Runner<E> {
         // Issue 20's policies, out of line behind one test of the byte that says which
         // are on (the kind's option bit needs nothing here: the plain update takes the
         // kind's own update; nor does UNSETTLED: the plain update tests the flags
-        // themselves).
+        // themselves). The rest watch's look takes this path too.
         if self.policy & !(Self::KIND_OPTION | Self::UNSETTLED) != 0 {
             return self.update_with_policies(s);
         }
@@ -601,6 +631,11 @@ impl<E: Estimator> Runner<E> {
         } else {
             self.update_plain(s)
         };
+        if result.is_ok() && self.policy & Self::WATCH != 0 {
+            // The accelerometer reading as the step took it (a sensor model applied).
+            let accel = s.accel().map(|_| self.last_accel);
+            self.look(s.dt(), s.gyro().unwrap_or_default(), accel);
+        }
         // The policies write the flags themselves (a clipped gyroscope reading leaves a
         // re-acquisition pending).
         self.sync_state();
@@ -803,8 +838,10 @@ impl<E: Estimator> Runner<E> {
         let before = self.core.absolute_quaternion();
         let keep = (twist_about(before * tilt.conj(), native.up()) * tilt).normalized();
         let with_mag = mag.and_then(|m| native.attitude_from(accel, Some(m)));
-        let r = Reacquisition { keep, with_mag, dt, gyro, accel, mag };
+        let still = self.watch.still(gyro);
+        let r = Reacquisition { keep, with_mag, dt, gyro, accel, mag, still };
         let used_mag = self.core.reacquire(&r);
+        self.watch.restart();
         let flags = flags::INITIALIZED
             | flags::ACCEL_USED
             | flags::REACQUIRED
@@ -870,6 +907,8 @@ impl<E: Estimator> Runner<E> {
         self.put_extras(x);
         self.refresh_models();
         self.core.codec(c);
+        // Since format version 8: the rest watch.
+        self.watch.codec(c);
     }
 
     fn kind_byte() -> u8 {
@@ -914,6 +953,10 @@ impl<E: Estimator> Runner<E> {
         fresh.put_extras(x);
         fresh.refresh_models();
         fresh.core.codec(&mut r);
+        fresh.watch.codec(&mut r);
+        if fresh.watch.looks_next() {
+            fresh.policy |= Self::WATCH;
+        }
         // Slots this kind does not use are zero in every snapshot it writes: a blob of
         // another kind relabelled (with a fresh checksum) has its own kind's slots set.
         let foreign =

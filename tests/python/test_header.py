@@ -1,8 +1,12 @@
-"""The ctypes layer matches include/orient.h: constants, enums, struct fields in order,
-and the argument count of every bound function."""
+"""The ctypes layer matches include/orient.h: it is what scripts/gen-python.py makes from
+the header, and, read independently of the generator, its constants, enums, struct
+fields in order and the argument count of every bound function are the header's."""
 
 import ctypes
 import re
+import subprocess
+import sys
+from pathlib import Path
 
 import orient
 from orient import _native as n
@@ -74,3 +78,55 @@ def test_every_bound_function_exists_in_the_header_with_its_argument_count(root)
     assert len(decls) >= 33
     for name, (_, argtypes) in n.PROTOTYPES.items():
         assert decls.get(name) == len(argtypes), name
+
+
+def _generate(root, header_text, tmp_path):
+    """scripts/gen-python.py on `header_text`: its exit status, output and stderr."""
+    header = tmp_path / "orient.h"
+    header.write_text(header_text)
+    run = subprocess.run(
+        [sys.executable, str(root / "scripts" / "gen-python.py"), str(header), "-"],
+        capture_output=True,
+        text=True,
+    )
+    return run.returncode, run.stdout, run.stderr
+
+
+def test_the_installed_ctypes_layer_is_what_the_generator_makes_from_the_header(root, tmp_path):
+    status, text, err = _generate(root, header(root), tmp_path)
+    assert status == 0, err
+    assert Path(n.__file__).read_text() == text, "_native.py is stale: run scripts/gen-python.py"
+
+
+def test_the_generator_follows_header_additions(root, tmp_path):
+    text = header(root)
+    added = (
+        text.replace("#define ORIENT_MAX_PARAMS", "#define ORIENT_TEST_ADDED 77\n\n#define ORIENT_MAX_PARAMS", 1)
+        .replace("  double z;\n} OrientVec3;", "  double z;\n  /**\n   * New.\n   */\n  uint8_t extra[4];\n} OrientVec3;", 1)
+        .replace(
+            "#ifdef __cplusplus\n}",
+            "OrientStatus orient_test_added(const OrientFilter *filter, size_t n, double *out);\n\n#ifdef __cplusplus\n}",
+            1,
+        )
+    )
+    assert added != text
+    status, out, err = _generate(root, added, tmp_path)
+    assert status == 0, err
+    for expected in [
+        "TEST_ADDED = 77",
+        '"orient_test_added": (c_int32, [c_void_p, c_size_t, POINTER(c_double)]),',
+        "        # New.\n",
+        '("extra", c_uint8 * 4),',
+    ]:
+        assert expected in out, expected
+
+
+def test_the_generator_refuses_what_it_does_not_know(root, tmp_path):
+    text = header(root)
+    for old, new, message in [
+        ("uint32_t orient_abi_version(void);", "wchar_t orient_abi_version(void);", "unknown type"),
+        ("typedef struct OrientVec3 {", "typedef union OrientVec3 {", "unhandled"),
+    ]:
+        assert old in text
+        status, _, err = _generate(root, text.replace(old, new, 1), tmp_path)
+        assert status != 0 and message in err, (message, err)

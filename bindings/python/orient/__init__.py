@@ -14,6 +14,7 @@ Example (``gyr``, ``acc``, ``mag``: (N, 3) NumPy arrays)::
 """
 
 from ._filter import (
+    DIAGNOSTICS_DTYPE,
     BatchResult,
     Complementary,
     Ekf,
@@ -36,7 +37,6 @@ from ._filter import (
     version,
 )
 from ._native import (
-    DIAGNOSTICS_DTYPE,
     FLAG_ACCEL_REJECTED,
     FLAG_ACCEL_USED,
     FLAG_GAP,

@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
-from ctypes import byref, c_double, c_int32, c_size_t, c_uint8, c_uint32, c_void_p
+import ctypes
+from ctypes import POINTER, byref, c_double, c_int32, c_size_t, c_uint8, c_uint32, c_void_p
 from dataclasses import dataclass
 from typing import Any, ClassVar, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import _native as n
-from ._native import DIAGNOSTICS_DTYPE, Frame, Init, Kind, Status, lib
+from ._native import Frame, Init, Kind, Status, lib
 
 ArrayLike = Union[np.ndarray, Sequence[float], Sequence[Sequence[float]], float]
 
@@ -128,10 +129,34 @@ def _vec3(v: Any, what: str) -> n.OrientVec3:
     return n.OrientVec3(float(a[0]), float(a[1]), float(a[2]))
 
 
-def _ptr(a: Optional[np.ndarray], offset_rows: int = 0) -> Optional[int]:
+def _ptr(a: Optional[np.ndarray], ctype: Any, offset_rows: int = 0) -> Any:
+    """A ``ctype *`` to row ``offset_rows`` of ``a`` (NULL for None), for the typed pointer
+    parameters of _native's prototypes."""
     if a is None:
         return None
-    return a.ctypes.data + offset_rows * a.strides[0] if a.ndim else a.ctypes.data
+    address = a.ctypes.data + offset_rows * a.strides[0] if a.ndim else a.ctypes.data
+    return ctypes.cast(address, POINTER(ctype))
+
+
+def _record_dtype(struct: Any) -> np.dtype:
+    """A ctypes struct of numbers, arrays of numbers and OrientVec3 as a NumPy record of
+    the same layout (an OrientVec3 as three float64)."""
+    fields: List[Any] = []
+    for name, ctype in struct._fields_:
+        if ctype is n.OrientVec3:
+            fields.append((name, "=f8", (3,)))
+        elif issubclass(ctype, ctypes.Array):
+            fields.append((name, np.dtype(ctype._type_), (ctype._length_,)))
+        else:
+            fields.append((name, np.dtype(ctype)))
+    dtype = np.dtype(fields)
+    assert dtype.itemsize == ctypes.sizeof(struct), struct
+    assert all(dtype.fields[f][1] == getattr(struct, f).offset for f in dtype.names), struct
+    return dtype
+
+
+#: OrientDiagnostics as a NumPy record: update_batch fills an array of these in place.
+DIAGNOSTICS_DTYPE = _record_dtype(n.OrientDiagnostics)
 
 
 @dataclass
@@ -393,14 +418,14 @@ class Filter:
             st = lib.orient_filter_update_arrays(
                 h,
                 rest,
-                _ptr(d, start if per_sample_dt else 0),
+                _ptr(d, c_double, start if per_sample_dt else 0),
                 rest if per_sample_dt else 1,
-                _ptr(g, start),
-                _ptr(a, start),
-                _ptr(m, start),
-                _ptr(q, start),
-                _ptr(flags, start),
-                _ptr(diag, start),
+                _ptr(g, c_double, start),
+                _ptr(a, c_double, start),
+                _ptr(m, c_double, start),
+                _ptr(q, n.OrientQuaternion, start),
+                _ptr(flags, c_uint32, start),
+                _ptr(diag, n.OrientDiagnostics, start),
                 byref(processed),
             )
             if st == Status.OK:
@@ -412,7 +437,7 @@ class Filter:
             status[bad] = st
             q[bad] = self.quaternion
             flags[bad] = self.flags
-            lib.orient_filter_diagnostics(h, _ptr(diag, bad))
+            lib.orient_filter_diagnostics(h, _ptr(diag, n.OrientDiagnostics, bad))
             start = bad + 1
             if start == count:
                 return BatchResult(q, flags, diag, status)
@@ -452,7 +477,15 @@ class Filter:
         q = np.empty((count, 4), dtype=np.float64)
         processed = c_size_t()
         st = lib.orient_smooth_arrays(
-            byref(self._config), count, _ptr(d), d.shape[0], _ptr(g), _ptr(a), _ptr(m), _ptr(q), byref(processed)
+            byref(self._config),
+            count,
+            _ptr(d, c_double),
+            d.shape[0],
+            _ptr(g, c_double),
+            _ptr(a, c_double),
+            _ptr(m, c_double),
+            _ptr(q, n.OrientQuaternion),
+            byref(processed),
         )
         if st != Status.OK:
             _check(st, processed.value)
@@ -516,7 +549,7 @@ class Filter:
         """The kind's internal states that hold values now, by name (``gyro_bias``,
         ``rest``, ``alpha``, ``mu_ka``, ``mu_km``, ``mu_k``, ``rate``, ``covariance``)."""
         d = np.empty(1, dtype=DIAGNOSTICS_DTYPE)
-        _check(lib.orient_filter_diagnostics(self._h, d.ctypes.data))
+        _check(lib.orient_filter_diagnostics(self._h, _ptr(d, n.OrientDiagnostics)))
         present = int(d["present"][0])
         bits = [
             ("gyro_bias", n.DIAG_GYRO_BIAS),

@@ -25,6 +25,9 @@
 //!   error after removing the heading offset.
 //! - Standard output closed early (`| head`): the tool stops quietly, status 0.
 //!
+//! Rig mode (`--rig DIR/rig.json --out-dir OUT ...`, RIG-FORMAT.md): one filter per
+//! sensor, outputs per sensor and joint, the rig scores; see `replay/rig.rs`.
+//!
 //! Exit status: 0 on success, 2 on bad arguments or malformed input (the message names
 //! the line and column), 1 when writing the output fails.
 
@@ -39,7 +42,9 @@ use std::process::exit;
 use std::time::Instant;
 
 const USAGE: &str = "usage: replay --filter NAME[,NAME...] [--no-mag] [--frame enu|ned|nwu] \
-                     [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv";
+                     [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv\n   or: replay --rig \
+                     DIR/rig.json --out-dir OUT [--no-mag] [--kind KIND] [--set KEY=VALUE]... [--no-align] \
+                     [--svg FILE]";
 
 /// println! that stops the tool quietly (status 0) when standard output was closed, as
 /// `| head` does, instead of panicking on the broken pipe; other write errors are status 1.
@@ -54,6 +59,8 @@ macro_rules! say {
         }
     };
 }
+
+mod rig;
 
 struct Args {
     kinds: Vec<Kind>,
@@ -224,6 +231,11 @@ fn configure(kind: Kind, args: &Args) -> Config {
 }
 
 fn main() {
+    let raw: Vec<String> = std::env::args().skip(1).collect();
+    if raw.iter().any(|a| a == "--rig") {
+        rig::main(raw);
+        return;
+    }
     let args = parse_args();
     if args.kinds.len() > 1 {
         for (key, _) in &args.sets {

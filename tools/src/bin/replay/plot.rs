@@ -1,5 +1,5 @@
-//! The replay tool's picture (`--svg`): orientation error over time against the ground
-//! truth, one panel per angle (total, heading, inclination) with a line per filter, and
+//! The replay tool's pictures (`--svg`; for `--rig`, [`write_rig_svg`]): orientation
+//! error over time against the ground truth, one panel per angle (total, heading, inclination) with a line per filter, and
 //! below them a lane per filter with a band wherever it reported
 //! - rest: diagnostics.rest (the kinds with a rest detector: complementary, robust),
 //! - mag unused: a magnetometer reading was given but ORIENT_FLAG_MAG_USED is clear
@@ -168,6 +168,95 @@ pub fn write_svg(
             )))?;
         }
     }
+    root.present()?;
+    Ok(())
+}
+
+/// The rig picture (`--rig --svg`): each joint's error (degrees, the rig score's angle)
+/// over time, one line per joint, the maximum over each pixel column; and below, the RMS
+/// over all joints in windows of 10 s, where growth over time shows.
+pub fn write_rig_svg(
+    path: &Path,
+    title: &str,
+    t: &[f64],
+    joints: &[&str],
+    errors: &[Vec<f64>],
+) -> Result<(), Box<dyn std::error::Error>> {
+    const PALETTE: [RGBColor; 10] = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+        RGBColor(148, 103, 189),
+        RGBColor(255, 127, 14),
+        RGBColor(140, 86, 75),
+        RGBColor(227, 119, 194),
+        RGBColor(127, 127, 127),
+        RGBColor(188, 189, 34),
+        RGBColor(23, 190, 207),
+    ];
+    let root = SVGBackend::new(path, (WIDTH, 40 + 2 * 320)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let root = root.titled(&format!("joint error against truth: {title}"), ("sans-serif", 18))?;
+    let (top, bottom) = root.split_vertically(340);
+    let (t0, t1) = (t[0], t[t.len() - 1].max(t[0] + 1e-9));
+    let lines: Vec<Vec<(f64, f64)>> = errors
+        .iter()
+        .map(|e| {
+            let e: Vec<Option<f64>> = e.iter().map(|x| x.is_finite().then(|| x.to_degrees())).collect();
+            columns(t, &e, t0, t1)
+        })
+        .collect();
+    let ymax = lines.iter().flatten().map(|p| p.1).fold(1.0f64, f64::max) * 1.05;
+    let mut chart = ChartBuilder::on(&top)
+        .margin(8)
+        .x_label_area_size(30)
+        .y_label_area_size(60)
+        .build_cartesian_2d(t0..t1, 0.0..ymax)?;
+    chart
+        .configure_mesh()
+        .y_desc("joint error [deg]")
+        .x_desc("time [s]")
+        .light_line_style(WHITE.mix(0.0))
+        .draw()?;
+    for (k, line) in lines.into_iter().enumerate() {
+        let color = PALETTE[k % PALETTE.len()];
+        chart
+            .draw_series(LineSeries::new(line, color.stroke_width(1)))?
+            .label(joints[k].to_string())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
+
+    // RMS over all joints in 10-second windows.
+    let mut windows: Vec<(f64, f64)> = Vec::new();
+    let (mut start, mut sum, mut n) = (0usize, 0.0, 0usize);
+    for i in 0..t.len() {
+        for e in errors {
+            if e[i].is_finite() {
+                sum += e[i] * e[i];
+                n += 1;
+            }
+        }
+        if t[i] - t[start] >= 10.0 || i + 1 == t.len() {
+            if n > 0 {
+                windows.push((0.5 * (t[start] + t[i]), (sum / n as f64).sqrt().to_degrees()));
+            }
+            (start, sum, n) = (i + 1, 0.0, 0);
+        }
+    }
+    let wmax = windows.iter().map(|p| p.1).fold(1.0f64, f64::max) * 1.05;
+    let mut chart = ChartBuilder::on(&bottom)
+        .margin(8)
+        .x_label_area_size(30)
+        .y_label_area_size(60)
+        .build_cartesian_2d(t0..t1, 0.0..wmax)?;
+    chart
+        .configure_mesh()
+        .y_desc("RMS over joints, 10 s [deg]")
+        .x_desc("time [s]")
+        .light_line_style(WHITE.mix(0.0))
+        .draw()?;
+    chart.draw_series(LineSeries::new(windows, BLACK.stroke_width(2)))?;
     root.present()?;
     Ok(())
 }

@@ -1,0 +1,208 @@
+//! `replay --rig`: a rig recording (RIG-FORMAT.md) through one filter per sensor.
+//!
+//! ```text
+//! replay --rig DIR/rig.json --out-dir OUT [--no-mag] [--kind KIND] [--set KEY=VALUE]...
+//!     [--no-align] [--svg FILE]
+//! ```
+//!
+//! - KIND: one of orient's kinds (default robust), or `vqf` (vqf-rs, its defaults) to
+//!   compare; every sensor runs its own filter, mounting from rig.json.
+//! - Headings are aligned once, at the last row of the reference pose (every segment
+//!   turned to the segments' mean heading, `Filter::align_rig_heading`), unless
+//!   `--no-align` or the description has no reference pose.
+//! - Writes `OUT/<sensor>.csv` (`t,quat_w,quat_x,quat_y,quat_z`: the sensor's
+//!   orientation, sensor to earth, ENU, one row per input row) and `OUT/joints.csv`: `t`
+//!   and per joint its angles in degrees (`orient_tools::rig::joint_angles`): a hinge's
+//!   `<joint>` about its axis, a 2-DoF joint's `<joint>_1` about `axis_parent` then
+//!   `<joint>_2` about `axis_child`, right-handed about the axes as given, zero where
+//!   the segments coincide (the reference pose).
+//! - With truth in every sensor's file: prints the scores of RIG-FORMAT.md (RMSE over all
+//!   joints' rows with t ≥ 10 s, the worst joint, the last minute) and each joint's RMSE;
+//!   `--svg` plots each joint's error over time.
+//!
+//! The per-row loop is `orient_tools::rig::run_rig`; a joint estimator plugs in there as
+//! a `JointStage` (today: `Alone`, every sensor on its own).
+
+use super::{fail, plot};
+use orient::{Config, Filter, Kind};
+use orient_tools::rig::{
+    joint_angles, joint_errors, run_rig, score_rig, Alone, JointKind, RigRecording, SensorFilter,
+};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::exit;
+
+pub const USAGE: &str = "usage: replay --rig DIR/rig.json --out-dir OUT [--no-mag] [--kind KIND] \
+                         [--set KEY=VALUE]... [--no-align] [--svg FILE]";
+
+struct Args {
+    rig: PathBuf,
+    out_dir: PathBuf,
+    no_mag: bool,
+    /// None: VQF.
+    kind: Option<Kind>,
+    sets: Vec<(String, f64)>,
+    align: bool,
+    svg: Option<PathBuf>,
+}
+
+fn parse(args: Vec<String>) -> Args {
+    let (mut rig, mut out_dir, mut no_mag, mut kind, mut sets, mut align, mut svg) =
+        (None, None, false, Some(Kind::Robust), Vec::new(), true, None);
+    let mut it = args.into_iter();
+    while let Some(arg) = it.next() {
+        let mut value =
+            |name: &str| it.next().unwrap_or_else(|| fail(format!("{name} needs a value\n{USAGE}")));
+        match arg.as_str() {
+            "--rig" => rig = Some(PathBuf::from(value("--rig"))),
+            "--out-dir" => out_dir = Some(PathBuf::from(value("--out-dir"))),
+            "--no-mag" => no_mag = true,
+            "--no-align" => align = false,
+            "--kind" | "--filter" => {
+                let v = value(&arg);
+                kind = match v.trim() {
+                    "vqf" => None,
+                    name => Some(Kind::from_name(name).unwrap_or_else(|| {
+                        let names: Vec<&str> = Kind::ALL.iter().map(|k| k.name()).collect();
+                        fail(format!("unknown kind '{v}' (one of: {}, vqf)", names.join(", ")))
+                    })),
+                };
+            }
+            "--set" => {
+                let v = value("--set");
+                let (key, val) =
+                    v.split_once('=').unwrap_or_else(|| fail(format!("--set wants KEY=VALUE, got '{v}'")));
+                let val: f64 = val
+                    .trim()
+                    .parse()
+                    .unwrap_or_else(|_| fail(format!("--set {key}: '{val}' is not a number")));
+                sets.push((key.trim().to_string(), val));
+            }
+            "--svg" => svg = Some(PathBuf::from(value("--svg"))),
+            s => fail(format!("unknown argument '{s}' in rig mode\n{USAGE}")),
+        }
+    }
+    Args {
+        rig: rig.unwrap_or_else(|| fail(USAGE)),
+        out_dir: out_dir.unwrap_or_else(|| fail(format!("--out-dir is required with --rig\n{USAGE}"))),
+        no_mag,
+        kind,
+        sets,
+        align,
+        svg,
+    }
+}
+
+fn write_csv(path: &Path, header: &str, rows: impl Iterator<Item = String>) -> std::io::Result<()> {
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
+    writeln!(w, "{header}")?;
+    for r in rows {
+        writeln!(w, "{r}")?;
+    }
+    w.flush()
+}
+
+pub fn main(args: Vec<String>) {
+    let args = parse(args);
+    let rec = RigRecording::read(&args.rig, !args.no_mag).unwrap_or_else(|e| fail(e));
+    let spec = &rec.spec;
+    if args.svg.is_some() && !rec.has_truth() {
+        fail("--svg: the recording has no truth columns (quat_*)");
+    }
+    let dt = 1.0 / spec.rate_hz;
+    let mut filters: Vec<SensorFilter> = (0..spec.sensors.len())
+        .map(|_| match args.kind {
+            None => SensorFilter::vqf(dt, !args.no_mag),
+            Some(kind) => {
+                let mut config = Config::new(kind).unwrap_or_else(|e| fail(e));
+                for (key, value) in &args.sets {
+                    match config.set(key, *value) {
+                        None => fail(format!("{} has no parameter '{key}'", kind.name())),
+                        Some(Err(e)) => fail(format!("--set {key}={value}: {e}")),
+                        Some(Ok(())) => {}
+                    }
+                }
+                SensorFilter::Orient(Box::new(Filter::new(&config).unwrap_or_else(|e| fail(e))))
+            }
+        })
+        .collect();
+    if args.kind.is_none() && !args.sets.is_empty() {
+        fail("--set applies to orient's kinds, not to vqf");
+    }
+    let run = run_rig(&rec, &mut filters, &mut Alone, args.align);
+    let t = rec.t();
+
+    let write = || -> std::io::Result<()> {
+        std::fs::create_dir_all(&args.out_dir)?;
+        for (s, q) in spec.sensors.iter().zip(&run.sensors) {
+            let rows = t.iter().zip(q).map(|(t, q)| format!("{t},{},{},{},{}", q.w, q.x, q.y, q.z));
+            write_csv(&args.out_dir.join(format!("{}.csv", s.name)), "t,quat_w,quat_x,quat_y,quat_z", rows)?;
+        }
+        let mut header = String::from("t");
+        for j in &spec.joints {
+            match j.kind {
+                JointKind::Hinge => header += &format!(",{}", j.name),
+                JointKind::TwoDof => header += &format!(",{0}_1,{0}_2", j.name),
+            }
+        }
+        let rows = (0..t.len()).map(|i| {
+            let mut line = format!("{}", t[i]);
+            for j in &spec.joints {
+                let (a, b) = joint_angles(spec, j, run.sensors[j.parent][i], run.sensors[j.child][i]);
+                line += &format!(",{:.4}", a.to_degrees());
+                if j.kind == JointKind::TwoDof {
+                    line += &format!(",{:.4}", b.to_degrees());
+                }
+            }
+            line
+        });
+        write_csv(&args.out_dir.join("joints.csv"), &header, rows)
+    };
+    if let Err(e) = write() {
+        eprintln!("replay: cannot write to {}: {e}", args.out_dir.display());
+        exit(1);
+    }
+
+    let name = args.kind.map_or("vqf", |k| k.name());
+    let dims = if args.no_mag { "6D" } else { "9D" };
+    say!(
+        "{name} {dims}, {} sensors, {} joints, {} rows from {} in {:.1} ms, {} rejected, headings {}",
+        spec.sensors.len(),
+        spec.joints.len(),
+        t.len(),
+        args.rig.display(),
+        run.elapsed.as_secs_f64() * 1e3,
+        run.rejected,
+        match run.aligned_at {
+            Some(i) => format!("aligned at t = {}", t[i]),
+            None => "not aligned".into(),
+        }
+    );
+    if !rec.has_truth() {
+        say!("no truth columns (quat_*): nothing to score");
+        return;
+    }
+    let truth: Vec<&[orient::Quat]> = rec.sensors.iter().map(|r| r.truth.as_slice()).collect();
+    let errors = joint_errors(spec, &run.sensors, &truth);
+    let s = score_rig(spec, t, &errors);
+    say!(
+        "rig RMSE [deg]: all joints {:.2}  worst {:.2} ({})  last minute {:.2}   ({} rows per joint, t >= 10 s)",
+        s.all,
+        s.worst.1,
+        s.worst.0,
+        s.last_minute,
+        s.rows
+    );
+    for (j, e) in spec.joints.iter().zip(&s.joints) {
+        say!("  {:<20} {:>6} {e:7.2}", j.name, j.kind.name());
+    }
+    if let Some(path) = &args.svg {
+        let names: Vec<&str> = spec.joints.iter().map(|j| j.name.as_str()).collect();
+        let title = format!("{} ({name} {dims}, every sensor alone)", args.rig.display());
+        if let Err(e) = plot::write_rig_svg(path, &title, t, &names, &errors) {
+            eprintln!("replay: cannot write {}: {e}", path.display());
+            exit(1);
+        }
+        say!("svg: {}", path.display());
+    }
+}
