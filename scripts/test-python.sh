@@ -55,8 +55,10 @@ if missing:
     sys.exit(f"FAIL the wheel lacks {missing}")
 EOF
 
-# The BROAD test compares with the replay tool (the tools crate; a no-op when up to date).
-cargo build --quiet -p orient-tools --bin replay
+# The BROAD test compares with the replay tool (the tools crate), built with cargo test's
+# profile: a no-op after `cargo test`, which built it, and no second build of every
+# dependency at another optimisation level.
+cargo build --quiet --profile test -p orient-tools --bin replay
 step=$EPOCHREALTIME
 scripts/test-wheel.sh "$wheel" "$root/target/debug/replay"
 echo "python: tests $(elapsed "$step") s, $(elapsed "$start") s in all"

@@ -8,14 +8,17 @@ use std::process::{Command, Output};
 
 /// target/[<target>/]debug/replay, from the tools crate (orient-tools). `cargo test` does
 /// not build another package's binaries for this package's tests, so build it here, once
-/// per test process (a no-op when it is up to date).
+/// per test process, with cargo test's own profile: a no-op when `cargo test` at the root
+/// built the tools (their tests need the binary), and never a second, unoptimised build
+/// of every dependency.
 fn replay() -> PathBuf {
     static BUILT: std::sync::Once = std::sync::Once::new();
     let exe = std::env::current_exe().unwrap();
     let bin = exe.parent().unwrap().parent().unwrap().join("replay");
     BUILT.call_once(|| {
         let mut cargo = Command::new(env!("CARGO"));
-        cargo.args(["build", "--quiet", "-p", "orient-tools", "--bin", "replay", "--manifest-path"]);
+        cargo.args(["build", "--quiet", "--profile", "test", "-p", "orient-tools", "--bin", "replay"]);
+        cargo.arg("--manifest-path");
         cargo.arg(concat!(env!("CARGO_MANIFEST_DIR"), "/Cargo.toml"));
         if common::native::cross() {
             cargo.args(["--target", env!("ORIENT_BUILD_TARGET")]);
