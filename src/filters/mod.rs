@@ -2,12 +2,20 @@
 //!
 //! Everything here is safe Rust with no FFI types; `update` does not allocate.
 //!
-//! Layout: each kind is one module (its `settings!` parameter table, its state and its
-//! update in the paper's terms) implementing `estimator::Estimator`; `runner` is the
-//! common lifecycle generic over the kind; [`Filter`] holds one runner of any kind.
-//! [`Kind`], [`Config`], [`Sample`], [`Error`], [`flags`],
-//! [`Diagnostics`](crate::filters::Diagnostics) and the snapshot format
-//! ([`state`](crate::filters::state), `holds`) are what every kind shares.
+//! Where each stage lives, in the order a sample meets them:
+//! - `pipeline` (crate-private): the lifecycle every kind
+//!   shares. `filter` holds one `runner` of any kind and dispatches to it; `runner` takes
+//!   a sample through the host's policies (`saturation`: bursts and clipping; sensor
+//!   models from [`calibration`](crate::filters::calibration)), the checks (`sample`), the start, gaps and
+//!   re-acquisition, the kind's step and the outputs (`host`: mounting, heading offset,
+//!   declination); `watch` is the rest watch; `estimator` is the trait a kind implements.
+//! - [`kinds`](crate::filters::kinds): one module per paper, in the paper's symbols and equation numbers, and
+//!   what two or more kinds share (rest detection, the still start-up period).
+//! - [`state`](crate::filters::state): the snapshot codec and the bounds a loaded state must hold.
+//! - [`calibration`](crate::filters::calibration): sensor models and the host-side estimators (magnetometer
+//!   calibrator, gyroscope offset).
+//! - At the top, what every part shares: [`Kind`], [`Config`] and its [`params`](crate::filters::params) table,
+//!   [`Sample`], [`Error`], [`flags`](crate::filters::flags) and [`Diagnostics`](crate::filters::Diagnostics).
 
 #![forbid(unsafe_code)]
 
