@@ -1,7 +1,7 @@
 //! The C calls for sensor calibration (issue 20): the models applied before every
 //! update, the magnetometer calibrator (a host-owned struct: no handle, no
 //! allocation) and the gyroscope offset from a still period. See
-//! `filters/calibration.rs`.
+//! `filters/calibration`.
 
 use super::{
     fail, from_core, guard, handle, handle_mut, items, need, put, OrientFilter, OrientStatus, OrientVec3,

@@ -3,12 +3,14 @@
 //! Everything here is safe Rust with no FFI types; `update` does not allocate.
 //!
 //! Where each stage lives, in the order a sample meets them:
-//! - `pipeline` (crate-private): the lifecycle every kind
-//!   shares. `filter` holds one `runner` of any kind and dispatches to it; `runner` takes
-//!   a sample through the host's policies (`saturation`: bursts and clipping; sensor
-//!   models from [`calibration`](crate::filters::calibration)), the checks (`sample`), the start, gaps and
-//!   re-acquisition, the kind's step and the outputs (`host`: mounting, heading offset,
-//!   declination); `watch` is the rest watch; `estimator` is the trait a kind implements.
+//! - `pipeline` (crate-private): the lifecycle every kind shares. `filter` holds one
+//!   `runner` of any kind and dispatches to it. `runner` holds the lifecycle's state
+//!   (settings, flags, snapshots, outputs); its `update` module is the update, stage by
+//!   stage in one file: same-instant bursts, clipping, the sensor models (from
+//!   [`calibration`](crate::filters::calibration)), the checks, the start, gaps and
+//!   re-acquisition, the kind's step. `sample` is the sample and its checked form;
+//!   `host` the host's frames (mounting, heading offset, declination); `watch` the rest
+//!   watch; `estimator` the trait a kind implements.
 //! - [`kinds`](crate::filters::kinds): one module per paper, in the paper's symbols and equation numbers, and
 //!   what two or more kinds share (rest detection, the still start-up period).
 //! - [`state`](crate::filters::state): the snapshot codec and the bounds a loaded state must hold.

@@ -11,9 +11,7 @@
 
 use crate::filters::error::Error;
 use crate::filters::error::Field;
-use crate::filters::pipeline::estimator::Estimator;
 use crate::filters::pipeline::filter::Filter;
-use crate::filters::pipeline::runner::Runner;
 use crate::filters::pipeline::sample::Sample;
 use crate::filters::pipeline::sample::SampleView;
 use crate::filters::state::Codec;
@@ -251,28 +249,6 @@ impl Filter {
             Sensor::Accel => self.models().accel,
             Sensor::Mag => self.models().mag,
         }
-    }
-}
-
-impl<E: Estimator> Runner<E> {
-    /// The update with the sensor models applied: the raw sample is checked, then the
-    /// calibrated one goes through the usual update (which checks it again).
-    #[inline(never)]
-    pub(crate) fn update_calibrated<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
-        self.check_view(s)?;
-        let models = self.models();
-        let calibrated = models.apply(s);
-        // The calibrated sample takes the plain path (the models are not applied twice).
-        if let Some(x) = &mut self.extras.0 {
-            x.models = Models::default();
-        }
-        self.refresh_models();
-        let result = self.update_inline(&calibrated);
-        if let Some(x) = &mut self.extras.0 {
-            x.models = models;
-        }
-        self.refresh_models();
-        result
     }
 }
 

@@ -5,5 +5,4 @@ pub(crate) mod filter;
 pub(crate) mod host;
 pub(crate) mod runner;
 pub(crate) mod sample;
-pub(crate) mod saturation;
 pub(crate) mod watch;
