@@ -222,8 +222,8 @@ impl<E: Estimator> Runner<E> {
 
     pub(crate) fn new(config: &Config) -> Result<Runner<E>, Error> {
         debug_assert_eq!(config.kind(), E::KIND);
-        // Re-check every slot: a Config can only hold valid values, but be strict.
-        let config = Config::from_slots(config.kind(), config.frame, config.init, config.slots())?;
+        // A configuration is validated once: its slots when they were set (no other way
+        // writes them), its initial orientation (a public field) here.
         if let Init::Given(q) = config.init {
             check_quaternion(q)?;
         }

@@ -158,6 +158,10 @@ impl<E: Estimator> Runner<E> {
                 return Ok(());
             }
         }
+        // A sample the usual step declined (an edge case of the kind's arithmetic) meets
+        // the quick check again on the general path. Handing the checked sample on
+        // instead cost the usual path 6 to 13 instructions per update (callgrind: its
+        // two out-of-line continuations made it save registers), for a case that is rare.
         self.update_general(s)
     }
 
@@ -541,7 +545,8 @@ impl<E: Estimator> Runner<E> {
 
     /// The sample as the clipping policy uses it (the sample itself with the policy off):
     /// a gyroscope reading beyond its range clipped just under it, an accelerometer
-    /// reading beyond its range left out; and whether the gyroscope, or any reading, was.
+    /// reading beyond its range left out (a clipped one points the wrong way); and
+    /// whether the gyroscope, or any reading, was.
     fn clipped(&self, s: &Sample) -> (Sample, bool, bool) {
         if !(self.recover() && self.saturated(s)) {
             return (*s, false, false);
@@ -566,15 +571,7 @@ impl<E: Estimator> Runner<E> {
     #[cold]
     #[inline(never)]
     pub(crate) fn update_saturated<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
-        let gyro_saturated = beyond(s.gyro(), self.common.gyro_limit(), MAX_GYRO);
-        let accel_saturated = beyond(s.accel(), self.common.accel_limit(), MAX_ACCEL);
-        let clipped = Sample {
-            dt: s.dt(),
-            gyro: s.gyro().map(|g| if gyro_saturated { clip(g, self.common.gyro_limit()) } else { g }),
-            // A clipped accelerometer reading points the wrong way: left out.
-            accel: if accel_saturated { None } else { s.accel() },
-            mag: s.mag(),
-        };
+        let (clipped, gyro_saturated, _) = self.clipped(&s.to_sample());
         // No re-acquisition while saturated: the pending one waits for a clean sample.
         let before = self.flags;
         let pending = self.flags & flags::REACQUIRE_PENDING;
