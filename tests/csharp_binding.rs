@@ -195,10 +195,10 @@ fn unity_package_assembles_and_compiles_against_the_unityengine_stub() {
 
 #[test]
 fn the_readme_shows_the_unity_hand_example_as_compiled() {
-    // README.md's first C# block under "## Unity" is examples/unity/OrientHand.cs, which
+    // README.md's first C# block under "## C# and Unity" is examples/unity/OrientHand.cs, which
     // the test above compiles against the UnityEngine stub.
     let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let section = &readme[readme.find("\n## Unity").expect("a Unity section")..];
+    let section = &readme[readme.find("\n## C# and Unity").expect("a Unity section")..];
     let start = section.find("```csharp\n").expect("a C# block") + "```csharp\n".len();
     let block = &section[start..start + section[start..].find("```\n").unwrap()];
     let file = std::fs::read_to_string(root().join("examples/unity/OrientHand.cs")).unwrap();
