@@ -3,10 +3,10 @@ using Orient; using Orient.Native; using UnityEngine;
 public class OrientHand : MonoBehaviour {              // a glove: one IMU on each bone
     public Transform[] bones;                          // the wrist, then each finger joint
     public System.Func<Sample[]> readGlove;            // your driver: one sample per bone
-    OrientRig rig; Native.Quaternion[] q;
+    OrientRig rig; Orient.Native.Quaternion[] q;
     void Start() {
         rig = new OrientRig(System.Array.ConvertAll(bones, b => new OrientFilter(Kind.Robust)));
-        q = new Native.Quaternion[bones.Length];
+        q = new Orient.Native.Quaternion[bones.Length];
     }
     void Update() {                                    // one native call for the whole hand
         rig.Update(readGlove(), q);
