@@ -188,8 +188,21 @@ fn unity_package_assembles_and_compiles_against_the_unityengine_stub() {
         .arg(pkg.join("Runtime/Orient.cs"))
         .arg(pkg.join("Runtime/OrientUnity.cs"))
         .arg(pkg.join("Samples~/HandRig/OrientHandRig.cs"))
+        .arg(root().join("examples/unity/OrientHand.cs"))
         .arg(root().join("tests/csharp/UnityEngineStub.cs"));
     check(mcs, "mcs Unity scripts");
+}
+
+#[test]
+fn the_readme_shows_the_unity_hand_example_as_compiled() {
+    // README.md's first C# block under "## C# and Unity" is examples/unity/OrientHand.cs, which
+    // the test above compiles against the UnityEngine stub.
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let section = &readme[readme.find("\n## C# and Unity").expect("a Unity section")..];
+    let start = section.find("```csharp\n").expect("a C# block") + "```csharp\n".len();
+    let block = &section[start..start + section[start..].find("```\n").unwrap()];
+    let file = std::fs::read_to_string(root().join("examples/unity/OrientHand.cs")).unwrap();
+    assert_eq!(block, file, "README's Unity example differs from examples/unity/OrientHand.cs");
 }
 
 /// Runs scripts/gen-csharp.py on `header` text; its exit success, output and stderr.

@@ -27,7 +27,7 @@ fn group(trial: u32) -> &'static str {
 
 fn main() {
     let dir = std::env::args().nth(1).map_or_else(
-        || PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/broad")),
+        || PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/broad")),
         PathBuf::from,
     );
     let files = orient_tools::eval::csv_files(&dir).expect("a directory of recordings");

@@ -18,7 +18,7 @@ use std::path::PathBuf;
 const FIRST_EIGHT: [u32; 8] = [1, 6, 8, 15, 24, 26, 28, 32];
 
 fn main() {
-    let mut dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/broad"));
+    let mut dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/broad"));
     let mut kinds = vec![Kind::Robust];
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {

@@ -23,6 +23,8 @@
 //!   mean (9D total + 6D* total) over the *other* groups is chosen and its score on the
 //!   held-out group reported (leave-one-group-out cross-validation), next to the
 //!   defaults' (in-sample) score and VQF's.
+//! - `--starts`: settling time when started in motion (see `starts_table`) instead;
+//!   `--kind NAME` runs another kind there (its defaults and `--set`) in robust's column.
 
 use orient::{Config, Filter, Kind, Quat, Sample};
 use orient_tools::eval::{remove_heading_offset, score, Recording, GROUPS};
@@ -124,8 +126,9 @@ fn settle(est: &[Quat], trial: &Trial, from: usize, to: usize) -> f64 {
 /// norm is off the trial's first reading by more than 20 % is inside a disturbance.
 fn starts_table(config: &Config, trials: &[Trial]) {
     let hz = 1.0 / trials[0].samples[0].dt;
+    let k = config.kind().name();
     println!("\n## Starts in motion, {hz:.1} Hz: settling time (s), mean / max over starts\n");
-    println!("| trial | starts | robust | VQF | starts in a disturbance | robust | VQF |");
+    println!("| trial | starts | {k} | VQF | starts in a disturbance | {k} | VQF |");
     println!("|---|---|---|---|---|---|---|");
     let window = (40.0 * hz) as usize;
     let (mut all_r, mut all_v, mut dist_r, mut dist_v) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
@@ -225,11 +228,12 @@ fn cell(m: &Triple) -> String {
 }
 
 fn main() {
-    let mut dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/broad"));
+    let mut dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/broad"));
     let mut rates: Vec<usize> = vec![1, 3, 6];
     let mut sets: Vec<(String, f64)> = Vec::new();
     let mut grid: Vec<(String, Vec<f64>)> = Vec::new();
     let mut starts = false;
+    let mut kind = Kind::Robust;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         if a == "--starts" {
@@ -239,6 +243,10 @@ fn main() {
         let mut value = || args.next().unwrap_or_else(|| panic!("{a} needs a value"));
         match a.as_str() {
             "--dir" => dir = PathBuf::from(value()),
+            "--kind" => {
+                let name = value();
+                kind = Kind::from_name(&name).unwrap_or_else(|| panic!("unknown kind {name}"));
+            }
             "--rates" => rates = value().split(',').map(|r| r.parse().expect("a factor")).collect(),
             "--set" => {
                 let kv = value();
@@ -282,8 +290,9 @@ fn main() {
             })
             .collect();
     }
+    assert!(starts || kind == Kind::Robust, "--kind goes with --starts");
     let config_of = |extra: &[(String, f64)]| {
-        let mut c = Config::new(Kind::Robust).expect("kind");
+        let mut c = Config::new(kind).expect("kind");
         for (name, value) in sets.iter().chain(extra) {
             c.set(name, *value).unwrap_or_else(|| panic!("no parameter {name}")).expect("value in range");
         }

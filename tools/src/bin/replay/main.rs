@@ -1,12 +1,21 @@
 //! Replays a recording through a filter and scores it against ground truth.
 //!
 //! ```text
-//! cargo run --release --bin replay -- --filter NAME[,NAME...] [--no-mag] [--frame enu|ned|nwu]
-//!     [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv
+//! cargo run --release --bin replay -- --filter NAME[,NAME...] [--offline] [--no-mag]
+//!     [--frame enu|ned|nwu] [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv
 //! ```
 //!
 //! - NAME: madgwick, mahony, complementary, ekf, gmvdk or robust; several (comma-separated
 //!   or `--filter` repeated) replay the same recording through each in turn.
+//! - `--offline` smooths the whole recording instead of filtering it sample by sample
+//!   (`orient::offline::smooth_into`, C `orient_smooth_arrays`): every output uses the
+//!   samples before and after it. Without `--filter` it runs the offline defaults
+//!   (`offline::config()`: the robust kind with `tau_mag` 27 s), and `--filter robust`
+//!   starts from them too (`--set tau_mag=9` gives the causal default back); the other
+//!   kinds start from their own defaults. A sample the smoother refuses (one that a
+//!   forward run of a new filter refuses) ends the tool with status 2, naming it: the
+//!   smoother takes only recordings it accepts whole. OUT has `t,qw,qx,qy,qz` only (the
+//!   smoother reports no diagnostics) and the SVG no lanes.
 //! - `--no-mag` ignores the magnetometer columns (6D).
 //! - `--set` changes a parameter by name (see the filter's parameter table); repeatable;
 //!   with several filters it applies to each that has the parameter.
@@ -41,7 +50,7 @@ use std::path::PathBuf;
 use std::process::exit;
 use std::time::Instant;
 
-const USAGE: &str = "usage: replay --filter NAME[,NAME...] [--no-mag] [--frame enu|ned|nwu] \
+const USAGE: &str = "usage: replay --filter NAME[,NAME...] [--offline] [--no-mag] [--frame enu|ned|nwu] \
                      [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv\n   or: replay --rig \
                      DIR/rig.json --out-dir OUT [--no-mag] [--kind KIND] [--set KEY=VALUE]... [--no-align] \
                      [--svg FILE]";
@@ -64,6 +73,7 @@ mod rig;
 
 struct Args {
     kinds: Vec<Kind>,
+    offline: bool,
     no_mag: bool,
     frame: Frame,
     sets: Vec<(String, f64)>,
@@ -80,6 +90,7 @@ fn fail(message: impl std::fmt::Display) -> ! {
 fn parse_args() -> Args {
     let mut kinds = Vec::new();
     let mut no_mag = false;
+    let mut offline = false;
     let mut frame = Frame::Enu;
     let mut sets = Vec::new();
     let mut out = None;
@@ -99,6 +110,7 @@ fn parse_args() -> Args {
                 }
             }
             "--no-mag" => no_mag = true,
+            "--offline" => offline = true,
             "--frame" => {
                 let v = value("--frame");
                 frame = Frame::from_name(&v)
@@ -125,14 +137,18 @@ fn parse_args() -> Args {
             _ => input = Some(PathBuf::from(arg)),
         }
     }
+    if kinds.is_empty() && offline {
+        kinds.push(Kind::Robust);
+    }
     if kinds.is_empty() {
-        fail(format!("--filter is required\n{USAGE}"));
+        fail(format!("--filter is required (or --offline, which defaults to robust)\n{USAGE}"));
     }
     if out.is_some() && kinds.len() > 1 {
         fail("--out takes one filter (its columns depend on the kind)");
     }
     Args {
         kinds,
+        offline,
         no_mag,
         frame,
         sets,
@@ -204,17 +220,21 @@ fn print_scores(label: &str, s: &Scores) {
 
 /// One filter's run over the recording.
 struct Run {
-    kind: Kind,
+    /// The kind's name, with " offline" for a smoothed run.
+    label: String,
     /// The estimates in ENU (what BROAD scores).
     enu: Vec<Quat>,
-    /// orient_filter_flags after each sample (0 for a rejected one).
-    flags: Vec<u32>,
-    /// Diagnostics' rest flag after each sample (false where the kind has none).
-    rest: Vec<bool>,
+    /// orient_filter_flags after each sample (0 for a rejected one) and the diagnostics'
+    /// rest flag (false where the kind has none); None for a smoothed run.
+    reports: Option<(Vec<u32>, Vec<bool>)>,
 }
 
 fn configure(kind: Kind, args: &Args) -> Config {
-    let mut config = Config::new(kind).unwrap_or_else(|e| fail(e));
+    let mut config = if args.offline && kind == Kind::Robust {
+        orient::offline::config()
+    } else {
+        Config::new(kind).unwrap_or_else(|e| fail(e))
+    };
     config.frame = args.frame;
     for (key, value) in &args.sets {
         match config.set(key, *value) {
@@ -256,12 +276,20 @@ fn main() {
         if i > 0 {
             say!();
         }
-        runs.push(replay(&args, config, &rec, &samples));
+        runs.push(if args.offline {
+            smooth(&args, config, &rec, &samples)
+        } else {
+            replay(&args, config, &rec, &samples)
+        });
     }
     if let Some(path) = &args.svg {
         let series: Vec<plot::Series> = runs
             .iter()
-            .map(|r| plot::Series { label: r.kind.name(), estimates: &r.enu, flags: &r.flags, rest: &r.rest })
+            .map(|r| plot::Series {
+                label: &r.label,
+                estimates: &r.enu,
+                reports: r.reports.as_ref().map(|(flags, rest)| plot::Reports { flags, rest }),
+            })
             .collect();
         let title = format!(
             "{} ({})",
@@ -324,7 +352,7 @@ fn replay(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Samp
         }
     }
 
-    let dims = if args.no_mag { "6D" } else { "9D" };
+    let dims = dims(args);
     say!(
         "{} {dims}, frame {}, {} samples from {} in {:.1} ms ({:.0} ns/sample), {rejected} rejected",
         kind.name(),
@@ -337,21 +365,88 @@ fn replay(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Samp
     if let Some((i, e)) = first_rejection {
         say!("first rejected sample: row {} (line {}): {e}", i, i + 2);
     }
-    // BROAD scores ENU q_ES.
+    let enu = score_and_print(args, rec, &estimates);
+    Run { label: kind.name().to_string(), enu, reports: Some((sample_flags, rest)) }
+}
+
+fn dims(args: &Args) -> &'static str {
+    if args.no_mag {
+        "6D"
+    } else {
+        "9D"
+    }
+}
+
+/// The estimates turned to ENU (what BROAD scores: q_ES), scored and printed when the
+/// recording has ground truth; with `--no-mag`, returned after removing the heading
+/// offset, as scored.
+fn score_and_print(args: &Args, rec: &Recording, estimates: &[Quat]) -> Vec<Quat> {
     let to_enu = args.frame.rotation_to(Frame::Enu);
     let mut enu: Vec<Quat> = estimates.iter().map(|q| to_enu.map_or(*q, |c| c * *q)).collect();
-    let run = |enu: Vec<Quat>| Run { kind, enu, flags: sample_flags.clone(), rest: rest.clone() };
     if !rec.has_truth() {
         say!("no ground truth columns (quat_*, movement): nothing to score");
-        return run(enu);
+        return enu;
     }
     print_scores("BROAD RMSE [deg]:", &score(&enu, &rec.truth, &rec.movement));
     if args.no_mag {
-        let mut fixed = enu.clone();
-        let offset = remove_heading_offset(&mut fixed, &rec.truth, &rec.movement);
+        let offset = remove_heading_offset(&mut enu, &rec.truth, &rec.movement);
         let label = format!("heading offset {:+.1} deg removed:", offset.to_degrees());
-        print_scores(&label, &score(&fixed, &rec.truth, &rec.movement));
-        enu = fixed;
+        print_scores(&label, &score(&enu, &rec.truth, &rec.movement));
     }
-    run(enu)
+    enu
+}
+
+/// `--offline`: the whole recording smoothed at once (forward, backward, forward again,
+/// the two directions fused per sample).
+fn smooth(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Sample]) -> Run {
+    let kind = config.kind();
+    let mut estimates = vec![Quat::IDENTITY; samples.len()];
+    let start = Instant::now();
+    let result = orient::offline::smooth_into(config, samples, &mut estimates[..]);
+    let elapsed = start.elapsed();
+    match result {
+        Ok(()) => {}
+        Err(orient::offline::SmoothError::Sample { index, error }) => fail(format!(
+            "--offline: {}: row {index} (line {}) is refused: {error}; the smoother takes only \
+             recordings that a forward run accepts whole",
+            args.input.display(),
+            index + 2
+        )),
+        Err(e) => {
+            eprintln!("replay: --offline: {e}");
+            exit(1)
+        }
+    }
+    if let Some(path) = &args.out {
+        let write = || -> std::io::Result<()> {
+            let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
+            writeln!(w, "t,qw,qx,qy,qz")?;
+            for (t, q) in rec.t.iter().zip(&estimates) {
+                writeln!(w, "{t},{},{},{},{}", q.w, q.x, q.y, q.z)?;
+            }
+            w.flush()
+        };
+        if let Err(e) = write() {
+            eprintln!("replay: cannot write {}: {e}", path.display());
+            exit(1);
+        }
+    }
+    let tau_mag = kind
+        .param_by_name("tau_mag")
+        .and_then(|p| config.param(p.id).ok())
+        .map_or(String::new(), |v| format!(", tau_mag {v} s"));
+    say!(
+        "{} offline {}, frame {}{tau_mag}, {} samples from {} smoothed in {:.1} ms ({:.0} ns/sample), \
+         at most {} bytes allocated",
+        kind.name(),
+        dims(args),
+        args.frame.name(),
+        samples.len(),
+        args.input.display(),
+        elapsed.as_secs_f64() * 1e3,
+        elapsed.as_secs_f64() * 1e9 / samples.len().max(1) as f64,
+        orient::offline::memory(samples.len()).unwrap_or(usize::MAX),
+    );
+    let enu = score_and_print(args, rec, &estimates);
+    Run { label: format!("{} offline", kind.name()), enu, reports: None }
 }

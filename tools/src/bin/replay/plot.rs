@@ -7,6 +7,8 @@
 //! - accel unused: likewise for ORIENT_FLAG_ACCEL_USED (acceleration rejection),
 //! - gap: ORIENT_FLAG_GAP.
 //!
+//! A smoothed run (`--offline`) reports none of these and has no lanes.
+//!
 //! No kind reports more than this today (robust's disturbance detector shows only as
 //! "mag unused"), so there is no other band. Drawn with `plotters` (SVG backend only);
 //! each line is the maximum over the samples of one pixel column, so no peak is lost.
@@ -21,6 +23,14 @@ pub struct Series<'a> {
     pub label: &'a str,
     /// ENU estimates, one per recording row.
     pub estimates: &'a [Quat],
+    /// What the filter reported after each row, for its lanes: flags (0 where the sample
+    /// was rejected) and rest. None for a smoothed run (`--offline`), which reports
+    /// neither: it gets no lanes.
+    pub reports: Option<Reports<'a>>,
+}
+
+/// A causal run's reports, one per recording row.
+pub struct Reports<'a> {
     /// Flags after each row (0 where the sample was rejected).
     pub flags: &'a [u32],
     /// Rest reported after each row.
@@ -87,7 +97,7 @@ pub fn write_svg(
     series: &[Series],
     with_mag: bool,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let lanes = series.len() * BANDS.len();
+    let lanes = series.iter().filter(|s| s.reports.is_some()).count() * BANDS.len();
     let lane_h = 14u32;
     let height = 40 + 3 * PANEL + 60 + lanes as u32 * lane_h;
     let root = SVGBackend::new(path, (WIDTH, height)).into_drawing_area();
@@ -136,21 +146,26 @@ pub fn write_svg(
         chart.configure_series_labels().background_style(WHITE.mix(0.85)).border_style(BLACK).draw()?;
     }
 
-    // The bands: one lane per filter and condition.
+    // The bands: one lane per filter that reports and condition.
+    if lanes == 0 {
+        root.present()?;
+        return Ok(());
+    }
     let mut chart = ChartBuilder::on(&lanes_area)
         .margin(8)
         .y_label_area_size(120)
         .x_label_area_size(20)
         .build_cartesian_2d(t0..t1, 0.0..lanes as f64)?;
     chart.configure_mesh().disable_mesh().disable_y_axis().x_labels(0).draw()?;
-    for (j, s) in series.iter().enumerate() {
+    let reporting = series.iter().filter_map(|s| s.reports.as_ref().map(|r| (s.label, r)));
+    for (j, (label, r)) in reporting.enumerate() {
         for (b, (name, color)) in BANDS.iter().enumerate() {
             let lane = (lanes - 1 - (j * BANDS.len() + b)) as f64;
             let on = |i: usize| match b {
-                0 => s.rest[i],
-                1 => with_mag && s.flags[i] & flags::MAG_USED == 0,
-                2 => s.flags[i] & flags::ACCEL_USED == 0,
-                _ => s.flags[i] & flags::GAP != 0,
+                0 => r.rest[i],
+                1 => with_mag && r.flags[i] & flags::MAG_USED == 0,
+                2 => r.flags[i] & flags::ACCEL_USED == 0,
+                _ => r.flags[i] & flags::GAP != 0,
             };
             let bands = spans(&rec.t, on);
             chart.draw_series(
@@ -159,7 +174,7 @@ pub fn write_svg(
                     .map(|(a, z)| Rectangle::new([(*a, lane + 0.15), (*z, lane + 0.85)], color.filled())),
             )?;
             chart.draw_series(std::iter::once(Text::new(
-                format!("{} {name}", s.label),
+                format!("{label} {name}"),
                 (t0, lane + 0.5),
                 ("sans-serif", 11).into_font().color(&BLACK).pos(plotters::style::text_anchor::Pos::new(
                     plotters::style::text_anchor::HPos::Right,
