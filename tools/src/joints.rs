@@ -1,0 +1,378 @@
+//! Joint-constraint heading estimation for a rig of 6D filters (issue 42, deliverables 1
+//! and 3): online, sample by sample, bounded memory, no allocation per update. A
+//! prototype in the tools crate, plugged into [`run_rig`](crate::rig::run_rig) as a
+//! [`JointStage`]; the library takes the algorithm over from here.
+//!
+//! # The model
+//!
+//! Every sensor runs its own 6D filter; its heading is free and drifts. For each joint
+//! the child's orientation is corrected by a rotation about the vertical,
+//! `q'_c = R_z(ψ_c) ⊗ q_c`, with `ψ_c = ψ_p + Δ` (the root has `ψ = 0`): `Δ` is the
+//! child's heading relative to its parent, estimated from the uncorrected 6D estimates
+//! `q_p`, `q_c` of the two sensors (a common turn about the vertical leaves every
+//! constraint unchanged, so the parent's own correction does not enter).
+//!
+//! Per joint an extended Kalman filter with the state
+//! `x = [Δ, b, u_p1, u_p2, u_c1, u_c2]`:
+//! - `Δ` the relative heading (rad), `b = dΔ/dt` the relative heading drift (rad/s): the
+//!   difference of the two sensors' vertical gyro-bias residuals that their filters
+//!   leave, which the constraint reveals by the trend of `Δ`;
+//! - `u` the axis corrections (rad): `j = normalize(j₀ + u₁ b₁ + u₂ b₂)` with `b₁, b₂` a
+//!   basis perpendicular to the axis (error state, folded into `j` after each update and
+//!   the basis carried along, `b₁ ← normalize(b₁ − j (j·b₁))`, `b₂ = j × b₁`).
+//!
+//! Prediction over `dt` (only while moving; at rest both filters hold, and so does the
+//! joint): `Δ ← Δ + b dt`, `P ← F P Fᵀ + Q dt`, `F = I + dt E₀₁`,
+//! `Q = diag(q_Δ, q_b, q_j, q_j, q_j, q_j)`.
+//!
+//! Measurements, earth-frame axes `e_p = R(q_p) j_p`, `e_c = R_z(Δ) R(q_c) j_c`:
+//! - hinge: `r = e_p − e_c = 0` (three components, processed as scalar updates): the axis
+//!   seen from both sides coincides. `∂r/∂Δ = −ẑ × e_c`, `∂r/∂u_pk = R(q_p) b_pk`,
+//!   `∂r/∂u_ck = −R_z(Δ) R(q_c) b_ck`. The horizontal part fixes `Δ` (gain ∝ the axis'
+//!   horizontal length), the vertical part the axes' tilt.
+//! - 2-DoF: `f = e_p · e_c = 0` (Laidig, Weygers, Seel 2022: the first axis, fixed in the
+//!   parent, stays perpendicular to the second, fixed in the child).
+//!   `∂f/∂Δ = e_p · (ẑ × e_c)`, `∂f/∂u_pk = (R(q_p) b_pk) · e_c`,
+//!   `∂f/∂u_ck = e_p · (R_z(Δ) R(q_c) b_ck)`.
+//!
+//! Each scalar update: `S = h P hᵀ + R`, with `R = r_c / dt` (the residuals' errors,
+//! laxity, soft tissue and the filters' inclination errors, are correlated over a fraction
+//! of a second: `r_c` is their variance times their correlation time, so the gain does not
+//! depend on the rate); an innovation beyond `gate·√S` is down-weighted (`R` scaled by
+//! `ν²/(gate² S)`, Huber); `K = P hᵀ / S`, `δx += K (ν − h δx)`, `P ← (I − K h) P`. The
+//! step applied to `Δ` is limited to `max_rate · dt` (never a jump).
+//!
+//! The observability rating per joint is the information the constraint gave about `Δ`,
+//! `h_Δ² / R` per unit time, low-passed (time constant [`JointParams::rating_tau`]) and
+//! scaled to [0, 1] by its value for a horizontal axis: near 0 while the axis is vertical
+//! (a hinge) or the 2-DoF axes leave the heading free, 0 at rest.
+
+use crate::rig::{joint_angles, JointKind, JointStage, RigJoint, RigSpec};
+use orient::{Quat, Sample, Vec3};
+
+const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
+/// Number of states.
+const N: usize = 6;
+
+/// Tuning of the joint estimator (continuous-time densities, so independent of the rate).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointParams {
+    /// Hinge residual noise density per component, rad²·s.
+    pub r_hinge: f64,
+    /// 2-DoF residual noise density, rad²·s.
+    pub r_2dof: f64,
+    /// Random walk of the relative heading, rad²/s.
+    pub q_heading: f64,
+    /// Random walk of the relative drift rate, rad²/s³ (0 and `rate_std0` 0: no rate state).
+    pub q_rate: f64,
+    /// Random walk of each axis direction component, rad²/s (0 and `axis_std0` 0: axes fixed).
+    pub q_axis: f64,
+    /// Initial standard deviations: heading (rad), drift rate (rad/s), axes (rad).
+    pub heading_std0: f64,
+    pub rate_std0: f64,
+    pub axis_std0: f64,
+    /// Largest correction of `Δ` per second, rad/s.
+    pub max_rate: f64,
+    /// Rest: both gyros below this norm (rad/s) for `rest_time` seconds.
+    pub rest_gyro: f64,
+    pub rest_time: f64,
+    /// Innovations beyond this many standard deviations are down-weighted.
+    pub gate: f64,
+    /// Time constant of the rating's low-pass, s.
+    pub rating_tau: f64,
+}
+
+impl Default for JointParams {
+    fn default() -> JointParams {
+        let d = 1f64.to_radians();
+        JointParams {
+            r_hinge: 0.05f64.powi(2) * 0.5,
+            r_2dof: 0.08f64.powi(2) * 0.5,
+            q_heading: (0.1 * d).powi(2),
+            q_rate: (0.01 * d).powi(2),
+            q_axis: 0.0,
+            heading_std0: 1.0 * d,
+            rate_std0: 0.5 * d,
+            axis_std0: 0.0,
+            max_rate: 5.0 * d,
+            rest_gyro: 0.15,
+            rest_time: 0.3,
+            gate: 3.0,
+            rating_tau: 2.0,
+        }
+    }
+}
+
+/// An axis with its perpendicular basis (carried along as the axis is refined).
+#[derive(Clone, Copy, Debug)]
+struct Axis {
+    j: Vec3,
+    b1: Vec3,
+    b2: Vec3,
+}
+
+impl Axis {
+    fn new(j: Vec3) -> Axis {
+        let j = j.normalized();
+        let helper = if j.x.abs() <= j.y.abs() && j.x.abs() <= j.z.abs() {
+            Vec3::new(1.0, 0.0, 0.0)
+        } else if j.y.abs() <= j.z.abs() {
+            Vec3::new(0.0, 1.0, 0.0)
+        } else {
+            UP
+        };
+        let b1 = j.cross(helper).normalized();
+        Axis { j, b1, b2: j.cross(b1) }
+    }
+
+    fn fold(&mut self, u1: f64, u2: f64) {
+        self.j = (self.j + self.b1 * u1 + self.b2 * u2).normalized();
+        self.b1 = (self.b1 - self.j * self.j.dot(self.b1)).normalized();
+        self.b2 = self.j.cross(self.b1);
+    }
+}
+
+/// One joint's estimator: the relative heading of the child, its drift, refined axes.
+#[derive(Clone, Debug)]
+pub struct JointEstimator {
+    pub kind: JointKind,
+    p_axis: Axis,
+    c_axis: Axis,
+    x: [f64; N],
+    p: [[f64; N]; N],
+    params: JointParams,
+    still: f64,
+    rating: f64,
+    /// `h_Δ²/R·dt` for a horizontal axis: the rating's scale.
+    info_scale: f64,
+}
+
+fn rot_z(psi: f64) -> Quat {
+    Quat::new(libm::cos(0.5 * psi), 0.0, 0.0, libm::sin(0.5 * psi))
+}
+
+impl JointEstimator {
+    pub fn new(kind: JointKind, axis_parent: Vec3, axis_child: Vec3, params: JointParams) -> JointEstimator {
+        let mut p = [[0.0; N]; N];
+        p[0][0] = params.heading_std0.powi(2);
+        p[1][1] = params.rate_std0.powi(2);
+        for (k, row) in p.iter_mut().enumerate().skip(2) {
+            row[k] = params.axis_std0.powi(2);
+        }
+        JointEstimator {
+            kind,
+            p_axis: Axis::new(axis_parent),
+            c_axis: Axis::new(axis_child),
+            x: [0.0; N],
+            p,
+            params,
+            still: 0.0,
+            rating: 0.0,
+            info_scale: 1.0,
+        }
+    }
+
+    /// The relative heading Δ (rad): turn the child's 6D estimate by `R_z(Δ)` relative to its parent's.
+    pub fn heading(&self) -> f64 {
+        self.x[0]
+    }
+    /// The relative heading drift b (rad/s).
+    pub fn drift(&self) -> f64 {
+        self.x[1]
+    }
+    /// The standard deviation of Δ (rad).
+    pub fn heading_std(&self) -> f64 {
+        self.p[0][0].max(0.0).sqrt()
+    }
+    /// The observability rating in [0, 1].
+    pub fn rating(&self) -> f64 {
+        self.rating
+    }
+    /// The axes as refined (sensor frames).
+    pub fn axes(&self) -> (Vec3, Vec3) {
+        (self.p_axis.j, self.c_axis.j)
+    }
+
+    /// One sample: the two sensors' 6D orientations (sensor to earth, uncorrected) and
+    /// gyroscope readings (rad/s), the interval `dt` (s). Returns Δ.
+    pub fn update(&mut self, q_p: Quat, q_c: Quat, gyr_p: Vec3, gyr_c: Vec3, dt: f64) -> f64 {
+        let prm = self.params;
+        if !(dt > 0.0 && dt < 1.0) {
+            return self.x[0];
+        }
+        let moving = gyr_p.norm_squared().max(gyr_c.norm_squared()) > prm.rest_gyro * prm.rest_gyro;
+        self.still = if moving { 0.0 } else { self.still + dt };
+        let alpha = dt / (prm.rating_tau + dt);
+        if self.still >= prm.rest_time {
+            self.rating -= alpha * self.rating;
+            return self.x[0];
+        }
+        self.predict(dt);
+        let rz = rot_z(self.x[0]);
+        let e_p = q_p.rotate(self.p_axis.j);
+        let e_c = rz.rotate(q_c.rotate(self.c_axis.j));
+        let dp = [q_p.rotate(self.p_axis.b1), q_p.rotate(self.p_axis.b2)];
+        let dc = [rz.rotate(q_c.rotate(self.c_axis.b1)), rz.rotate(q_c.rotate(self.c_axis.b2))];
+        let mut dx = [0.0; N];
+        let mut info = 0.0;
+        match self.kind {
+            JointKind::Hinge => {
+                let r = e_p - e_c;
+                let d_delta = -UP.cross(e_c);
+                let comp = |v: Vec3, i: usize| [v.x, v.y, v.z][i];
+                let rr = prm.r_hinge / dt;
+                for i in 0..3 {
+                    let h = [
+                        comp(d_delta, i),
+                        0.0,
+                        comp(dp[0], i),
+                        comp(dp[1], i),
+                        -comp(dc[0], i),
+                        -comp(dc[1], i),
+                    ];
+                    info += h[0] * h[0] / rr;
+                    self.scalar_update(&h, -comp(r, i), rr, &mut dx);
+                }
+                self.info_scale = 1.0 / rr;
+            }
+            JointKind::TwoDof => {
+                let f = e_p.dot(e_c);
+                let h = [
+                    e_p.dot(UP.cross(e_c)),
+                    0.0,
+                    dp[0].dot(e_c),
+                    dp[1].dot(e_c),
+                    e_p.dot(dc[0]),
+                    e_p.dot(dc[1]),
+                ];
+                let rr = prm.r_2dof / dt;
+                info += h[0] * h[0] / rr;
+                self.scalar_update(&h, -f, rr, &mut dx);
+                self.info_scale = 1.0 / rr;
+            }
+        }
+        self.rating += alpha * ((info / self.info_scale).min(1.0) - self.rating);
+        let step = prm.max_rate * dt;
+        self.x[0] += dx[0].clamp(-step, step);
+        self.x[1] += dx[1];
+        self.p_axis.fold(dx[2], dx[3]);
+        self.c_axis.fold(dx[4], dx[5]);
+        self.x[0]
+    }
+
+    fn predict(&mut self, dt: f64) {
+        let prm = &self.params;
+        self.x[0] += self.x[1] * dt;
+        // P ← F P Fᵀ with F = I + dt E₀₁: row 0 += dt·row 1, then column 0 += dt·column 1.
+        for k in 0..N {
+            self.p[0][k] += dt * self.p[1][k];
+        }
+        for row in self.p.iter_mut() {
+            row[0] += dt * row[1];
+        }
+        self.p[0][0] += prm.q_heading * dt;
+        self.p[1][1] += prm.q_rate * dt;
+        for k in 2..N {
+            self.p[k][k] += prm.q_axis * dt;
+        }
+    }
+
+    /// A scalar measurement `0 = z_pred + h δx + v`, innovation `nu` (before δx).
+    fn scalar_update(&mut self, h: &[f64; N], nu: f64, r: f64, dx: &mut [f64; N]) {
+        let mut ph = [0.0; N];
+        for i in 0..N {
+            ph[i] = (0..N).map(|k| self.p[i][k] * h[k]).sum();
+        }
+        let hph: f64 = (0..N).map(|k| h[k] * ph[k]).sum();
+        let nu = nu - (0..N).map(|k| h[k] * dx[k]).sum::<f64>();
+        let mut s = hph + r;
+        let g2 = self.params.gate * self.params.gate;
+        if nu * nu > g2 * s {
+            s = hph + r * nu * nu / (g2 * s);
+        }
+        if !(s > 0.0) {
+            return;
+        }
+        for i in 0..N {
+            dx[i] += ph[i] / s * nu;
+        }
+        for i in 0..N {
+            for k in 0..N {
+                self.p[i][k] -= ph[i] * ph[k] / s;
+            }
+        }
+    }
+}
+
+/// The joint stage of a rig run: one [`JointEstimator`] per joint, children after their
+/// parents, corrections applied down the tree.
+pub struct Joints {
+    /// (parent, child, estimator) in an order where every parent comes before its children.
+    pub joints: Vec<(usize, usize, JointEstimator)>,
+    /// Each sensor's heading correction ψ (rad).
+    heading: Vec<f64>,
+    /// The first row estimated (headings aligned there).
+    start: usize,
+    /// Index into `joints` for each of the spec's joints.
+    order: Vec<usize>,
+}
+
+impl Joints {
+    /// Estimators for every joint of `spec`, starting at row `start` (the row at which the
+    /// headings were aligned).
+    pub fn new(spec: &RigSpec, start: usize, params: JointParams) -> Joints {
+        let n = spec.sensors.len();
+        // Depth of each sensor in the tree, for the order.
+        let depth = |mut s: usize| {
+            let mut d = 0;
+            while let Some(j) = spec.joints.iter().find(|j| j.child == s) {
+                s = j.parent;
+                d += 1;
+            }
+            d
+        };
+        let mut idx: Vec<usize> = (0..spec.joints.len()).collect();
+        idx.sort_by_key(|&k| depth(spec.joints[k].child));
+        let joints: Vec<(usize, usize, JointEstimator)> = idx
+            .iter()
+            .map(|&k| {
+                let j = &spec.joints[k];
+                (j.parent, j.child, JointEstimator::new(j.kind, j.axis_parent, j.axis_child, params))
+            })
+            .collect();
+        let mut order = vec![0; spec.joints.len()];
+        for (pos, &k) in idx.iter().enumerate() {
+            order[k] = pos;
+        }
+        Joints { joints, heading: vec![0.0; n], start, order }
+    }
+
+    /// The estimator of the spec's joint `k`.
+    pub fn estimator(&self, k: usize) -> &JointEstimator {
+        &self.joints[self.order[k]].2
+    }
+
+    /// Joint `k`'s angles (rad) from corrected sensor orientations, with the refined axes.
+    pub fn angles(&self, spec: &RigSpec, k: usize, q_parent: Quat, q_child: Quat) -> (f64, f64) {
+        let (a, b) = self.estimator(k).axes();
+        let j = RigJoint { axis_parent: a, axis_child: b, ..spec.joints[k].clone() };
+        joint_angles(spec, &j, q_parent, q_child)
+    }
+}
+
+impl JointStage for Joints {
+    fn update(&mut self, row: usize, samples: &[Sample], sensors: &mut [Quat]) {
+        if row < self.start {
+            return;
+        }
+        for (p, c, est) in self.joints.iter_mut() {
+            let s = (&samples[*p], &samples[*c]);
+            let (Some(gp), Some(gc)) = (s.0.gyro, s.1.gyro) else { continue };
+            let d = est.update(sensors[*p], sensors[*c], gp, gc, s.1.dt);
+            self.heading[*c] = self.heading[*p] + d;
+        }
+        for (_, c, _) in &self.joints {
+            sensors[*c] = rot_z(self.heading[*c]) * sensors[*c];
+        }
+    }
+}
