@@ -51,8 +51,12 @@ use crate::rig::{joint_angles, JointKind, JointStage, RigJoint, RigSpec};
 use orient::{Quat, Sample, Vec3};
 
 const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
-/// Number of states.
-const N: usize = 6;
+/// Number of states: Δ, β_p (3), β_c (3), u_p (2), u_c (2).
+const N: usize = 11;
+const BP: usize = 1;
+const BC: usize = 4;
+const UP_: usize = 7;
+const UC: usize = 9;
 
 /// Tuning of the joint estimator (continuous-time densities, so independent of the rate).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -89,7 +93,7 @@ impl Default for JointParams {
             r_hinge: 0.05f64.powi(2) * 0.5,
             r_2dof: 0.08f64.powi(2) * 0.5,
             q_heading: (0.1 * d).powi(2),
-            q_rate: (0.01 * d).powi(2),
+            q_rate: 3e-7,
             q_axis: 0.0,
             heading_std0: 1.0 * d,
             rate_std0: 0.5 * d,
@@ -142,6 +146,8 @@ pub struct JointEstimator {
     p: [[f64; N]; N],
     params: JointParams,
     still: f64,
+    /// The vertical in the parent's and the child's sensor frame at the last sample.
+    g: [Vec3; 2],
     rating: f64,
     /// `h_Δ²/R·dt` for a horizontal axis: the rating's scale.
     info_scale: f64,
@@ -155,9 +161,11 @@ impl JointEstimator {
     pub fn new(kind: JointKind, axis_parent: Vec3, axis_child: Vec3, params: JointParams) -> JointEstimator {
         let mut p = [[0.0; N]; N];
         p[0][0] = params.heading_std0.powi(2);
-        p[1][1] = params.rate_std0.powi(2);
-        for (k, row) in p.iter_mut().enumerate().skip(2) {
-            row[k] = params.axis_std0.powi(2);
+        for k in BP..UP_ {
+            p[k][k] = params.rate_std0.powi(2);
+        }
+        for k in UP_..N {
+            p[k][k] = params.axis_std0.powi(2);
         }
         JointEstimator {
             kind,
@@ -167,6 +175,7 @@ impl JointEstimator {
             p,
             params,
             still: 0.0,
+            g: [Vec3::ZERO; 2],
             rating: 0.0,
             info_scale: 1.0,
         }
@@ -176,9 +185,11 @@ impl JointEstimator {
     pub fn heading(&self) -> f64 {
         self.x[0]
     }
-    /// The relative heading drift b (rad/s).
+    /// The relative heading drift (rad/s) at the last sample:
+    /// `dΔ/dt = g_c·β_c − g_p·β_p`.
     pub fn drift(&self) -> f64 {
-        self.x[1]
+        let v = |o: usize| Vec3::new(self.x[o], self.x[o + 1], self.x[o + 2]);
+        self.g[1].dot(v(BC)) - self.g[0].dot(v(BP))
     }
     /// The standard deviation of Δ (rad).
     pub fn heading_std(&self) -> f64 {
@@ -207,6 +218,7 @@ impl JointEstimator {
             self.rating -= alpha * self.rating;
             return self.x[0];
         }
+        self.g = [q_p.rotate_inverse(UP), q_c.rotate_inverse(UP)];
         self.predict(dt);
         let rz = rot_z(self.x[0]);
         let e_p = q_p.rotate(self.p_axis.j);
@@ -222,14 +234,12 @@ impl JointEstimator {
                 let comp = |v: Vec3, i: usize| [v.x, v.y, v.z][i];
                 let rr = prm.r_hinge / dt;
                 for i in 0..3 {
-                    let h = [
-                        comp(d_delta, i),
-                        0.0,
-                        comp(dp[0], i),
-                        comp(dp[1], i),
-                        -comp(dc[0], i),
-                        -comp(dc[1], i),
-                    ];
+                    let mut h = [0.0; N];
+                    h[0] = comp(d_delta, i);
+                    h[UP_] = comp(dp[0], i);
+                    h[UP_ + 1] = comp(dp[1], i);
+                    h[UC] = -comp(dc[0], i);
+                    h[UC + 1] = -comp(dc[1], i);
                     info += h[0] * h[0] / rr;
                     self.scalar_update(&h, -comp(r, i), rr, &mut dx);
                 }
@@ -237,14 +247,12 @@ impl JointEstimator {
             }
             JointKind::TwoDof => {
                 let f = e_p.dot(e_c);
-                let h = [
-                    e_p.dot(UP.cross(e_c)),
-                    0.0,
-                    dp[0].dot(e_c),
-                    dp[1].dot(e_c),
-                    e_p.dot(dc[0]),
-                    e_p.dot(dc[1]),
-                ];
+                let mut h = [0.0; N];
+                h[0] = e_p.dot(UP.cross(e_c));
+                h[UP_] = dp[0].dot(e_c);
+                h[UP_ + 1] = dp[1].dot(e_c);
+                h[UC] = e_p.dot(dc[0]);
+                h[UC + 1] = e_p.dot(dc[1]);
                 let rr = prm.r_2dof / dt;
                 info += h[0] * h[0] / rr;
                 self.scalar_update(&h, -f, rr, &mut dx);
@@ -254,25 +262,40 @@ impl JointEstimator {
         self.rating += alpha * ((info / self.info_scale).min(1.0) - self.rating);
         let step = prm.max_rate * dt;
         self.x[0] += dx[0].clamp(-step, step);
-        self.x[1] += dx[1];
-        self.p_axis.fold(dx[2], dx[3]);
-        self.c_axis.fold(dx[4], dx[5]);
+        for k in BP..UP_ {
+            self.x[k] += dx[k];
+        }
+        self.p_axis.fold(dx[UP_], dx[UP_ + 1]);
+        self.c_axis.fold(dx[UC], dx[UC + 1]);
         self.x[0]
     }
 
     fn predict(&mut self, dt: f64) {
         let prm = &self.params;
-        self.x[0] += self.x[1] * dt;
-        // P ← F P Fᵀ with F = I + dt E₀₁: row 0 += dt·row 1, then column 0 += dt·column 1.
+        // dΔ/dt = f·x with f = [0, −g_p, g_c, 0, 0, 0, 0]; F = I + dt e₀ fᵀ.
+        let mut f = [0.0; N];
+        for (k, (gp, gc)) in
+            [(self.g[0].x, self.g[1].x), (self.g[0].y, self.g[1].y), (self.g[0].z, self.g[1].z)].into_iter().enumerate()
+        {
+            f[BP + k] = -gp;
+            f[BC + k] = gc;
+        }
+        self.x[0] += dt * (0..N).map(|k| f[k] * self.x[k]).sum::<f64>();
+        // F P Fᵀ = P + dt (e₀ vᵀ + v e₀ᵀ) + dt² (fᵀ P f) e₀ e₀ᵀ, v = P f.
+        let mut v = [0.0; N];
+        for (i, vi) in v.iter_mut().enumerate() {
+            *vi = (0..N).map(|k| self.p[i][k] * f[k]).sum();
+        }
+        let fpf: f64 = (0..N).map(|k| f[k] * v[k]).sum();
         for k in 0..N {
-            self.p[0][k] += dt * self.p[1][k];
+            self.p[0][k] += dt * v[k];
+            self.p[k][0] += dt * v[k];
         }
-        for row in self.p.iter_mut() {
-            row[0] += dt * row[1];
+        self.p[0][0] += dt * dt * fpf + prm.q_heading * dt;
+        for k in BP..UP_ {
+            self.p[k][k] += prm.q_rate * dt;
         }
-        self.p[0][0] += prm.q_heading * dt;
-        self.p[1][1] += prm.q_rate * dt;
-        for k in 2..N {
+        for k in UP_..N {
             self.p[k][k] += prm.q_axis * dt;
         }
     }

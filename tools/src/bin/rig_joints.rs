@@ -58,6 +58,41 @@ impl JointStage for Oracle<'_> {
     }
 }
 
+/// Runs [`Joints`] and writes, per row, each joint's heading error (deg, the turn about
+/// the vertical that would make the child right relative to its parent) and rating.
+struct Trace<'a> {
+    rec: &'a RigRecording,
+    joints: Joints,
+    truth_input: bool,
+    out: std::io::BufWriter<std::fs::File>,
+}
+
+impl JointStage for Trace<'_> {
+    fn update(&mut self, row: usize, samples: &[Sample], sensors: &mut [Quat]) {
+        use std::io::Write;
+        if self.truth_input {
+            let t = self.rec.t()[row];
+            for (s, q) in sensors.iter_mut().enumerate() {
+                let psi = 0.0 * t * s as f64;
+                *q = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), psi) * self.rec.sensors[s].truth[row];
+            }
+        }
+        let raw: Vec<Quat> = sensors.to_vec();
+        self.joints.update(row, samples, sensors);
+        let spec = &self.rec.spec;
+        let _ = write!(self.out, "{:.3},{:.3}", self.rec.t()[row], samples[0].gyro.unwrap().norm());
+        for (k, j) in spec.joints.iter().enumerate() {
+            let (tp, tc) = (self.rec.sensors[j.parent].truth[row], self.rec.sensors[j.child].truth[row]);
+            let want = sensors[j.parent] * (tp.conj() * tc);
+            let d = twist_angle(want * sensors[j.child].conj(), Vec3::new(0.0, 0.0, 1.0));
+            let d0 = twist_angle(raw[j.parent] * (tp.conj() * tc) * raw[j.child].conj(), Vec3::new(0.0, 0.0, 1.0));
+            let e = self.joints.estimator(k);
+            let _ = write!(self.out, ",{:.3},{:.3},{:.3},{:.4}", d.to_degrees(), d0.to_degrees(), e.rating(), e.drift().to_degrees());
+        }
+        let _ = writeln!(self.out);
+    }
+}
+
 #[derive(Clone, Copy, PartialEq)]
 enum Base {
     Robust,
@@ -102,7 +137,9 @@ fn main() {
         ["100hz", "60hz-vigorous", "palm-sideways", "bias-3dps", "axes-5deg-off"].map(String::from).to_vec();
     let mut bases = vec![Base::Robust, Base::Vqf];
     let mut params = JointParams::default();
-    let (mut oracle, mut cost, mut alone) = (false, false, true);
+    let mut trace: Option<String> = None;
+    let mut truth_input = false;
+    let (mut oracle, mut cost, mut alone, mut verbose) = (false, false, true, false);
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         let mut val = || it.next().expect("a value");
@@ -121,6 +158,9 @@ fn main() {
             "--oracle" => oracle = true,
             "--no-alone" => alone = false,
             "--cost" => cost = true,
+            "--trace" => trace = Some(val()),
+            "--truth-input" => truth_input = true,
+            "--verbose" => verbose = true,
             _ => panic!("unknown argument {a}"),
         }
     }
@@ -149,7 +189,7 @@ fn main() {
                     "{case:<14} seed {seed} {:<7}",
                     if *base == Base::Vqf { "VQF" } else { "robust" }
                 );
-                for (m, name) in methods.iter().enumerate() {
+                for (m, name) in methods.iter().enumerate().chain(trace.iter().map(|_| (3, &"trace"))) {
                     let run = match m {
                         0 if alone || cost => {
                             let mut f = filters(*base, rec.spec.sensors.len(), dt);
@@ -159,6 +199,12 @@ fn main() {
                             let mut f = filters(*base, rec.spec.sensors.len(), dt);
                             let mut st = Joints::new(&rec.spec, start, params);
                             run_rig(rec, &mut f, &mut st, true)
+                        }
+                        3 => {
+                            let mut f = filters(*base, rec.spec.sensors.len(), dt);
+                            let out = std::io::BufWriter::new(std::fs::File::create(trace.as_ref().unwrap()).unwrap());
+                            let joints = Joints::new(&rec.spec, start, params);
+                            run_rig(rec, &mut f, &mut Trace { rec, joints, out, truth_input }, true)
                         }
                         2 if oracle => {
                             let mut f = filters(*base, rec.spec.sensors.len(), dt);
@@ -178,7 +224,19 @@ fn main() {
                     }
                     let s = score(&run);
                     line += &format!("  {name} {:5.2} / {:5.2} / {:5.2}", s.all, s.worst.1, s.last_minute);
-                    res[c][b][m].push(s);
+                    if verbose && m == 1 {
+                        let per: Vec<String> = rec
+                            .spec
+                            .joints
+                            .iter()
+                            .zip(&s.joints)
+                            .map(|(j, e)| format!("{} {:.2}", j.name, e))
+                            .collect();
+                        eprintln!("    {}", per.join(", "));
+                    }
+                    if m < 3 {
+                        res[c][b][m].push(s);
+                    }
                 }
                 eprintln!("{line}");
             }
