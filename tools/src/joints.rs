@@ -51,8 +51,10 @@ use crate::rig::{joint_angles, JointKind, JointStage, RigJoint, RigSpec};
 use orient::{Quat, Sample, Vec3};
 
 const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
-/// Number of states: Δ, β_p (3), β_c (3), u_p (2), u_c (2).
-const N: usize = 11;
+/// Number of states: Δ, β_p (3), β_c (3), u_p (2), u_c (2), o_p (3), o_c (3).
+const N: usize = 17;
+const OP: usize = 11;
+const OC: usize = 14;
 const BP: usize = 1;
 const BC: usize = 4;
 const UP_: usize = 7;
@@ -80,6 +82,12 @@ pub struct JointParams {
     /// Rest: both gyros below this norm (rad/s) for `rest_time` seconds.
     pub rest_gyro: f64,
     pub rest_time: f64,
+    /// Joint-centre acceleration residual noise density per component, (m/s²)²·s (0: no
+    /// acceleration constraint).
+    pub r_acc: f64,
+    /// Initial standard deviation (m) and random walk (m²/s) of the joint centre in each sensor frame.
+    pub lever_std0: f64,
+    pub q_lever: f64,
     /// Innovations beyond this many standard deviations are down-weighted.
     pub gate: f64,
     /// Time constant of the rating's low-pass, s.
@@ -97,10 +105,13 @@ impl Default for JointParams {
             q_axis: 0.0,
             heading_std0: 1.0 * d,
             rate_std0: 0.5 * d,
-            axis_std0: 0.0,
+            axis_std0: 0.09,
             max_rate: 5.0 * d,
             rest_gyro: 0.15,
             rest_time: 0.3,
+            r_acc: 0.003,
+            lever_std0: 0.05,
+            q_lever: 1e-10,
             gate: 3.0,
             rating_tau: 2.0,
         }
@@ -148,6 +159,8 @@ pub struct JointEstimator {
     still: f64,
     /// The vertical in the parent's and the child's sensor frame at the last sample.
     g: [Vec3; 2],
+    /// The previous gyroscope readings (parent, child), for the angular accelerations.
+    prev_gyr: Option<(Vec3, Vec3)>,
     rating: f64,
     /// `h_Δ²/R·dt` for a horizontal axis: the rating's scale.
     info_scale: f64,
@@ -164,8 +177,11 @@ impl JointEstimator {
         for k in BP..UP_ {
             p[k][k] = params.rate_std0.powi(2);
         }
-        for k in UP_..N {
+        for k in UP_..OP {
             p[k][k] = params.axis_std0.powi(2);
+        }
+        for k in OP..N {
+            p[k][k] = params.lever_std0.powi(2);
         }
         JointEstimator {
             kind,
@@ -176,6 +192,7 @@ impl JointEstimator {
             params,
             still: 0.0,
             g: [Vec3::ZERO; 2],
+            prev_gyr: None,
             rating: 0.0,
             info_scale: 1.0,
         }
@@ -206,11 +223,22 @@ impl JointEstimator {
 
     /// One sample: the two sensors' 6D orientations (sensor to earth, uncorrected) and
     /// gyroscope readings (rad/s), the interval `dt` (s). Returns Δ.
-    pub fn update(&mut self, q_p: Quat, q_c: Quat, gyr_p: Vec3, gyr_c: Vec3, dt: f64) -> f64 {
+    #[allow(clippy::too_many_arguments)]
+    pub fn update(
+        &mut self,
+        q_p: Quat,
+        q_c: Quat,
+        gyr_p: Vec3,
+        gyr_c: Vec3,
+        acc_p: Vec3,
+        acc_c: Vec3,
+        dt: f64,
+    ) -> f64 {
         let prm = self.params;
         if !(dt > 0.0 && dt < 1.0) {
             return self.x[0];
         }
+        let prev = self.prev_gyr.replace((gyr_p, gyr_c));
         let moving = gyr_p.norm_squared().max(gyr_c.norm_squared()) > prm.rest_gyro * prm.rest_gyro;
         self.still = if moving { 0.0 } else { self.still + dt };
         let alpha = dt / (prm.rating_tau + dt);
@@ -259,6 +287,33 @@ impl JointEstimator {
                 self.info_scale = 1.0 / rr;
             }
         }
+        if let (true, Some((gp0, gc0))) = (prm.r_acc > 0.0, prev) {
+            // The joint centre's specific force seen from both sides:
+            // r = R_p (a_p + M_p o_p) − R_z(Δ) R_c (a_c + M_c o_c), M o = ω×(ω×o) + ω̇×o.
+            let (wp, wc) = (gyr_p, gyr_c);
+            let (dwp, dwc) = ((gyr_p - gp0) * (1.0 / dt), (gyr_c - gc0) * (1.0 / dt));
+            let m = |w: Vec3, dw: Vec3, o: Vec3| w.cross(w.cross(o)) + dw.cross(o);
+            let vec = |o: usize| Vec3::new(self.x[o], self.x[o + 1], self.x[o + 2]);
+            let (op, oc) = (vec(OP), vec(OC));
+            let fp = q_p.rotate(acc_p + m(wp, dwp, op));
+            let fc = rz.rotate(q_c.rotate(acc_c + m(wc, dwc, oc)));
+            let r = fp - fc;
+            let d_delta = -UP.cross(fc);
+            let unit = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), UP];
+            let cp = unit.map(|e| q_p.rotate(m(wp, dwp, e)));
+            let cc = unit.map(|e| rz.rotate(q_c.rotate(m(wc, dwc, e))));
+            let comp = |v: Vec3, i: usize| [v.x, v.y, v.z][i];
+            let rr = prm.r_acc / dt;
+            for i in 0..3 {
+                let mut h = [0.0; N];
+                h[0] = comp(d_delta, i);
+                for k in 0..3 {
+                    h[OP + k] = comp(cp[k], i);
+                    h[OC + k] = -comp(cc[k], i);
+                }
+                self.scalar_update(&h, -comp(r, i), rr, &mut dx);
+            }
+        }
         self.rating += alpha * ((info / self.info_scale).min(1.0) - self.rating);
         let step = prm.max_rate * dt;
         self.x[0] += dx[0].clamp(-step, step);
@@ -267,6 +322,9 @@ impl JointEstimator {
         }
         self.p_axis.fold(dx[UP_], dx[UP_ + 1]);
         self.c_axis.fold(dx[UC], dx[UC + 1]);
+        for k in OP..N {
+            self.x[k] += dx[k];
+        }
         self.x[0]
     }
 
@@ -295,8 +353,11 @@ impl JointEstimator {
         for k in BP..UP_ {
             self.p[k][k] += prm.q_rate * dt;
         }
-        for k in UP_..N {
+        for k in UP_..OP {
             self.p[k][k] += prm.q_axis * dt;
+        }
+        for k in OP..N {
+            self.p[k][k] += prm.q_lever * dt;
         }
     }
 
@@ -390,8 +451,10 @@ impl JointStage for Joints {
         }
         for (p, c, est) in self.joints.iter_mut() {
             let s = (&samples[*p], &samples[*c]);
-            let (Some(gp), Some(gc)) = (s.0.gyro, s.1.gyro) else { continue };
-            let d = est.update(sensors[*p], sensors[*c], gp, gc, s.1.dt);
+            let (Some(gp), Some(gc), Some(ap), Some(ac)) = (s.0.gyro, s.1.gyro, s.0.accel, s.1.accel) else {
+                continue;
+            };
+            let d = est.update(sensors[*p], sensors[*c], gp, gc, ap, ac, s.1.dt);
             self.heading[*c] = self.heading[*p] + d;
         }
         for (_, c, _) in &self.joints {

@@ -126,6 +126,9 @@ fn set_param(p: &mut JointParams, kv: &str) {
         "rest_gyro" => p.rest_gyro = v,
         "rest_time" => p.rest_time = v,
         "gate" => p.gate = v,
+        "r_acc" => p.r_acc = v,
+        "lever_std0" => p.lever_std0 = v,
+        "q_lever" => p.q_lever = v,
         _ => panic!("unknown parameter {k}"),
     }
 }
