@@ -52,7 +52,9 @@ use orient::{Quat, Sample, Vec3};
 
 const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
 /// Number of states: Δ, β_p (3), β_c (3), u_p (2), u_c (2), o_p (3), o_c (3).
-const N: usize = 17;
+const N: usize = 19;
+/// The child's tilt correction (rad, about the earth's x and y), after the heading.
+const TX: usize = 17;
 const OP: usize = 11;
 const OC: usize = 14;
 const BP: usize = 1;
@@ -88,6 +90,10 @@ pub struct JointParams {
     /// Initial standard deviation (m) and random walk (m²/s) of the joint centre in each sensor frame.
     pub lever_std0: f64,
     pub q_lever: f64,
+    /// Initial standard deviation (rad) and random walk (rad²/s) of the relative tilt
+    /// correction (0 and 0: heading only).
+    pub tilt_std0: f64,
+    pub q_tilt: f64,
     /// Innovations beyond this many standard deviations are down-weighted.
     pub gate: f64,
     /// Time constant of the rating's low-pass, s.
@@ -112,6 +118,8 @@ impl Default for JointParams {
             r_acc: 0.003,
             lever_std0: 0.05,
             q_lever: 1e-10,
+            tilt_std0: 0.0,
+            q_tilt: 3e-5,
             gate: 3.0,
             rating_tau: 2.0,
         }
@@ -180,8 +188,11 @@ impl JointEstimator {
         for k in UP_..OP {
             p[k][k] = params.axis_std0.powi(2);
         }
-        for k in OP..N {
+        for k in OP..TX {
             p[k][k] = params.lever_std0.powi(2);
+        }
+        for k in TX..N {
+            p[k][k] = params.tilt_std0.powi(2);
         }
         JointEstimator {
             kind,
@@ -207,6 +218,14 @@ impl JointEstimator {
     pub fn drift(&self) -> f64 {
         let v = |o: usize| Vec3::new(self.x[o], self.x[o + 1], self.x[o + 2]);
         self.g[1].dot(v(BC)) - self.g[0].dot(v(BP))
+    }
+    /// The child's whole correction (earth frame), `T(φ) ⊗ R_z(Δ)`: the tilt part is
+    /// identity unless [`JointParams::tilt_std0`] or `q_tilt` is set.
+    pub fn correction(&self) -> Quat {
+        let t = Vec3::new(self.x[TX], self.x[TX + 1], 0.0);
+        let a = t.norm();
+        let tq = if a > 1e-12 { Quat::from_axis_angle(t, a) } else { Quat::IDENTITY };
+        tq * rot_z(self.x[0])
     }
     /// The standard deviation of Δ (rad).
     pub fn heading_std(&self) -> f64 {
@@ -242,21 +261,33 @@ impl JointEstimator {
         let moving = gyr_p.norm_squared().max(gyr_c.norm_squared()) > prm.rest_gyro * prm.rest_gyro;
         self.still = if moving { 0.0 } else { self.still + dt };
         let alpha = dt / (prm.rating_tau + dt);
-        if self.still >= prm.rest_time {
-            self.rating -= alpha * self.rating;
-            return self.x[0];
+        let rest = self.still >= prm.rest_time;
+        for k in TX..N {
+            self.p[k][k] += prm.q_tilt * dt;
         }
-        self.g = [q_p.rotate_inverse(UP), q_c.rotate_inverse(UP)];
-        self.predict(dt);
-        let rz = rot_z(self.x[0]);
+        if rest {
+            self.rating -= alpha * self.rating;
+        } else {
+            self.g = [q_p.rotate_inverse(UP), q_c.rotate_inverse(UP)];
+            self.predict(dt);
+        }
+        // The child's correction, earth frame: T(φ) R_z(Δ).
+        let rz = self.correction();
+        let tilt = |v: Vec3, h: &mut [f64; N], i: usize| {
+            let comp = |v: Vec3| [v.x, v.y, v.z][i];
+            h[TX] = comp(Vec3::new(1.0, 0.0, 0.0).cross(v));
+            h[TX + 1] = comp(Vec3::new(0.0, 1.0, 0.0).cross(v));
+        };
         let e_p = q_p.rotate(self.p_axis.j);
         let e_c = rz.rotate(q_c.rotate(self.c_axis.j));
         let dp = [q_p.rotate(self.p_axis.b1), q_p.rotate(self.p_axis.b2)];
         let dc = [rz.rotate(q_c.rotate(self.c_axis.b1)), rz.rotate(q_c.rotate(self.c_axis.b2))];
         let mut dx = [0.0; N];
         let mut info = 0.0;
-        match self.kind {
-            JointKind::Hinge => {
+        let kind = if rest { None } else { Some(self.kind) };
+        match kind {
+            None => {}
+            Some(JointKind::Hinge) => {
                 let r = e_p - e_c;
                 let d_delta = -UP.cross(e_c);
                 let comp = |v: Vec3, i: usize| [v.x, v.y, v.z][i];
@@ -268,12 +299,13 @@ impl JointEstimator {
                     h[UP_ + 1] = comp(dp[1], i);
                     h[UC] = -comp(dc[0], i);
                     h[UC + 1] = -comp(dc[1], i);
+                    tilt(-e_c, &mut h, i);
                     info += h[0] * h[0] / rr;
                     self.scalar_update(&h, -comp(r, i), rr, &mut dx);
                 }
                 self.info_scale = 1.0 / rr;
             }
-            JointKind::TwoDof => {
+            Some(JointKind::TwoDof) => {
                 let f = e_p.dot(e_c);
                 let mut h = [0.0; N];
                 h[0] = e_p.dot(UP.cross(e_c));
@@ -281,6 +313,9 @@ impl JointEstimator {
                 h[UP_ + 1] = dp[1].dot(e_c);
                 h[UC] = e_p.dot(dc[0]);
                 h[UC + 1] = e_p.dot(dc[1]);
+                // ∂(e_p·T e_c)/∂φ = e_p·(x̂ × e_c), e_p·(ŷ × e_c).
+                h[TX] = e_p.dot(Vec3::new(1.0, 0.0, 0.0).cross(e_c));
+                h[TX + 1] = e_p.dot(Vec3::new(0.0, 1.0, 0.0).cross(e_c));
                 let rr = prm.r_2dof / dt;
                 info += h[0] * h[0] / rr;
                 self.scalar_update(&h, -f, rr, &mut dx);
@@ -311,6 +346,7 @@ impl JointEstimator {
                     h[OP + k] = comp(cp[k], i);
                     h[OC + k] = -comp(cc[k], i);
                 }
+                tilt(-fc, &mut h, i);
                 self.scalar_update(&h, -comp(r, i), rr, &mut dx);
             }
         }
@@ -322,8 +358,11 @@ impl JointEstimator {
         }
         self.p_axis.fold(dx[UP_], dx[UP_ + 1]);
         self.c_axis.fold(dx[UC], dx[UC + 1]);
-        for k in OP..N {
+        for k in OP..TX {
             self.x[k] += dx[k];
+        }
+        for k in TX..N {
+            self.x[k] += dx[k].clamp(-step, step);
         }
         self.x[0]
     }
@@ -333,7 +372,9 @@ impl JointEstimator {
         // dΔ/dt = f·x with f = [0, −g_p, g_c, 0, 0, 0, 0]; F = I + dt e₀ fᵀ.
         let mut f = [0.0; N];
         for (k, (gp, gc)) in
-            [(self.g[0].x, self.g[1].x), (self.g[0].y, self.g[1].y), (self.g[0].z, self.g[1].z)].into_iter().enumerate()
+            [(self.g[0].x, self.g[1].x), (self.g[0].y, self.g[1].y), (self.g[0].z, self.g[1].z)]
+                .into_iter()
+                .enumerate()
         {
             f[BP + k] = -gp;
             f[BC + k] = gc;
@@ -356,7 +397,7 @@ impl JointEstimator {
         for k in UP_..OP {
             self.p[k][k] += prm.q_axis * dt;
         }
-        for k in OP..N {
+        for k in OP..TX {
             self.p[k][k] += prm.q_lever * dt;
         }
     }
@@ -393,8 +434,8 @@ impl JointEstimator {
 pub struct Joints {
     /// (parent, child, estimator) in an order where every parent comes before its children.
     pub joints: Vec<(usize, usize, JointEstimator)>,
-    /// Each sensor's heading correction ψ (rad).
-    heading: Vec<f64>,
+    /// Each sensor's correction (earth frame), the product of its chain's.
+    correction: Vec<Quat>,
     /// The first row estimated (headings aligned there).
     start: usize,
     /// Index into `joints` for each of the spec's joints.
@@ -428,7 +469,7 @@ impl Joints {
         for (pos, &k) in idx.iter().enumerate() {
             order[k] = pos;
         }
-        Joints { joints, heading: vec![0.0; n], start, order }
+        Joints { joints, correction: vec![Quat::IDENTITY; n], start, order }
     }
 
     /// The estimator of the spec's joint `k`.
@@ -455,10 +496,11 @@ impl JointStage for Joints {
                 continue;
             };
             let d = est.update(sensors[*p], sensors[*c], gp, gc, ap, ac, s.1.dt);
-            self.heading[*c] = self.heading[*p] + d;
+            let _ = d;
+            self.correction[*c] = (self.correction[*p] * est.correction()).normalized();
         }
         for (_, c, _) in &self.joints {
-            sensors[*c] = rot_z(self.heading[*c]) * sensors[*c];
+            sensors[*c] = self.correction[*c] * sensors[*c];
         }
     }
 }

@@ -85,9 +85,17 @@ impl JointStage for Trace<'_> {
             let (tp, tc) = (self.rec.sensors[j.parent].truth[row], self.rec.sensors[j.child].truth[row]);
             let want = sensors[j.parent] * (tp.conj() * tc);
             let d = twist_angle(want * sensors[j.child].conj(), Vec3::new(0.0, 0.0, 1.0));
-            let d0 = twist_angle(raw[j.parent] * (tp.conj() * tc) * raw[j.child].conj(), Vec3::new(0.0, 0.0, 1.0));
+            let d0 =
+                twist_angle(raw[j.parent] * (tp.conj() * tc) * raw[j.child].conj(), Vec3::new(0.0, 0.0, 1.0));
             let e = self.joints.estimator(k);
-            let _ = write!(self.out, ",{:.3},{:.3},{:.3},{:.4}", d.to_degrees(), d0.to_degrees(), e.rating(), e.drift().to_degrees());
+            let _ = write!(
+                self.out,
+                ",{:.3},{:.3},{:.3},{:.4}",
+                d.to_degrees(),
+                d0.to_degrees(),
+                e.rating(),
+                e.drift().to_degrees()
+            );
         }
         let _ = writeln!(self.out);
     }
@@ -126,6 +134,8 @@ fn set_param(p: &mut JointParams, kv: &str) {
         "rest_gyro" => p.rest_gyro = v,
         "rest_time" => p.rest_time = v,
         "gate" => p.gate = v,
+        "tilt_std0" => p.tilt_std0 = v,
+        "q_tilt" => p.q_tilt = v,
         "r_acc" => p.r_acc = v,
         "lever_std0" => p.lever_std0 = v,
         "q_lever" => p.q_lever = v,
@@ -205,7 +215,9 @@ fn main() {
                         }
                         3 => {
                             let mut f = filters(*base, rec.spec.sensors.len(), dt);
-                            let out = std::io::BufWriter::new(std::fs::File::create(trace.as_ref().unwrap()).unwrap());
+                            let out = std::io::BufWriter::new(
+                                std::fs::File::create(trace.as_ref().unwrap()).unwrap(),
+                            );
                             let joints = Joints::new(&rec.spec, start, params);
                             run_rig(rec, &mut f, &mut Trace { rec, joints, out, truth_input }, true)
                         }
