@@ -47,6 +47,9 @@
 //! scaled to [0, 1] by its value for a horizontal axis: near 0 while the axis is vertical
 //! (a hinge) or the 2-DoF axes leave the heading free, 0 at rest.
 
+// Index loops over the state layout read like the equations.
+#![allow(clippy::needless_range_loop)]
+
 use crate::rig::{joint_angles, JointKind, JointStage, RigJoint, RigSpec};
 use orient::{Quat, Sample, Vec3};
 
@@ -415,7 +418,7 @@ impl JointEstimator {
         if nu * nu > g2 * s {
             s = hph + r * nu * nu / (g2 * s);
         }
-        if !(s > 0.0) {
+        if s.is_nan() || s <= 0.0 {
             return;
         }
         for i in 0..N {
@@ -503,4 +506,97 @@ impl JointStage for Joints {
             sensors[*c] = self.correction[*c] * sensors[*c];
         }
     }
+}
+
+/// The batch estimate of a hinge's axes from gyroscope readings alone (Seel, Schauer,
+/// Raisch 2012): the axis `j_p` (parent sensor frame) and `j_c` (child's) minimising
+/// `Σ (|ω_p × j_p| − |ω_c × j_c|)²` (the angular velocity perpendicular to the axis is
+/// the same on both sides of a hinge), by Levenberg-Marquardt over the spherical
+/// coordinates of both axes, started from `guess`. Returns the axes (signs as in the
+/// guess) and the quality figure: the RMS residual over the RMS of `|ω_p × j_p|`
+/// (0 for an ideal hinge; a few per cent for laxity and noise; near 1 when the motion
+/// did not excite the axes or the joint is not a hinge).
+pub fn estimate_hinge_axes(gyr_p: &[Vec3], gyr_c: &[Vec3], guess: (Vec3, Vec3)) -> (Vec3, Vec3, f64) {
+    let sph = |v: Vec3| [libm::asin(v.z.clamp(-1.0, 1.0)), libm::atan2(v.y, v.x)];
+    let axis =
+        |a: f64, b: f64| Vec3::new(libm::cos(a) * libm::cos(b), libm::cos(a) * libm::sin(b), libm::sin(a));
+    let resid = |x: &[f64; 4], i: usize| {
+        gyr_p[i].cross(axis(x[0], x[1])).norm() - gyr_c[i].cross(axis(x[2], x[3])).norm()
+    };
+    let cost = |x: &[f64; 4]| (0..gyr_p.len()).map(|i| resid(x, i).powi(2)).sum::<f64>();
+    let (g0, g1) = (sph(guess.0.normalized()), sph(guess.1.normalized()));
+    let mut x = [g0[0], g0[1], g1[0], g1[1]];
+    let mut lambda = 1e-3;
+    let mut c = cost(&x);
+    for _ in 0..50 {
+        let mut jtj = [[0.0; 4]; 4];
+        let mut jtr = [0.0; 4];
+        for i in 0..gyr_p.len() {
+            let r = resid(&x, i);
+            let mut jac = [0.0; 4];
+            for k in 0..4 {
+                let mut xp = x;
+                xp[k] += 1e-6;
+                jac[k] = (resid(&xp, i) - r) / 1e-6;
+            }
+            for a in 0..4 {
+                jtr[a] += jac[a] * r;
+                for b in 0..4 {
+                    jtj[a][b] += jac[a] * jac[b];
+                }
+            }
+        }
+        let mut a = jtj;
+        for k in 0..4 {
+            a[k][k] *= 1.0 + lambda;
+        }
+        let Some(step) = solve4(a, jtr) else { break };
+        let xn = [x[0] - step[0], x[1] - step[1], x[2] - step[2], x[3] - step[3]];
+        let cn = cost(&xn);
+        if cn < c {
+            let done = (c - cn) < 1e-12 * c;
+            x = xn;
+            c = cn;
+            lambda *= 0.3;
+            if done {
+                break;
+            }
+        } else {
+            lambda *= 10.0;
+        }
+    }
+    let (mut jp, mut jc) = (axis(x[0], x[1]), axis(x[2], x[3]));
+    if jp.dot(guess.0) < 0.0 {
+        jp = -jp;
+    }
+    if jc.dot(guess.1) < 0.0 {
+        jc = -jc;
+    }
+    let n = gyr_p.len().max(1) as f64;
+    let scale = (gyr_p.iter().map(|w| w.cross(jp).norm_squared()).sum::<f64>() / n).sqrt();
+    (jp, jc, (c / n).sqrt() / scale.max(1e-12))
+}
+
+/// Solves a 4×4 system by Gaussian elimination with partial pivoting.
+fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
+    for col in 0..4 {
+        let piv = (col..4).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+        if a[piv][col].abs() < 1e-300 {
+            return None;
+        }
+        a.swap(col, piv);
+        b.swap(col, piv);
+        for row in col + 1..4 {
+            let f = a[row][col] / a[col][col];
+            for k in col..4 {
+                a[row][k] -= f * a[col][k];
+            }
+            b[row] -= f * b[col];
+        }
+    }
+    let mut x = [0.0; 4];
+    for row in (0..4).rev() {
+        x[row] = (b[row] - (row + 1..4).map(|k| a[row][k] * x[k]).sum::<f64>()) / a[row][row];
+    }
+    Some(x)
 }
