@@ -9,6 +9,7 @@
 
 pub mod eval;
 pub mod floor;
+pub mod joints;
 pub mod json;
 pub mod rig;
 pub mod rigsim;
