@@ -71,15 +71,15 @@ bits! {
     /// (every kind but the robust one, whose magnetic disturbance test may refuse the
     /// reading, and the complementary one, which uses it only with `align_heading`), else
     /// the heading held before. The kind's low-passes and detectors start over; its bias
-    /// estimate is kept, but after the rest watch a bias that Madgwick or Mahony learns
-    /// becomes the still sample's gyroscope reading.
+    /// estimate is kept, but after the rest watch a bias that Madgwick or Mahony learns or
+    /// still subtracts becomes the still sample's gyroscope reading.
     REACQUIRED = 16;
     /// The next sample with an accelerometer reading re-acquires the orientation
     /// ([`REACQUIRED`]); until then it is integrated from the gyroscope. Set when a gap
     /// ends on a sample without an accelerometer reading (the orientation is held over
     /// the gap), after gyroscope saturation, and by the rest watch: when the sensor lies
     /// still (gyroscope below 3 °/s, accelerometer norm within 5 % of the configured
-    /// gravity) and the estimate's vertical has stayed more than 10° from the
+    /// gravity) and the estimate's vertical has stayed more than 2° from the
     /// accelerometer's for 5 s, looked at every 32nd sample. An estimate can rest there
     /// at a stationary point of its kind's correction (Madgwick's and Mahony's
     /// magnetometer terms near a 180° heading error, the EKF's gravity update near an

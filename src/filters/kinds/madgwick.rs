@@ -387,12 +387,13 @@ impl Madgwick {
     }
 
     /// After a gap: the re-acquired estimate, rest detection started over, bias kept; for
-    /// the rest watch's re-acquisition of a still sensor with the rest-bias learner on, the
-    /// bias is the gyroscope's reading.
+    /// the rest watch's re-acquisition of a still sensor, a bias the rest-bias learner
+    /// learns, or one it learned before it was switched off (still subtracted), is the
+    /// gyroscope's reading.
     pub(crate) fn reacquire(&mut self, r: &crate::filters::pipeline::estimator::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
         self.q = q;
-        if let Some(g) = r.still.filter(|_| self.settings.rest_bias_tau > 0.0) {
+        if let Some(g) = r.still.filter(|_| self.settings.rest_bias_tau > 0.0 || self.bias != Vec3::ZERO) {
             self.bias = g;
         }
         self.rest.restart();

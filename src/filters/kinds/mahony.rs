@@ -87,13 +87,17 @@ impl Mahony {
 
     /// After a gap: the re-acquired estimate, rest detection started over; the bias b
     /// (the integral term) is kept, but for the rest watch's re-acquisition of a still
-    /// sensor, where a bias the filter learns (`ki` or `rest_bias_tau` set) is the
-    /// gyroscope's reading: an integral wound up while the estimate was off would turn it
-    /// away again.
+    /// sensor, where a bias the filter learns (`ki` or `rest_bias_tau` set) or still
+    /// subtracts (learned before those were set to 0) is the gyroscope's reading: an
+    /// integral wound up while the estimate was off would turn it away again.
     pub(crate) fn reacquire(&mut self, r: &crate::filters::pipeline::estimator::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
         self.q = q;
-        if let Some(g) = r.still.filter(|_| self.ki() || self.settings.rest_bias_tau > 0.0) {
+        // A bias it learns, or one kept from settings that learned it (k_I set to 0
+        // freezes b, still subtracted).
+        if let Some(g) =
+            r.still.filter(|_| self.ki() || self.settings.rest_bias_tau > 0.0 || self.bias != Vec3::ZERO)
+        {
             self.bias = g;
         }
         self.rest.restart();
