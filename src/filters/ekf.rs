@@ -637,34 +637,34 @@ fn inflate_attitude<V: Lanes>(p: &mut Cov<V>, q: V, var: f64) {
     }
 }
 
-/// The one-step factors of the Markov processes (9)-(10) over dt: `(a_ω, a_δ)`, the
-/// decays `e^{−dt/τ}`, and `(q_ω, q_δ)`, the exact discrete process-noise variances
-/// `σ²(1 − e^{−2dt/τ})`, from `c = 1 − e^{−dt/τ}` (see the prediction in `update_in`).
-#[inline(always)]
-fn markov(s: &EkfSettings, c_w: f64, c_d: f64) -> ((f64, f64), (f64, f64)) {
-    let qw = s.omega_std * s.omega_std * (c_w * (2.0 - c_w));
-    let qd = s.drift_std * s.drift_std * (c_d * (2.0 - c_d));
-    ((1.0 - c_w, 1.0 - c_d), (qw, qd))
-}
-
 /// ω's axes whose gyroscope reading fails the NIS test (12): its innovation against the
-/// predicted reading `a_ω ω_i + a_δ δ_i`, squared, beyond [`GROSS_NIS`] times its
-/// predicted variance `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g` (on the
-/// diagonal): a rate the model (9) does not allow (a glitch, or a rate far beyond
-/// `omega_std` held for many correlation times).
+/// predicted reading `a_ω ω_i + a_δ δ_i` (`ω⁺_i + δ⁺_i`, the predicted state's lanes: the
+/// same products), squared, beyond [`GROSS_NIS`] times its predicted variance
+/// `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g` (on the diagonal, P before
+/// the prediction; `var` is `q_ω + q_δ + r_g`): a rate the model (9) does not allow (a
+/// glitch, or a rate far beyond `omega_std` held for many correlation times).
 #[inline(always)]
-fn rate_jumps(p: &Cov, x: &Blocks, gyro: Vec3, a: (f64, f64), var: f64) -> [bool; 3] {
+fn rate_jumps<V: Lanes>(p: &Cov, w: V, d: V, gyro: Vec3, a: (f64, f64), var: f64) -> [bool; 3] {
     let (ww, wd, dd) = (in_place(&p.ww), in_place(&p.wd), in_place(&p.dd));
-    let (w, d) = (x.w.as_array_ref(), x.d.as_array_ref());
+    let (w, d) = (w.to_array(), d.to_array());
     let g = [gyro.x, gyro.y, gyro.z];
     let (aww, awd, add) = (a.0 * a.0, 2.0 * a.0 * a.1, a.1 * a.1);
     array(
         #[inline(always)]
         |i| {
-            let nu = g[i] - (a.0 * w[i] + a.1 * d[i]);
+            let nu = g[i] - (w[i] + d[i]);
             nu * nu > GROSS_NIS * (((aww * ww[i][i] + awd * wd[i][i]) + add * dd[i][i]) + var)
         },
     )
+}
+
+/// Why [`Ekf::update_in`] took no step (it then changed nothing).
+enum Stop {
+    /// The step would not be finite.
+    Refused,
+    /// These axes' gyroscope readings failed the NIS test (12): ω is re-initialised
+    /// from them first ([`reinit_rate`]).
+    RateJump([bool; 3]),
 }
 
 /// Re-initialises the drift on axis `i` to `d`, independent of the other states with
@@ -1038,15 +1038,11 @@ impl Ekf {
     /// the orientation and drift kept. Only if that fails too is the step refused.
     #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        let s = &self.settings;
-        let (a, (qw, qd)) =
-            markov(s, one_minus_exp_neg(dt / s.tau_omega), one_minus_exp_neg(dt / s.tau_drift));
-        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
-        let jumped = rate_jumps(&self.p, &self.x, gyro, a, (qw + qd) + rg);
-        if jumped != [false; 3] {
-            return self.update_after_jump(dt, gyro, accel, mag, jumped);
+        match self.step(dt, gyro, accel, mag, true) {
+            Ok(step) => Some(step),
+            Err(Stop::Refused) => self.retry_from_fresh_covariance(dt, gyro, accel, mag),
+            Err(Stop::RateJump(jumped)) => self.update_after_jump(dt, gyro, accel, mag, jumped),
         }
-        self.update_plain(dt, gyro, accel, mag)
     }
 
     /// [`Ekf::update`] after ω was re-initialised on the axes whose gyroscope reading
@@ -1067,19 +1063,14 @@ impl Ekf {
         let a_d = 1.0 - one_minus_exp_neg(dt / s.tau_drift);
         let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
         reinit_rate(&mut self.x, &mut self.p, gyro, jumped, rg / (a_w * a_w), (a_w, a_d));
-        let step = self.update_plain(dt, gyro, accel, mag);
+        let step = match self.step(dt, gyro, accel, mag, false) {
+            Ok(step) => Some(step),
+            Err(_) => self.retry_from_fresh_covariance(dt, gyro, accel, mag),
+        };
         if step.is_none() {
             *self = before;
         }
         step
-    }
-
-    #[inline(always)]
-    fn update_plain(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        match self.step(dt, gyro, accel, mag) {
-            Some(step) => Some(step),
-            None => self.retry_from_fresh_covariance(dt, gyro, accel, mag),
-        }
     }
 
     #[cold]
@@ -1095,7 +1086,7 @@ impl Ekf {
         let omega = gyro - self.drift();
         self.x.w = f64x4::new([omega.x, omega.y, omega.z, 0.0]);
         self.reset_covariance();
-        let step = self.step(dt, gyro, accel, mag);
+        let step = self.step(dt, gyro, accel, mag, false).ok();
         if step.is_none() {
             *self = before;
         }
@@ -1105,25 +1096,34 @@ impl Ekf {
     /// The step itself, in the widest lanes the CPU has. Not inlined into the retry
     /// above: one copy of the (large) step serves both calls.
     #[inline(never)]
-    fn step(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+    fn step(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+        test_rate: bool,
+    ) -> Result<Step, Stop> {
         struct Run<'a> {
             ekf: &'a mut Ekf,
             dt: f64,
             gyro: Vec3,
             accel: Option<Vec3>,
             mag: Option<Vec3>,
+            test_rate: bool,
         }
         impl crate::isa::WithLanes for Run<'_> {
-            type Out = Option<Step>;
+            type Out = Result<Step, Stop>;
             #[inline(always)]
-            fn run<V: Lanes>(self, t: V::Token) -> Option<Step> {
-                self.ekf.update_in::<V>(t, self.dt, self.gyro, self.accel, self.mag)
+            fn run<V: Lanes>(self, t: V::Token) -> Result<Step, Stop> {
+                self.ekf.update_in::<V>(t, self.dt, self.gyro, self.accel, self.mag, self.test_rate)
             }
         }
-        crate::isa::widest_lanes(Run { ekf: self, dt, gyro, accel, mag })
+        crate::isa::widest_lanes(Run { ekf: self, dt, gyro, accel, mag, test_rate })
     }
 
-    /// [`Ekf::update`] with lane type `V`.
+    /// [`Ekf::update`] with lane type `V`; with `test_rate`, first the gyroscope rows'
+    /// NIS test (12) ([`rate_jumps`]), on the prediction's own factors and state.
     #[inline(always)]
     fn update_in<V: Lanes>(
         &mut self,
@@ -1132,7 +1132,8 @@ impl Ekf {
         gyro: Vec3,
         accel: Option<Vec3>,
         mag: Option<Vec3>,
-    ) -> Option<Step> {
+        test_rate: bool,
+    ) -> Result<Step, Stop> {
         let s = &self.settings;
         let mut step = Step::default();
 
@@ -1158,11 +1159,18 @@ impl Ekf {
         let q = quat_of(self.x.q);
         let x0 = Blocks::<V>::load(&self.x, tk);
         let mut x = Blocks { q: x0.q, w: x0.w * V::splat(tk, a_w), d: x0.d * V::splat(tk, a_d) };
+        let qw = s.omega_std * s.omega_std * (c_w * (2.0 - c_w));
+        let qd = s.drift_std * s.drift_std * (c_d * (2.0 - c_d));
+        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
+        if test_rate {
+            let jumped = rate_jumps(&self.p, x.w, x.d, gyro, (a_w, a_d), (qw + qd) + rg);
+            if jumped != [false; 3] {
+                return Err(Stop::RateJump(jumped));
+            }
+        }
         // D = ∂q⁺/∂ω⁺ (4×3)
         let (e, dq_dw) = exp_and_d::<V>(tk, q, Vec3::new(lane(x.w, 0), lane(x.w, 1), lane(x.w, 2)), 0.5 * dt);
         x.q = vector_of(tk, q * e);
-        let qw = s.omega_std * s.omega_std * (c_w * (2.0 - c_w));
-        let qd = s.drift_std * s.drift_std * (c_d * (2.0 - c_d));
         let r = right(e);
         let rc = cols(tk, &r);
         let a = dq_dw.map(|c| c * V::splat(tk, a_w)); // a_ω D
@@ -1207,7 +1215,6 @@ impl Ekf {
         // absorbed as two batches of three (the same posterior as one batch of six: the
         // gyroscope rows are linear, so their innovation at the updated state is the
         // batch's less h·(x − x⁻)); one pass over P per batch instead of one per row.
-        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
         let mut adapt = self.adapt;
         let mut adapt_h = self.adapt_h;
         let mut nu_mean = self.nu_mean;
@@ -1272,7 +1279,7 @@ impl Ekf {
                     )
                 },
             );
-            absorb3(&mut x, &mut p, &u, s3, [nu.x, nu.y, nu.z])?;
+            absorb3(&mut x, &mut p, &u, s3, [nu.x, nu.y, nu.z]).ok_or(Stop::Refused)?;
         }
         // Gyroscope rows: ω_IMU,i = ω_i + δ_i, linear.
         let u: [Blocks<V>; 3] = array(
@@ -1293,7 +1300,7 @@ impl Ekf {
             #[inline(always)]
             |i| nu_g[i] - (lane(x.w, i) + lane(x.d, i)),
         );
-        absorb3(&mut x, &mut p, &u, s3, innovation)?;
+        absorb3(&mut x, &mut p, &u, s3, innovation).ok_or(Stop::Refused)?;
         if let Some((_, true)) = rest {
             // At rest the rate is zero: the pseudo-measurement ω = 0.
             let rz = s.rest_rate_std * s.rest_rate_std;
@@ -1314,13 +1321,13 @@ impl Ekf {
                 #[inline(always)]
                 |i| -lane(x.w, i),
             );
-            absorb3(&mut x, &mut p, &u, s3, innovation)?;
+            absorb3(&mut x, &mut p, &u, s3, innovation).ok_or(Stop::Refused)?;
         }
         let q_norm = dot4(x.q, x.q).sqrt();
         // An absurd reading can blow the correction up: refuse the step rather than
         // divide by an overflowed (or vanished) norm.
         if !(q_norm.is_finite() && q_norm > 1e-3) {
-            return None;
+            return Err(Stop::Refused);
         }
         x.q /= V::splat(tk, q_norm);
 
@@ -1366,7 +1373,7 @@ impl Ekf {
             }
         }
         if !(x.is_finite() && p.is_finite()) {
-            return None;
+            return Err(Stop::Refused);
         }
         self.x = x.store();
         self.p = p.store();
@@ -1376,7 +1383,7 @@ impl Ekf {
         if let Some((r, _)) = rest {
             self.rest = r;
         }
-        Some(step)
+        Ok(step)
     }
 }
 
@@ -1436,7 +1443,7 @@ mod tests {
             let mag = (i % 3 != 0).then(|| Vec3::new(20.0 + t.sin(), 3.0, 40.0));
             let accel = (i % 7 != 3).then_some(accel);
             let a = wide.update(0.01, gyro, accel, mag);
-            let b = base.update_in::<f64x4>((), 0.01, gyro, accel, mag);
+            let b = base.update_in::<f64x4>((), 0.01, gyro, accel, mag, true).ok();
             assert_eq!(a, b, "step {i}");
             assert!(bits(&mut wide) == bits(&mut base), "the states differ after step {i}");
         }
