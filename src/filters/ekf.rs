@@ -1253,24 +1253,24 @@ impl Ekf {
                 |i| V::new(tk, [hf[(i, 0)], hf[(i, 1)], hf[(i, 2)], hf[(i, 3)]]),
             );
             let mut u = h.map(|hq| p.times_q(hq));
-            // The NIS test (see the module documentation): the innovation's power against
-            // the power the model predicts for it, tr(H P Hᵀ) plus three axes of noise and
-            // linear acceleration counted as a variance (not colour-scaled).
             let nu2 = nu.norm_squared();
-            let hph = (dot4(h[0], u[0].q) + dot4(h[1], u[1].q)) + dot4(h[2], u[2].q);
-            let expected = hph + 3.0 * (white + motion);
-            let gross = at_rest && nu2 > GROSS_NIS * expected;
             // The reported inclination σ's evidence (output only).
             nu_mean = nu_mean + (quat_of(q_pred).rotate(nu) - nu_mean) * lp_gain(dt, EXCESS_TAU);
-            if gross {
-                inflate_attitude(&mut p, x.q, (nu2 - expected) / (2.0 * s.gravity * s.gravity));
-                u = h.map(|hq| p.times_q(hq));
-            }
             let mut ra = ra0;
-            // At rest (the zero-rate update's detector) f is gravity alone, and a gross
-            // innovation is the attitude's error: neither is linear acceleration, so
-            // neither feeds nor takes the adaptive floor.
-            if s.accel_adapt_tau > 0.0 && !gross && !at_rest {
+            if at_rest {
+                // At rest (the zero-rate update's detector) f is gravity alone: the NIS
+                // test (see the module documentation), the innovation's power against the
+                // power the model predicts for it, tr(H P Hᵀ) plus three axes of noise and
+                // linear acceleration counted as a variance (not colour-scaled). A gross
+                // innovation is the attitude's error; neither it nor any other at rest is
+                // linear acceleration, so none feeds or takes the adaptive floor.
+                let hph = (dot4(h[0], u[0].q) + dot4(h[1], u[1].q)) + dot4(h[2], u[2].q);
+                let expected = hph + 3.0 * (white + motion);
+                if nu2 > GROSS_NIS * expected {
+                    inflate_attitude(&mut p, x.q, (nu2 - expected) / (2.0 * s.gravity * s.gravity));
+                    u = h.map(|hq| p.times_q(hq));
+                }
+            } else if s.accel_adapt_tau > 0.0 {
                 // The innovation's recent power per axis: linear acceleration the standing
                 // allowance does not cover (sustained translation) shows up there first.
                 adapt += (nu2 / 3.0 - adapt) * lp_gain(dt, s.accel_adapt_tau);
