@@ -63,7 +63,9 @@
 //!   glitches below the 1e4 rad/s bound, a wrong attitude after a clipped spin). Each is
 //!   a normalised-innovation-squared test with bound 16 (4 standard deviations):
 //!   - gyroscope rows (12): `ν_i = ω_IMU,i − (a_ω ω_i + a_δ δ_i)` against its predicted
-//!     variance `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g`. A reading
+//!     variance `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g` (the first
+//!     three terms, a variance, taken as at least zero, so a reading within
+//!     `16 (q_ω + q_δ + r_g)` passes without reading P). A reading
 //!     that fails it re-initialises ω_i from the reading (`a_ω ω_i + a_δ δ_i = ω_IMU,i`,
 //!     ω_i uncorrelated, variance `r_g/a_ω²`) before the step, so the drift δ, whose
 //!     process (10) allows only `drift_std`, takes no share of a rate jump (9) does not
@@ -644,22 +646,24 @@ fn inflate_attitude<V: Lanes>(p: &mut Cov<V>, q: V, var: f64) {
 }
 
 /// ω's axes whose gyroscope reading fails the NIS test (12): its innovation against the
-/// predicted reading `a_ω ω_i + a_δ δ_i` (`ω⁺_i + δ⁺_i`, the predicted state's lanes: the
-/// same products), squared, beyond [`GROSS_NIS`] times its predicted variance
-/// `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g` (on the diagonal, P before
-/// the prediction; `var` is `q_ω + q_δ + r_g`): a rate the model (9) does not allow (a
-/// glitch, or a rate far beyond `omega_std` held for many correlation times).
-#[inline(always)]
-fn rate_jumps<V: Lanes>(p: &Cov, w: V, d: V, gyro: Vec3, a: (f64, f64), var: f64) -> [bool; 3] {
+/// predicted reading `a_ω ω_i + a_δ δ_i`, squared (`nu2`), beyond [`GROSS_NIS`] times its
+/// predicted variance `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g` (on the
+/// diagonal, P before the prediction; `var` is `q_ω + q_δ + r_g`): a rate the model (9)
+/// does not allow (a glitch, or a rate far beyond `omega_std` held for many correlation
+/// times). The first three terms are the variance of `a_ω ω_i + a_δ δ_i`, at least zero;
+/// a nearly singular ω-δ block can round them below, which counts as zero. So the
+/// variance is at least `var`, and [`Ekf::update_in`] calls this only when some `nu2`
+/// exceeds `GROSS_NIS · var` (with the usual motion, never).
+#[cold]
+#[inline(never)]
+fn rate_jumps(p: &Cov, nu2: [f64; 3], a: (f64, f64), var: f64) -> [bool; 3] {
     let (ww, wd, dd) = (in_place(&p.ww), in_place(&p.wd), in_place(&p.dd));
-    let (w, d) = (w.to_array(), d.to_array());
-    let g = [gyro.x, gyro.y, gyro.z];
     let (aww, awd, add) = (a.0 * a.0, 2.0 * a.0 * a.1, a.1 * a.1);
     array(
         #[inline(always)]
         |i| {
-            let nu = g[i] - (w[i] + d[i]);
-            nu * nu > GROSS_NIS * (((aww * ww[i][i] + awd * wd[i][i]) + add * dd[i][i]) + var)
+            let predicted = ((aww * ww[i][i] + awd * wd[i][i]) + add * dd[i][i]).max(0.0);
+            nu2[i] > GROSS_NIS * (predicted + var)
         },
     )
 }
@@ -1169,9 +1173,24 @@ impl Ekf {
         let qd = s.drift_std * s.drift_std * (c_d * (2.0 - c_d));
         let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
         if test_rate {
-            let jumped = rate_jumps(&self.p, x.w, x.d, gyro, (a_w, a_d), (qw + qd) + rg);
-            if jumped != [false; 3] {
-                return Err(Stop::RateJump(jumped));
+            // The gyroscope rows' NIS test (12) against the predicted reading ω⁺ + δ⁺
+            // (the products a_ω ω_i + a_δ δ_i), with its cheap bound first ([`rate_jumps`]).
+            let (w, d) = (x.w.to_array(), x.d.to_array());
+            let g = [gyro.x, gyro.y, gyro.z];
+            let nu2: [f64; 3] = array(
+                #[inline(always)]
+                |i| {
+                    let nu = g[i] - (w[i] + d[i]);
+                    nu * nu
+                },
+            );
+            let var = (qw + qd) + rg;
+            let bound = GROSS_NIS * var;
+            if (nu2[0] > bound) | (nu2[1] > bound) | (nu2[2] > bound) {
+                let jumped = rate_jumps(&self.p, nu2, (a_w, a_d), var);
+                if jumped != [false; 3] {
+                    return Err(Stop::RateJump(jumped));
+                }
             }
         }
         // D = ∂q⁺/∂ω⁺ (4×3)
