@@ -1365,7 +1365,8 @@ impl Ekf {
                 step.used_mag = true;
                 let innovation = -crate::math::atan2(me.y, me.x);
                 // Direction of a heading change in q: ∂q/∂ψ = ½ ẑ ⊗ q.
-                let dq: V = vector_of(tk, Quat::new(0.0, 0.0, 0.0, 0.5) * q);
+                // ½ ẑ ⊗ q multiplied out: the product's other terms are zeros.
+                let dq: V = V::new(tk, [-(0.5 * q.z), -(0.5 * q.y), 0.5 * q.x, 0.5 * q.w]);
                 let hq = dq * V::splat(tk, 4.0);
                 let v = p.times_q(hq);
                 let p_psi = dot4(hq, v.q);
@@ -1381,8 +1382,10 @@ impl Ekf {
                 }
                 let k_psi = p_psi / (p_psi + r_psi);
                 let (c, s) = crate::math::cos_sin(0.5 * (k_psi * innovation));
-                let turn = Quat::new(c, 0.0, 0.0, s); // exp(k_ψ ν ẑ/2)
-                x.q = vector_of(tk, turn * q);
+                // exp(k_ψ ν ẑ/2) ⊗ q = (c, 0, 0, s) ⊗ q multiplied out (the other terms are
+                // zeros).
+                x.q =
+                    V::new(tk, [c * q.w - s * q.z, c * q.x - s * q.y, c * q.y + s * q.x, c * q.z + s * q.w]);
                 // The gain k = [dq k_ψ; 0; 0] is restricted, not optimal, so the full
                 // Joseph form applies: with v = P hᵀ,
                 // P ← P − k vᵀ − v kᵀ + (h v + r) k kᵀ, which touches the q rows only.
