@@ -540,8 +540,15 @@ impl<V: Lanes> Cov<V> {
         let t = hq.token();
         let h = hq.to_array();
         let q = mul_cols::<V, 4, 1>(&self.qq, |k, _| h[k])[0];
-        let w = self.qw.map(|c| dot4(c, hq));
-        let d = self.qd.map(|c| dot4(c, hq));
+        // `array`, not `map`: LLVM left `map`'s loop out of line in the heading update.
+        let w: [f64; 3] = array(
+            #[inline(always)]
+            |j| dot4(self.qw[j], hq),
+        );
+        let d: [f64; 3] = array(
+            #[inline(always)]
+            |j| dot4(self.qd[j], hq),
+        );
         Blocks { q, w: lanes3(t, w[0], w[1], w[2]), d: lanes3(t, d[0], d[1], d[2]) }
     }
 
