@@ -1235,7 +1235,10 @@ impl Ekf {
                 #[inline(always)]
                 |j| V::load(tk, p0.ww[j]) * aww + unit(tk, j, qw),
             ),
-            wd: p0.wd.map(|c| V::load(tk, c) * awd),
+            wd: array(
+                #[inline(always)]
+                |j| V::load(tk, p0.wd[j]) * awd,
+            ),
             dd: array(
                 #[inline(always)]
                 |j| V::load(tk, p0.dd[j]) * add + unit(tk, j, qd),
@@ -1252,12 +1255,13 @@ impl Ekf {
         let mut nu_mean = self.nu_mean;
         // Rest (with `rest_rate_std` set) depends on the readings only, so it is decided
         // first: it also tells the accelerometer update that f is gravity alone.
-        let rest = (s.rest_rate_std > 0.0).then(|| {
+        let mut rest = None;
+        let mut at_rest = false;
+        if s.rest_rate_std > 0.0 {
             let mut detector = self.rest.clone();
-            let still = detector.update(dt, gyro, accel, &RestThresholds::DEFAULT);
-            (detector, still)
-        });
-        let at_rest = rest.as_ref().is_some_and(|r| r.1);
+            at_rest = detector.update(dt, gyro, accel, &RestThresholds::DEFAULT);
+            rest = Some(detector);
+        }
         if let Some(acc) = accel {
             step.used_accel = true;
             let q_pred = x.q;
@@ -1333,7 +1337,7 @@ impl Ekf {
             |i| nu_g[i] - (lane(x.w, i) + lane(x.d, i)),
         );
         absorb3(&mut x, &mut p, &u, s3, innovation).ok_or(Stop::Refused)?;
-        if let Some((_, true)) = rest {
+        if at_rest {
             // At rest the rate is zero: the pseudo-measurement ω = 0.
             let rz = s.rest_rate_std * s.rest_rate_std;
             let u: [Blocks<V>; 3] = array(
@@ -1415,7 +1419,7 @@ impl Ekf {
         self.adapt = adapt;
         self.adapt_h = adapt_h;
         self.nu_mean = nu_mean;
-        if let Some((r, _)) = rest {
+        if let Some(r) = rest {
             self.rest = r;
         }
         Ok(step)
