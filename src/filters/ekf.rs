@@ -858,20 +858,9 @@ pub fn gravity_model(q: Quat, g: f64) -> (Vec3, Matrix3x4<f64>) {
         g * (-2.0 * q0 * q1 - 2.0 * q2 * q3),
         g * (-q0 * q0 + q1 * q1 + q2 * q2 - q3 * q3),
     );
-    let h = Matrix3x4::new(
-        2.0 * q2,
-        -2.0 * q3,
-        2.0 * q0,
-        -2.0 * q1,
-        -2.0 * q1,
-        -2.0 * q0,
-        -2.0 * q3,
-        -2.0 * q2,
-        -2.0 * q0,
-        2.0 * q1,
-        2.0 * q2,
-        -2.0 * q3,
-    ) * g;
+    // ∂f/∂q: each entry ±2 q_k g, formed as ±q_k (2g) (doubling is exact: the same bits
+    // as (±2 q_k) g, one multiplication fewer).
+    let h = Matrix3x4::new(q2, -q3, q0, -q1, -q1, -q0, -q3, -q2, -q0, q1, q2, -q3) * (2.0 * g);
     (f, h)
 }
 
@@ -1252,7 +1241,7 @@ impl Ekf {
         // batch's less h·(x − x⁻)); one pass over P per batch instead of one per row.
         let mut adapt = self.adapt;
         let mut adapt_h = self.adapt_h;
-        let mut nu_mean = self.nu_mean;
+        let mut nu_mean = None;
         // Rest (with `rest_rate_std` set) depends on the readings only, so it is decided
         // first: it also tells the accelerometer update that f is gravity alone.
         let mut rest = None;
@@ -1285,7 +1274,8 @@ impl Ekf {
             let mut u = h.map(|hq| p.times_q(hq));
             let nu2 = nu.norm_squared();
             // The reported inclination σ's evidence (output only).
-            nu_mean = nu_mean + (quat_of(q_pred).rotate(nu) - nu_mean) * lp_gain(dt, EXCESS_TAU);
+            let mean = self.nu_mean;
+            nu_mean = Some(mean + (quat_of(q_pred).rotate(nu) - mean) * lp_gain(dt, EXCESS_TAU));
             let mut ra = ra0;
             if at_rest {
                 // At rest (the zero-rate update's detector) f is gravity alone: the NIS
@@ -1418,7 +1408,9 @@ impl Ekf {
         p.store_into(&mut self.p);
         self.adapt = adapt;
         self.adapt_h = adapt_h;
-        self.nu_mean = nu_mean;
+        if let Some(m) = nu_mean {
+            self.nu_mean = m;
+        }
         if let Some(r) = rest {
             self.rest = r;
         }
