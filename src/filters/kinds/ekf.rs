@@ -63,7 +63,9 @@
 //!   glitches below the 1e4 rad/s bound, a wrong attitude after a clipped spin). Each is
 //!   a normalised-innovation-squared test with bound 16 (4 standard deviations):
 //!   - gyroscope rows (12): `ν_i = ω_IMU,i − (a_ω ω_i + a_δ δ_i)` against its predicted
-//!     variance `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g`. A reading
+//!     variance `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g` (the first
+//!     three terms, a variance, taken as at least zero, so a reading within
+//!     `16 (q_ω + q_δ + r_g)` passes without reading P). A reading
 //!     that fails it re-initialises ω_i from the reading (`a_ω ω_i + a_δ δ_i = ω_IMU,i`,
 //!     ω_i uncorrelated, variance `r_g/a_ω²`) before the step, so the drift δ, whose
 //!     process (10) allows only `drift_std`, takes no share of a rate jump (9) does not
@@ -513,17 +515,23 @@ impl Cov {
 }
 
 impl<V: Lanes> Cov<V> {
+    /// Stores every column into `to` where it lies: a `Cov` built whole and then assigned
+    /// was assembled on the stack and copied into place with `memcpy` (608 bytes; 142
+    /// instructions per update, callgrind, baseline ISA).
     #[inline(always)]
-    fn store(&self) -> Cov {
-        let s = |c: &[V; 3]| c.map(|v| v.store());
-        Cov {
-            qq: self.qq.map(|v| v.store()),
-            qw: s(&self.qw),
-            qd: s(&self.qd),
-            ww: s(&self.ww),
-            wd: s(&self.wd),
-            dd: s(&self.dd),
+    fn store_into(&self, to: &mut Cov) {
+        #[inline(always)]
+        fn each<V: Lanes, const C: usize>(from: &Cols<C, V>, to: &mut Cols<C>) {
+            for (t, f) in to.iter_mut().zip(from) {
+                *t = f.store();
+            }
         }
+        each(&self.qq, &mut to.qq);
+        each(&self.qw, &mut to.qw);
+        each(&self.qd, &mut to.qd);
+        each(&self.ww, &mut to.ww);
+        each(&self.wd, &mut to.wd);
+        each(&self.dd, &mut to.dd);
     }
 
     /// `P hᵀ` for a measurement row that reads q only, through `hq`.
@@ -532,8 +540,15 @@ impl<V: Lanes> Cov<V> {
         let t = hq.token();
         let h = hq.to_array();
         let q = mul_cols::<V, 4, 1>(&self.qq, |k, _| h[k])[0];
-        let w = self.qw.map(|c| dot4(c, hq));
-        let d = self.qd.map(|c| dot4(c, hq));
+        // `array`, not `map`: LLVM left `map`'s loop out of line in the heading update.
+        let w: [f64; 3] = array(
+            #[inline(always)]
+            |j| dot4(self.qw[j], hq),
+        );
+        let d: [f64; 3] = array(
+            #[inline(always)]
+            |j| dot4(self.qd[j], hq),
+        );
         Blocks { q, w: lanes3(t, w[0], w[1], w[2]), d: lanes3(t, d[0], d[1], d[2]) }
     }
 
@@ -637,34 +652,36 @@ fn inflate_attitude<V: Lanes>(p: &mut Cov<V>, q: V, var: f64) {
     }
 }
 
-/// The one-step factors of the Markov processes (9)-(10) over dt: `(a_ω, a_δ)`, the
-/// decays `e^{−dt/τ}`, and `(q_ω, q_δ)`, the exact discrete process-noise variances
-/// `σ²(1 − e^{−2dt/τ})`, from `c = 1 − e^{−dt/τ}` (see the prediction in `update_in`).
-#[inline(always)]
-fn markov(s: &EkfSettings, c_w: f64, c_d: f64) -> ((f64, f64), (f64, f64)) {
-    let qw = s.omega_std * s.omega_std * (c_w * (2.0 - c_w));
-    let qd = s.drift_std * s.drift_std * (c_d * (2.0 - c_d));
-    ((1.0 - c_w, 1.0 - c_d), (qw, qd))
-}
-
 /// ω's axes whose gyroscope reading fails the NIS test (12): its innovation against the
-/// predicted reading `a_ω ω_i + a_δ δ_i`, squared, beyond [`GROSS_NIS`] times its
+/// predicted reading `a_ω ω_i + a_δ δ_i`, squared (`nu2`), beyond [`GROSS_NIS`] times its
 /// predicted variance `a_ω² P_ωω + 2 a_ω a_δ P_ωδ + a_δ² P_δδ + q_ω + q_δ + r_g` (on the
-/// diagonal): a rate the model (9) does not allow (a glitch, or a rate far beyond
-/// `omega_std` held for many correlation times).
-#[inline(always)]
-fn rate_jumps(p: &Cov, x: &Blocks, gyro: Vec3, a: (f64, f64), var: f64) -> [bool; 3] {
+/// diagonal, P before the prediction; `var` is `q_ω + q_δ + r_g`): a rate the model (9)
+/// does not allow (a glitch, or a rate far beyond `omega_std` held for many correlation
+/// times). The first three terms are the variance of `a_ω ω_i + a_δ δ_i`, at least zero;
+/// a nearly singular ω-δ block can round them below, which counts as zero. So the
+/// variance is at least `var`, and [`Ekf::update_in`] calls this only when some `nu2`
+/// exceeds `GROSS_NIS · var` (with the usual motion, never).
+#[cold]
+#[inline(never)]
+fn rate_jumps(p: &Cov, nu2: [f64; 3], a: (f64, f64), var: f64) -> [bool; 3] {
     let (ww, wd, dd) = (in_place(&p.ww), in_place(&p.wd), in_place(&p.dd));
-    let (w, d) = (x.w.as_array_ref(), x.d.as_array_ref());
-    let g = [gyro.x, gyro.y, gyro.z];
     let (aww, awd, add) = (a.0 * a.0, 2.0 * a.0 * a.1, a.1 * a.1);
     array(
         #[inline(always)]
         |i| {
-            let nu = g[i] - (a.0 * w[i] + a.1 * d[i]);
-            nu * nu > GROSS_NIS * (((aww * ww[i][i] + awd * wd[i][i]) + add * dd[i][i]) + var)
+            let predicted = ((aww * ww[i][i] + awd * wd[i][i]) + add * dd[i][i]).max(0.0);
+            nu2[i] > GROSS_NIS * (predicted + var)
         },
     )
+}
+
+/// Why [`Ekf::update_in`] took no step (it then changed nothing).
+enum Stop {
+    /// The step would not be finite.
+    Refused,
+    /// These axes' gyroscope readings failed the NIS test (12): ω is re-initialised
+    /// from them first ([`reinit_rate`]).
+    RateJump([bool; 3]),
 }
 
 /// Re-initialises the drift on axis `i` to `d`, independent of the other states with
@@ -841,20 +858,9 @@ pub fn gravity_model(q: Quat, g: f64) -> (Vec3, Matrix3x4<f64>) {
         g * (-2.0 * q0 * q1 - 2.0 * q2 * q3),
         g * (-q0 * q0 + q1 * q1 + q2 * q2 - q3 * q3),
     );
-    let h = Matrix3x4::new(
-        2.0 * q2,
-        -2.0 * q3,
-        2.0 * q0,
-        -2.0 * q1,
-        -2.0 * q1,
-        -2.0 * q0,
-        -2.0 * q3,
-        -2.0 * q2,
-        -2.0 * q0,
-        2.0 * q1,
-        2.0 * q2,
-        -2.0 * q3,
-    ) * g;
+    // ∂f/∂q: each entry ±2 q_k g, formed as ±q_k (2g) (doubling is exact: the same bits
+    // as (±2 q_k) g, one multiplication fewer).
+    let h = Matrix3x4::new(q2, -q3, q0, -q1, -q1, -q0, -q3, -q2, -q0, q1, q2, -q3) * (2.0 * g);
     (f, h)
 }
 
@@ -1038,15 +1044,11 @@ impl Ekf {
     /// the orientation and drift kept. Only if that fails too is the step refused.
     #[inline(always)]
     pub fn update(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        let s = &self.settings;
-        let (a, (qw, qd)) =
-            markov(s, one_minus_exp_neg(dt / s.tau_omega), one_minus_exp_neg(dt / s.tau_drift));
-        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
-        let jumped = rate_jumps(&self.p, &self.x, gyro, a, (qw + qd) + rg);
-        if jumped != [false; 3] {
-            return self.update_after_jump(dt, gyro, accel, mag, jumped);
+        match self.step(dt, gyro, accel, mag, true) {
+            Ok(step) => Some(step),
+            Err(Stop::Refused) => self.retry_from_fresh_covariance(dt, gyro, accel, mag),
+            Err(Stop::RateJump(jumped)) => self.update_after_jump(dt, gyro, accel, mag, jumped),
         }
-        self.update_plain(dt, gyro, accel, mag)
     }
 
     /// [`Ekf::update`] after ω was re-initialised on the axes whose gyroscope reading
@@ -1067,19 +1069,14 @@ impl Ekf {
         let a_d = 1.0 - one_minus_exp_neg(dt / s.tau_drift);
         let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
         reinit_rate(&mut self.x, &mut self.p, gyro, jumped, rg / (a_w * a_w), (a_w, a_d));
-        let step = self.update_plain(dt, gyro, accel, mag);
+        let step = match self.step(dt, gyro, accel, mag, false) {
+            Ok(step) => Some(step),
+            Err(_) => self.retry_from_fresh_covariance(dt, gyro, accel, mag),
+        };
         if step.is_none() {
             *self = before;
         }
         step
-    }
-
-    #[inline(always)]
-    fn update_plain(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
-        match self.step(dt, gyro, accel, mag) {
-            Some(step) => Some(step),
-            None => self.retry_from_fresh_covariance(dt, gyro, accel, mag),
-        }
     }
 
     #[cold]
@@ -1095,7 +1092,7 @@ impl Ekf {
         let omega = gyro - self.drift();
         self.x.w = f64x4::new([omega.x, omega.y, omega.z, 0.0]);
         self.reset_covariance();
-        let step = self.step(dt, gyro, accel, mag);
+        let step = self.step(dt, gyro, accel, mag, false).ok();
         if step.is_none() {
             *self = before;
         }
@@ -1105,25 +1102,34 @@ impl Ekf {
     /// The step itself, in the widest lanes the CPU has. Not inlined into the retry
     /// above: one copy of the (large) step serves both calls.
     #[inline(never)]
-    fn step(&mut self, dt: f64, gyro: Vec3, accel: Option<Vec3>, mag: Option<Vec3>) -> Option<Step> {
+    fn step(
+        &mut self,
+        dt: f64,
+        gyro: Vec3,
+        accel: Option<Vec3>,
+        mag: Option<Vec3>,
+        test_rate: bool,
+    ) -> Result<Step, Stop> {
         struct Run<'a> {
             ekf: &'a mut Ekf,
             dt: f64,
             gyro: Vec3,
             accel: Option<Vec3>,
             mag: Option<Vec3>,
+            test_rate: bool,
         }
         impl crate::isa::WithLanes for Run<'_> {
-            type Out = Option<Step>;
+            type Out = Result<Step, Stop>;
             #[inline(always)]
-            fn run<V: Lanes>(self, t: V::Token) -> Option<Step> {
-                self.ekf.update_in::<V>(t, self.dt, self.gyro, self.accel, self.mag)
+            fn run<V: Lanes>(self, t: V::Token) -> Result<Step, Stop> {
+                self.ekf.update_in::<V>(t, self.dt, self.gyro, self.accel, self.mag, self.test_rate)
             }
         }
-        crate::isa::widest_lanes(Run { ekf: self, dt, gyro, accel, mag })
+        crate::isa::widest_lanes(Run { ekf: self, dt, gyro, accel, mag, test_rate })
     }
 
-    /// [`Ekf::update`] with lane type `V`.
+    /// [`Ekf::update`] with lane type `V`; with `test_rate`, first the gyroscope rows'
+    /// NIS test (12) ([`rate_jumps`]), on the prediction's own factors and state.
     #[inline(always)]
     fn update_in<V: Lanes>(
         &mut self,
@@ -1132,7 +1138,8 @@ impl Ekf {
         gyro: Vec3,
         accel: Option<Vec3>,
         mag: Option<Vec3>,
-    ) -> Option<Step> {
+        test_rate: bool,
+    ) -> Result<Step, Stop> {
         let s = &self.settings;
         let mut step = Step::default();
 
@@ -1158,11 +1165,33 @@ impl Ekf {
         let q = quat_of(self.x.q);
         let x0 = Blocks::<V>::load(&self.x, tk);
         let mut x = Blocks { q: x0.q, w: x0.w * V::splat(tk, a_w), d: x0.d * V::splat(tk, a_d) };
+        let qw = s.omega_std * s.omega_std * (c_w * (2.0 - c_w));
+        let qd = s.drift_std * s.drift_std * (c_d * (2.0 - c_d));
+        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
+        if test_rate {
+            // The gyroscope rows' NIS test (12) against the predicted reading ω⁺ + δ⁺
+            // (the products a_ω ω_i + a_δ δ_i), with its cheap bound first ([`rate_jumps`]).
+            let (w, d) = (x.w.to_array(), x.d.to_array());
+            let g = [gyro.x, gyro.y, gyro.z];
+            let nu2: [f64; 3] = array(
+                #[inline(always)]
+                |i| {
+                    let nu = g[i] - (w[i] + d[i]);
+                    nu * nu
+                },
+            );
+            let var = (qw + qd) + rg;
+            let bound = GROSS_NIS * var;
+            if (nu2[0] > bound) | (nu2[1] > bound) | (nu2[2] > bound) {
+                let jumped = rate_jumps(&self.p, nu2, (a_w, a_d), var);
+                if jumped != [false; 3] {
+                    return Err(Stop::RateJump(jumped));
+                }
+            }
+        }
         // D = ∂q⁺/∂ω⁺ (4×3)
         let (e, dq_dw) = exp_and_d::<V>(tk, q, Vec3::new(lane(x.w, 0), lane(x.w, 1), lane(x.w, 2)), 0.5 * dt);
         x.q = vector_of(tk, q * e);
-        let qw = s.omega_std * s.omega_std * (c_w * (2.0 - c_w));
-        let qd = s.drift_std * s.drift_std * (c_d * (2.0 - c_d));
         let r = right(e);
         let rc = cols(tk, &r);
         let a = dq_dw.map(|c| c * V::splat(tk, a_w)); // a_ω D
@@ -1195,7 +1224,10 @@ impl Ekf {
                 #[inline(always)]
                 |j| V::load(tk, p0.ww[j]) * aww + unit(tk, j, qw),
             ),
-            wd: p0.wd.map(|c| V::load(tk, c) * awd),
+            wd: array(
+                #[inline(always)]
+                |j| V::load(tk, p0.wd[j]) * awd,
+            ),
             dd: array(
                 #[inline(always)]
                 |j| V::load(tk, p0.dd[j]) * add + unit(tk, j, qd),
@@ -1207,18 +1239,18 @@ impl Ekf {
         // absorbed as two batches of three (the same posterior as one batch of six: the
         // gyroscope rows are linear, so their innovation at the updated state is the
         // batch's less h·(x − x⁻)); one pass over P per batch instead of one per row.
-        let rg = s.gyro_noise * s.gyro_noise / (2.0 * dt);
         let mut adapt = self.adapt;
         let mut adapt_h = self.adapt_h;
-        let mut nu_mean = self.nu_mean;
+        let mut nu_mean = None;
         // Rest (with `rest_rate_std` set) depends on the readings only, so it is decided
         // first: it also tells the accelerometer update that f is gravity alone.
-        let rest = (s.rest_rate_std > 0.0).then(|| {
+        let mut rest = None;
+        let mut at_rest = false;
+        if s.rest_rate_std > 0.0 {
             let mut detector = self.rest.clone();
-            let still = detector.update(dt, gyro, accel, &RestThresholds::DEFAULT);
-            (detector, still)
-        });
-        let at_rest = rest.as_ref().is_some_and(|r| r.1);
+            at_rest = detector.update(dt, gyro, accel, &RestThresholds::DEFAULT);
+            rest = Some(detector);
+        }
         if let Some(acc) = accel {
             step.used_accel = true;
             let q_pred = x.q;
@@ -1240,24 +1272,25 @@ impl Ekf {
                 |i| V::new(tk, [hf[(i, 0)], hf[(i, 1)], hf[(i, 2)], hf[(i, 3)]]),
             );
             let mut u = h.map(|hq| p.times_q(hq));
-            // The NIS test (see the module documentation): the innovation's power against
-            // the power the model predicts for it, tr(H P Hᵀ) plus three axes of noise and
-            // linear acceleration counted as a variance (not colour-scaled).
             let nu2 = nu.norm_squared();
-            let hph = (dot4(h[0], u[0].q) + dot4(h[1], u[1].q)) + dot4(h[2], u[2].q);
-            let expected = hph + 3.0 * (white + motion);
-            let gross = at_rest && nu2 > GROSS_NIS * expected;
             // The reported inclination σ's evidence (output only).
-            nu_mean = nu_mean + (quat_of(q_pred).rotate(nu) - nu_mean) * lp_gain(dt, EXCESS_TAU);
-            if gross {
-                inflate_attitude(&mut p, x.q, (nu2 - expected) / (2.0 * s.gravity * s.gravity));
-                u = h.map(|hq| p.times_q(hq));
-            }
+            let mean = self.nu_mean;
+            nu_mean = Some(mean + (quat_of(q_pred).rotate(nu) - mean) * lp_gain(dt, EXCESS_TAU));
             let mut ra = ra0;
-            // At rest (the zero-rate update's detector) f is gravity alone, and a gross
-            // innovation is the attitude's error: neither is linear acceleration, so
-            // neither feeds nor takes the adaptive floor.
-            if s.accel_adapt_tau > 0.0 && !gross && !at_rest {
+            if at_rest {
+                // At rest (the zero-rate update's detector) f is gravity alone: the NIS
+                // test (see the module documentation), the innovation's power against the
+                // power the model predicts for it, tr(H P Hᵀ) plus three axes of noise and
+                // linear acceleration counted as a variance (not colour-scaled). A gross
+                // innovation is the attitude's error; neither it nor any other at rest is
+                // linear acceleration, so none feeds or takes the adaptive floor.
+                let hph = (dot4(h[0], u[0].q) + dot4(h[1], u[1].q)) + dot4(h[2], u[2].q);
+                let expected = hph + 3.0 * (white + motion);
+                if nu2 > GROSS_NIS * expected {
+                    inflate_attitude(&mut p, x.q, (nu2 - expected) / (2.0 * s.gravity * s.gravity));
+                    u = h.map(|hq| p.times_q(hq));
+                }
+            } else if s.accel_adapt_tau > 0.0 {
                 // The innovation's recent power per axis: linear acceleration the standing
                 // allowance does not cover (sustained translation) shows up there first.
                 adapt += (nu2 / 3.0 - adapt) * lp_gain(dt, s.accel_adapt_tau);
@@ -1272,7 +1305,7 @@ impl Ekf {
                     )
                 },
             );
-            absorb3(&mut x, &mut p, &u, s3, [nu.x, nu.y, nu.z])?;
+            absorb3(&mut x, &mut p, &u, s3, [nu.x, nu.y, nu.z]).ok_or(Stop::Refused)?;
         }
         // Gyroscope rows: ω_IMU,i = ω_i + δ_i, linear.
         let u: [Blocks<V>; 3] = array(
@@ -1293,8 +1326,8 @@ impl Ekf {
             #[inline(always)]
             |i| nu_g[i] - (lane(x.w, i) + lane(x.d, i)),
         );
-        absorb3(&mut x, &mut p, &u, s3, innovation)?;
-        if let Some((_, true)) = rest {
+        absorb3(&mut x, &mut p, &u, s3, innovation).ok_or(Stop::Refused)?;
+        if at_rest {
             // At rest the rate is zero: the pseudo-measurement ω = 0.
             let rz = s.rest_rate_std * s.rest_rate_std;
             let u: [Blocks<V>; 3] = array(
@@ -1314,13 +1347,13 @@ impl Ekf {
                 #[inline(always)]
                 |i| -lane(x.w, i),
             );
-            absorb3(&mut x, &mut p, &u, s3, innovation)?;
+            absorb3(&mut x, &mut p, &u, s3, innovation).ok_or(Stop::Refused)?;
         }
         let q_norm = dot4(x.q, x.q).sqrt();
         // An absurd reading can blow the correction up: refuse the step rather than
         // divide by an overflowed (or vanished) norm.
         if !(q_norm.is_finite() && q_norm > 1e-3) {
-            return None;
+            return Err(Stop::Refused);
         }
         x.q /= V::splat(tk, q_norm);
 
@@ -1333,7 +1366,8 @@ impl Ekf {
                 step.used_mag = true;
                 let innovation = -crate::math::atan2(me.y, me.x);
                 // Direction of a heading change in q: ∂q/∂ψ = ½ ẑ ⊗ q.
-                let dq: V = vector_of(tk, Quat::new(0.0, 0.0, 0.0, 0.5) * q);
+                // ½ ẑ ⊗ q multiplied out: the product's other terms are zeros.
+                let dq: V = V::new(tk, [-(0.5 * q.z), -(0.5 * q.y), 0.5 * q.x, 0.5 * q.w]);
                 let hq = dq * V::splat(tk, 4.0);
                 let v = p.times_q(hq);
                 let p_psi = dot4(hq, v.q);
@@ -1349,8 +1383,10 @@ impl Ekf {
                 }
                 let k_psi = p_psi / (p_psi + r_psi);
                 let (c, s) = crate::math::cos_sin(0.5 * (k_psi * innovation));
-                let turn = Quat::new(c, 0.0, 0.0, s); // exp(k_ψ ν ẑ/2)
-                x.q = vector_of(tk, turn * q);
+                // exp(k_ψ ν ẑ/2) ⊗ q = (c, 0, 0, s) ⊗ q multiplied out (the other terms are
+                // zeros).
+                x.q =
+                    V::new(tk, [c * q.w - s * q.z, c * q.x - s * q.y, c * q.y + s * q.x, c * q.z + s * q.w]);
                 // The gain k = [dq k_ψ; 0; 0] is restricted, not optimal, so the full
                 // Joseph form applies: with v = P hᵀ,
                 // P ← P − k vᵀ − v kᵀ + (h v + r) k kᵀ, which touches the q rows only.
@@ -1366,17 +1402,19 @@ impl Ekf {
             }
         }
         if !(x.is_finite() && p.is_finite()) {
-            return None;
+            return Err(Stop::Refused);
         }
         self.x = x.store();
-        self.p = p.store();
+        p.store_into(&mut self.p);
         self.adapt = adapt;
         self.adapt_h = adapt_h;
-        self.nu_mean = nu_mean;
-        if let Some((r, _)) = rest {
+        if let Some(m) = nu_mean {
+            self.nu_mean = m;
+        }
+        if let Some(r) = rest {
             self.rest = r;
         }
-        Some(step)
+        Ok(step)
     }
 }
 
@@ -1436,7 +1474,7 @@ mod tests {
             let mag = (i % 3 != 0).then(|| Vec3::new(20.0 + t.sin(), 3.0, 40.0));
             let accel = (i % 7 != 3).then_some(accel);
             let a = wide.update(0.01, gyro, accel, mag);
-            let b = base.update_in::<f64x4>((), 0.01, gyro, accel, mag);
+            let b = base.update_in::<f64x4>((), 0.01, gyro, accel, mag, true).ok();
             assert_eq!(a, b, "step {i}");
             assert!(bits(&mut wide) == bits(&mut base), "the states differ after step {i}");
         }
