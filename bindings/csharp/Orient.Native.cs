@@ -336,7 +336,8 @@ namespace Orient.Native
 
         /// <summary>
         /// Parameter slot (mahony): Integral gain for the gyroscope bias (Mahony 2008); default 0
-        /// (no bias estimation) as in the GMVDK paper's comparison.
+        /// (no bias estimation) as in the GMVDK paper's comparison. Set to 0 with rest_bias_tau
+        /// also 0, the bias estimate is dropped.
         ///
         /// Unit 1/s^2; range 0 to 1000; default 0.
         /// </summary>
@@ -868,8 +869,8 @@ namespace Orient.Native
         /// the reading, and the complementary one, which uses it only with
         /// ORIENT_PARAM_COMPLEMENTARY_ALIGN_HEADING), else the heading held before. The kind's
         /// low-passes and detectors start over; its bias estimate is kept, but after the rest
-        /// watch a bias that Madgwick or Mahony learns becomes the still sample's gyroscope
-        /// reading.
+        /// watch a bias that Madgwick or Mahony learns or still subtracts becomes the still
+        /// sample's gyroscope reading.
         /// </summary>
         public const uint FlagReacquired = 16;
 
@@ -879,10 +880,10 @@ namespace Orient.Native
         /// Set when a gap ends on a sample without an accelerometer reading (the orientation is
         /// held over the gap), after gyroscope saturation, and by the rest watch: when the sensor
         /// lies still (gyroscope below 3 °/s, accelerometer norm within 5 % of the configured
-        /// gravity) and the estimate's vertical has stayed more than 2° from the accelerometer's
-        /// for 5 s, looked at every 32nd sample. An estimate can rest there at a stationary point
-        /// of its kind's correction (Madgwick's and Mahony's magnetometer terms near a 180°
-        /// heading error, the EKF's gravity update near an upside-down estimate).
+        /// gravity) and the estimate's vertical has stayed more than 10° from the
+        /// accelerometer's for 5 s, looked at every 32nd sample. An estimate can rest there at a
+        /// stationary point of its kind's correction (Madgwick's and Mahony's magnetometer terms
+        /// near a 180° heading error, the EKF's gravity update near an upside-down estimate).
         /// </summary>
         public const uint FlagReacquirePending = 32;
 

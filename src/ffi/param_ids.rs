@@ -92,7 +92,8 @@ pub const ORIENT_PARAM_MADGWICK_REST_BIAS_TAU: u32 = 10;
 pub const ORIENT_PARAM_MAHONY_KP: u32 = 16;
 
 /// Parameter slot (mahony): Integral gain for the gyroscope bias (Mahony 2008); default 0
-/// (no bias estimation) as in the GMVDK paper's comparison.
+/// (no bias estimation) as in the GMVDK paper's comparison. Set to 0 with rest_bias_tau
+/// also 0, the bias estimate is dropped.
 ///
 /// Unit 1/s^2; range 0 to 1000; default 0.
 pub const ORIENT_PARAM_MAHONY_KI: u32 = 17;

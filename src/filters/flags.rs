@@ -79,7 +79,7 @@ bits! {
     /// ends on a sample without an accelerometer reading (the orientation is held over
     /// the gap), after gyroscope saturation, and by the rest watch: when the sensor lies
     /// still (gyroscope below 3 °/s, accelerometer norm within 5 % of the configured
-    /// gravity) and the estimate's vertical has stayed more than 2° from the
+    /// gravity) and the estimate's vertical has stayed more than 10° from the
     /// accelerometer's for 5 s, looked at every 32nd sample. An estimate can rest there
     /// at a stationary point of its kind's correction (Madgwick's and Mahony's
     /// magnetometer terms near a 180° heading error, the EKF's gravity update near an

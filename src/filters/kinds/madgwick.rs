@@ -584,6 +584,11 @@ mod estimator_impl {
     estimator!(impl for Madgwick { settings: MadgwickSettings, native: Nwu, own_startup: false, diagnostics: GYRO_BIAS | REST, usual: true } {
         fn configure(&mut self, settings: MadgwickSettings) {
             self.settings = settings;
+            // Without the rest learner, b is no estimate any more: dropped, or a bias learned
+            // before would be subtracted for good.
+            if settings.rest_bias_tau == 0.0 {
+                self.bias = Vec3::ZERO;
+            }
             self.rest.prepare(settings.rest_bias_tau > 0.0);
         }
 

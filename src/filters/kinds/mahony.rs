@@ -46,7 +46,8 @@ settings! {
             max: 1000.0,
             zero_off: false,
             doc: "Integral gain for the gyroscope bias (Mahony 2008); default 0 (no bias \
-                 estimation) as in the GMVDK paper's comparison.",
+                 estimation) as in the GMVDK paper's comparison. Set to 0 with rest_bias_tau \
+                 also 0, the bias estimate is dropped.",
         },
         rest_bias_tau: f64 = MAHONY_REST_BIAS_TAU 18 {
             unit: "s",
@@ -332,6 +333,11 @@ mod estimator_impl {
     estimator!(impl for Mahony { settings: MahonySettings, native: Enu, own_startup: false, diagnostics: GYRO_BIAS | REST, usual: true } {
         fn configure(&mut self, settings: MahonySettings) {
             self.settings = settings;
+            // With neither k_I nor the rest learner, b is no estimate any more: dropped, or a
+            // bias learned (or wound up) before would be subtracted for good.
+            if settings.ki == 0.0 && settings.rest_bias_tau == 0.0 {
+                self.bias = Vec3::ZERO;
+            }
             self.rest.prepare(settings.rest_bias_tau > 0.0);
         }
 
