@@ -37,6 +37,9 @@ for f in tests/*.rs; do
   name=$(basename "$f" .rs)
   case "$native_only" in *[[:space:]]"$name"[[:space:]]*) ;; *) tests+=(--test "$name") ;; esac
 done
+# Naming test files leaves the examples unbuilt; tests/examples.rs runs the quickstart
+# built for the board.
+cargo build --quiet --target "$target" -p orient --examples
 cargo test --target "$target" -p orient "${tests[@]}"
 # The tools crate: its unit tests and the bench floors (tools/tests/floor.rs), which
 # must compute the cores' numbers on the board too.
