@@ -37,6 +37,6 @@ python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ig
   -r "$venv/requirements.txt" "$wheel"
 "${qemu[@]}" "$venv/bin/python" -c 'import platform, orient; print("aarch64 python", platform.python_version(), platform.machine(), "orient", orient.version(), orient.__file__)'
 status=0
-(cd tests/python && ORIENT_REPLAY="$replay" "${qemu[@]}" "$venv/bin/python" -m pytest -q -p no:cacheprovider .) || status=$?
+(cd tests/python && ORIENT_REPLAY="$replay" ORIENT_HOST_PYTHON="$(command -v python3)" "${qemu[@]}" "$venv/bin/python" -m pytest -q -p no:cacheprovider .) || status=$?
 if [ "$status" = 5 ]; then echo "pytest collected no tests" >&2; fi
 exit "$status"

@@ -3,6 +3,7 @@ the header, and, read independently of the generator, its constants, enums, stru
 fields in order and the argument count of every bound function are the header's."""
 
 import ctypes
+import os
 import re
 import subprocess
 import sys
@@ -85,7 +86,9 @@ def _generate(root, header_text, tmp_path):
     header = tmp_path / "orient.h"
     header.write_text(header_text)
     run = subprocess.run(
-        [sys.executable, str(root / "scripts" / "gen-python.py"), str(header), "-"],
+        # The generator is a build-machine script: under qemu-user (an aarch64 wheel's
+        # tests) the emulated interpreter cannot start itself again, the host's can.
+        [os.environ.get("ORIENT_HOST_PYTHON", sys.executable), str(root / "scripts" / "gen-python.py"), str(header), "-"],
         capture_output=True,
         text=True,
     )
