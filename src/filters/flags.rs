@@ -71,19 +71,24 @@ bits! {
     /// (every kind but the robust one, whose magnetic disturbance test may refuse the
     /// reading, and the complementary one, which uses it only with `align_heading`), else
     /// the heading held before. The kind's low-passes and detectors start over; its bias
-    /// estimate is kept, but after the rest watch a bias that Madgwick or Mahony learns or
-    /// still subtracts becomes the still sample's gyroscope reading.
+    /// estimate is kept, but after the rest watch the still sample's gyroscope reading
+    /// becomes the bias of every kind that learns one or still subtracts one (the
+    /// complementary filter's rest reference ω_b0 too).
     REACQUIRED = 16;
     /// The next sample with an accelerometer reading re-acquires the orientation
     /// ([`REACQUIRED`]); until then it is integrated from the gyroscope. Set when a gap
     /// ends on a sample without an accelerometer reading (the orientation is held over
     /// the gap), after gyroscope saturation, and by the rest watch: when the sensor lies
     /// still (gyroscope below 3 °/s, accelerometer norm within 5 % of the configured
-    /// gravity) and the estimate's vertical has stayed more than 10° from the
-    /// accelerometer's for 5 s, looked at every 32nd sample. An estimate can rest there
+    /// gravity) and the estimate's vertical has been more than 10° from the
+    /// accelerometer's, or the kind's bias more than 6 °/s from the gyroscope's reading,
+    /// for 5 s net of the time it was not (looked at every 32nd sample; a look at a moving
+    /// sensor starts the count over). An estimate can rest there
     /// at a stationary point of its kind's correction (Madgwick's and Mahony's
     /// magnetometer terms near a 180° heading error, the EKF's gravity update near an
-    /// upside-down estimate).
+    /// upside-down estimate), or spin on a wrong bias that its kind then cannot learn
+    /// (GMVDK distrusts the accelerometer while the de-biased rate is large, the
+    /// complementary filter's rest test compares with its start-up bias).
     REACQUIRE_PENDING = 32;
     /// The last accepted sample had an accelerometer reading that the update did not use
     /// (the kind's own test turned it down, e.g. the robust kind's and the EKF's gating of

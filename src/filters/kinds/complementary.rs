@@ -231,7 +231,8 @@ impl Complementary {
     }
 
     /// After a gap: the attitude from the accelerometer (and, with `align_heading`, the
-    /// magnetometer; else the heading held), the bias ω_b and the stationary values kept.
+    /// magnetometer; else the heading held), the bias ω_b and the stationary values kept,
+    /// but for the rest watch's still reading, which becomes ω_b and ω_b0.
     pub(crate) fn reacquire(&mut self, r: &crate::filters::pipeline::estimator::Reacquisition) -> bool {
         let (q, used_mag) = match r.with_mag {
             Some(q) if self.settings.align_heading.on() => (q, true),
@@ -240,6 +241,12 @@ impl Complementary {
         if let Phase::Running(state) = &mut self.phase {
             state.q = q;
             state.rest = false;
+            if let Some(g) = r.still {
+                // The rest watch's still reading: the bias, and the rest test's reference
+                // (a wrong ω_b0 would keep the rest test, and so K_I, off for good).
+                state.bias = g;
+                state.b0 = g;
+            }
         }
         used_mag
     }

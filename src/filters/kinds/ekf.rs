@@ -309,10 +309,15 @@ impl Ekf {
     }
 
     /// After a gap: the re-acquired orientation, ω from this gyroscope reading less the
-    /// drift estimate δ (kept), the covariance back to its initial value (the orientation
+    /// drift estimate δ (kept, but for the rest watch's still reading, which becomes it),
+    /// the covariance back to its initial value (the orientation
     /// is as uncertain as at start-up), rest detection and adaptation started over.
     pub(crate) fn reacquire(&mut self, r: &crate::filters::pipeline::estimator::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
+        if let Some(g) = r.still {
+            // The rest watch's still reading is the drift δ (and ω is then zero).
+            self.x.d = f64x4::new([g.x, g.y, g.z, 0.0]);
+        }
         let omega = r.gyro - self.drift();
         self.x.q = vector_of((), q);
         self.x.w = f64x4::new([omega.x, omega.y, omega.z, 0.0]);

@@ -291,11 +291,17 @@ impl Gmvdk {
     }
 
     /// After a gap: the re-acquired attitude (the start-up pose that a relative output
-    /// refers to is kept), the static-run regression started over, the bias kept. The
-    /// gap counts as time, so the μ window forgets the readings before it.
+    /// refers to is kept), the static-run regression started over, the bias kept, but for
+    /// the rest watch's re-acquisition of a still sensor, where the bias is the still
+    /// gyroscope reading: a wrong bias spins the de-biased rate, α then stays 0 and the
+    /// static runs that would correct it never come. The gap counts as time, so the μ
+    /// window forgets the readings before it.
     pub(crate) fn reacquire(&mut self, r: &crate::filters::pipeline::estimator::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
         self.q = q;
+        if let Some(g) = r.still {
+            self.bias = g;
+        }
         self.time += r.dt;
         self.regression = Regression::default();
         self.mag_seen = false;

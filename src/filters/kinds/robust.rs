@@ -432,9 +432,13 @@ impl Robust {
     /// After a gap: inclination from this accelerometer reading, heading from the
     /// magnetometer only when its field (less the hard iron in use) passes the norm and
     /// dip tests against the reference, else the heading held; the low-passes, rest
-    /// detection and the hard-iron consistency clock start over; the bias, the magnetic
-    /// reference and a hard-iron offset in use are kept.
+    /// detection and the hard-iron consistency clock start over; the bias (but for the
+    /// rest watch's still reading, which becomes it), the magnetic reference and a
+    /// hard-iron offset in use are kept.
     pub(crate) fn reacquire(&mut self, r: &crate::filters::pipeline::estimator::Reacquisition) -> bool {
+        if let Some(g) = r.still {
+            self.bias = g;
+        }
         let mut q = r.keep;
         let mut used_mag = false;
         if let Some(m) = r.mag {

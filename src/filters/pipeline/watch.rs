@@ -12,9 +12,12 @@
 //! After every [`WATCH_EVERY`] accepted samples, the watch looks at the next one. The
 //! sensor counts as lying still when the gyroscope reads less than [`STILL_RATE`] and the
 //! accelerometer's norm is the configured gravity's within [`STILL_GRAVITY`]. While it
-//! lies still and the estimate's vertical is more than [`OFF_ANGLE`] from the
-//! accelerometer's at every look, the watch adds up the time; any other look starts it
-//! over. After [`OFF_SECONDS`] it leaves a re-acquisition pending, which the next sample
+//! lies still, the watch adds up the time of every look at which the estimate's vertical
+//! is more than [`OFF_ANGLE`] from the accelerometer's, or the kind's bias estimate is
+//! more than [`SPIN_RATE`] from the gyroscope's reading, and takes off the time of every
+//! look at which it is closer (an estimate that spins on a wrong bias passes the vertical
+//! now and then); a look at a sensor that does not lie still starts it over. When the sum
+//! reaches [`OFF_SECONDS`] the watch leaves a re-acquisition pending, which the next sample
 //! takes (`flags::REACQUIRE_PENDING`, `flags::REACQUIRED`): inclination from the
 //! accelerometer, heading from the magnetometer where the kind takes it.
 //!
@@ -48,11 +51,20 @@ pub(crate) const STILL_GRAVITY: f64 = 0.05;
 /// as off: 10°.
 pub(crate) const OFF_ANGLE: f64 = 0.174_532_925_199_432_95;
 
-/// How long the estimate must stay off while the sensor lies still (s).
+/// The de-biased rate beyond which a kind's estimate of a sensor that lies still counts
+/// as off whatever its vertical (rad/s): 6 °/s, twice [`STILL_RATE`]. A gyroscope that
+/// reads under [`STILL_RATE`] then has a bias estimate more than 3 °/s from its reading:
+/// the estimate turns where the sensor does not (about the vertical too, where the
+/// accelerometer cannot see it), and a kind whose own rest test compares with that bias
+/// (the complementary filter) or whose trust in the accelerometer falls with that rate
+/// (GMVDK) never learns it back.
+pub(crate) const SPIN_RATE: f64 = 2.0 * STILL_RATE;
+
+/// How long, net, the estimate must be off while the sensor lies still (s).
 pub(crate) const OFF_SECONDS: f64 = 5.0;
 
 /// The watch's state: samples to the next look, and the time the estimate has been off
-/// at rest.
+/// at rest, less the time it has been on.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Watch {
     countdown: u16,
@@ -83,30 +95,42 @@ impl Watch {
     }
 
     /// The look at a sample (`dt`, its gyroscope and accelerometer readings) and the
-    /// estimate `q` after it (sensor to earth, in the frame whose vertical is `up`), with
-    /// the configured `gravity`: true when a re-acquisition is due.
+    /// estimate `q` after it (sensor to earth, in the frame whose vertical is `up`) with
+    /// the kind's gyroscope `bias` (NaN where it has none), with the configured
+    /// `gravity`: true when a re-acquisition is due.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn look(
         &mut self,
         dt: f64,
         gyro: Vec3,
         accel: Option<Vec3>,
         q: Quat,
+        bias: Vec3,
         up: Vec3,
         gravity: f64,
     ) -> bool {
         // This sample's own step counted past 0: the next look is WATCH_EVERY samples on.
         self.countdown = WATCH_EVERY - 1;
-        let off = accel.is_some_and(|a| {
+        let (still, off) = accel.map_or((false, false), |a| {
             let n = a.norm();
             let still = gyro.norm_squared() < STILL_RATE * STILL_RATE
                 && (n - gravity).abs() <= STILL_GRAVITY * gravity;
-            still && a.dot(q.rotate_inverse(up)) < OFF_ANGLE.cos() * n
+            let spins = (gyro - bias).norm_squared() > SPIN_RATE * SPIN_RATE;
+            (still, still && (spins || a.dot(q.rotate_inverse(up)) < OFF_ANGLE.cos() * n))
         });
-        if !off {
+        let period = (dt * f64::from(WATCH_EVERY)) as f32;
+        if !still {
             self.off = 0.0;
             return false;
         }
-        self.off += (dt * f64::from(WATCH_EVERY)) as f32;
+        if !off {
+            // Counted down, not started over: an estimate that spins while the sensor lies
+            // still (on a wrong bias) passes the vertical now and then, and is off at most
+            // looks.
+            self.off = (self.off - period).max(0.0);
+            return false;
+        }
+        self.off += period;
         if f64::from(self.off) < OFF_SECONDS {
             return false;
         }
@@ -116,8 +140,9 @@ impl Watch {
     }
 
     /// At the re-acquisition: the gyroscope reading `gyro` when the watch asked for it
-    /// and the sensor still lies still, the bias of a sensor at rest. A kind that learns
-    /// a bias takes it: one wound up while the estimate was off would carry the error on.
+    /// and the sensor still lies still, the bias of a sensor at rest. Every kind that
+    /// learns a bias takes it: one wound up while the estimate was off would carry the
+    /// error on, and a bias far from the reading is what made a spinning estimate off.
     pub(crate) fn still(&self, gyro: Vec3) -> Option<Vec3> {
         (self.due && gyro.norm_squared() < STILL_RATE * STILL_RATE).then_some(gyro)
     }

@@ -207,7 +207,16 @@ impl<E: Estimator> Runner<E> {
         self.policy &= !Self::WATCH;
         let initialized = self.flags & flags::INITIALIZED != 0;
         let q = self.core.absolute_quaternion();
-        if self.watch.look(dt, gyro, accel.filter(|_| initialized), q, E::NATIVE.up(), self.common.gravity) {
+        let bias = self.diagnostics().gyro_bias;
+        if self.watch.look(
+            dt,
+            gyro,
+            accel.filter(|_| initialized),
+            q,
+            bias,
+            E::NATIVE.up(),
+            self.common.gravity,
+        ) {
             self.flags |= flags::REACQUIRE_PENDING;
             self.sync_state();
         }
