@@ -535,12 +535,12 @@ FLAG_REACQUIRED = 16
 #: lies still (gyroscope below 3 °/s, accelerometer norm within 5 % of the configured
 #: gravity) and the estimate's vertical has been more than 10° from the accelerometer's,
 #: or the kind's bias more than 6 °/s from the gyroscope's reading, for 5 s net of the
-#: time it was not (looked at every 32nd sample; a look at a moving sensor starts the
-#: count over). An estimate can rest there at a stationary point of its kind's correction
-#: (Madgwick's and Mahony's magnetometer terms near a 180° heading error, the EKF's
-#: gravity update near an upside-down estimate), or spin on a wrong bias that its kind
-#: then cannot learn (GMVDK distrusts the accelerometer while the de-biased rate is
-#: large, the complementary filter's rest test compares with its start-up bias).
+#: time it was not (looked at every 128th sample, at least four looks; a look at a moving
+#: sensor starts the count over). An estimate can rest there at a stationary point of its
+#: kind's correction (Madgwick's and Mahony's magnetometer terms near a 180° heading
+#: error, the EKF's gravity update near an upside-down estimate), or spin on a wrong bias
+#: that its kind then cannot learn (GMVDK distrusts the accelerometer while the de-biased
+#: rate is large, the complementary filter's rest test compares with its start-up bias).
 FLAG_REACQUIRE_PENDING = 32
 
 #: `orient_filter_flags`: the last accepted sample had an accelerometer reading that the

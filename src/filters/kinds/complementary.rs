@@ -382,6 +382,9 @@ impl Complementary {
         let (Phase::Running(r), Some(a)) = (&mut self.phase, s.accel) else {
             return None;
         };
+        // A field is only counted here, never used (it aligns the heading at start-up
+        // alone), so `no_heading`'s rule changes nothing: the flags say MAG_REJECTED
+        // either way.
         Complementary::step::<true>(r, &self.settings, s.dt, s.gyro, || a.norm(), || a.unit())
             .map(|st| st.flags(true, s.mag.is_some()))
     }

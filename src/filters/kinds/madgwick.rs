@@ -480,7 +480,8 @@ impl Madgwick {
                 self.step::<true>(bias, dt, gyro, Some(a.unit()), None).map(flags(true, false))
             }
             (Some(a), Some(m)) => {
-                self.step::<true>(bias, dt, gyro, Some(a.unit()), Some(m.unit())).map(flags(true, true))
+                let (a, m) = Checked::heading_units(a, m)?;
+                self.step::<true>(bias, dt, gyro, Some(a), Some(m)).map(flags(true, true))
             }
             (None, m) => {
                 self.step::<true>(bias, dt, gyro, None, m.map(Checked::unit)).map(flags(false, m.is_some()))

@@ -24,7 +24,7 @@
 use crate::filters::kinds::rest::RestBias;
 use crate::filters::params::settings;
 use crate::filters::pipeline::estimator::Step;
-use crate::filters::pipeline::sample::Usual;
+use crate::filters::pipeline::sample::{Checked, Usual};
 use crate::math::{inv_sqrt_fast, inv_sqrt_in_range, Quat, Vec3};
 
 settings! {
@@ -188,9 +188,10 @@ impl Mahony {
             // default), with k_I tested once, here.
             (Some(a), None) if self.ki() => self.update_usual_imu(s.dt, s.gyro, a.unit(), true),
             (Some(a), None) => self.update_usual_imu(s.dt, s.gyro, a.unit(), false),
-            (Some(a), Some(m)) => self
-                .update_with::<true, true>(s.dt, s.gyro, a.unit(), m.unit(), self.ki())
-                .map(|st| st.flags(true, true)),
+            (Some(a), Some(m)) => {
+                let (a, m) = Checked::heading_units(a, m)?;
+                self.update_with::<true, true>(s.dt, s.gyro, a, m, self.ki()).map(|st| st.flags(true, true))
+            }
             (None, _) => None,
         }
     }

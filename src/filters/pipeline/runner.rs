@@ -25,7 +25,7 @@ use crate::filters::pipeline::sample::{check_quaternion, check_vector, Checked, 
 use crate::filters::pipeline::watch::Watch;
 use crate::filters::state::holds;
 use crate::filters::state::{self, Codec, Reader, StateError, Writer};
-use crate::math::frame::{no_heading, NO_HEADING_SINE};
+use crate::math::frame::no_heading;
 use crate::math::{Frame, Quat, Vec3};
 
 mod update;

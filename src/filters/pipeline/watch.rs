@@ -36,8 +36,14 @@ use crate::filters::state::Codec;
 use crate::math::{Quat, Vec3};
 
 /// How many accepted samples lie between two looks: the cost of the watch is a count per
-/// sample and one look per [`WATCH_EVERY`] samples (a third of a second at 100 Hz).
-pub(crate) const WATCH_EVERY: u16 = 32;
+/// sample and one look per [`WATCH_EVERY`] samples (1.28 s at 100 Hz). A look takes the
+/// policies' path, some 500 instructions in all: at 32 it cost the usual update 17 of its
+/// 281 (Madgwick IMU, callgrind), at 128 four.
+pub(crate) const WATCH_EVERY: u16 = 128;
+
+/// The most time one look adds: a quarter of [`OFF_SECONDS`], so that at any rate (at 25
+/// Hz a look comes every 5.12 s) at least four looks must find the estimate off.
+const MOST_PER_LOOK: f32 = (OFF_SECONDS / 4.0) as f32;
 
 /// The fastest gyroscope reading of a sensor that lies still (rad/s): 3 °/s, above the
 /// zero-rate offset of a calibrated MEMS gyroscope, far below any hand motion.
@@ -118,7 +124,7 @@ impl Watch {
             let spins = (gyro - bias).norm_squared() > SPIN_RATE * SPIN_RATE;
             (still, still && (spins || a.dot(q.rotate_inverse(up)) < OFF_ANGLE.cos() * n))
         });
-        let period = (dt * f64::from(WATCH_EVERY)) as f32;
+        let period = ((dt * f64::from(WATCH_EVERY)) as f32).min(MOST_PER_LOOK);
         if !still {
             self.off = 0.0;
             return false;
