@@ -5,12 +5,15 @@
 //!
 //! ```text
 //! cargo run --release -p orient-tools --bin rig_baseline [-- --seeds N] [--minutes M] [--rest S] [--6d]
+//!     [--set KEY=VALUE]..
 //! ```
 //!
 //! - `--seeds N` (default 3): seeds 1..=N per case; `--minutes M` (default 10); `--rest S`
 //!   the mean still time of the rests (the simulator's default unless given).
 //! - `--6d`: only the 6D rows (robust and VQF without magnetometer); otherwise the 9D
 //!   rows too (with the simulator's magnet under the desk).
+//! - `--set KEY=VALUE`: a robust parameter (by its name, `bias_tau_motion` say) for the
+//!   robust rows.
 //!
 //! Runs in memory (`orient_tools::rigsim`, `orient_tools::rig::run_rig`); nothing is
 //! written. A benchmark, not a test: it asserts nothing.
@@ -49,12 +52,10 @@ impl Row {
     fn mag(self) -> bool {
         matches!(self, Row::Robust9 | Row::Vqf9)
     }
-    fn filters(self, n: usize, dt: f64) -> Vec<SensorFilter> {
+    fn filters(self, n: usize, dt: f64, robust: &Config) -> Vec<SensorFilter> {
         (0..n)
             .map(|_| match self {
-                Row::Robust6 | Row::Robust9 => {
-                    SensorFilter::Orient(Box::new(Filter::new(&Config::new(Kind::Robust).unwrap()).unwrap()))
-                }
+                Row::Robust6 | Row::Robust9 => SensorFilter::Orient(Box::new(Filter::new(robust).unwrap())),
                 Row::Vqf6 | Row::Vqf9 => SensorFilter::vqf(dt, self.mag()),
             })
             .collect()
@@ -63,7 +64,7 @@ impl Row {
 
 /// The rig scores, and per sensor BROAD's total and inclination RMSE (deg) after removing
 /// one heading offset (FORMAT.md "6D with heading removed"), rows t >= 10 s.
-fn score(rec: &RigRecording, row: Row) -> (RigScores, Vec<(f64, f64)>) {
+fn score(rec: &RigRecording, row: Row, robust: &Config) -> (RigScores, Vec<(f64, f64)>) {
     let mut rec6;
     let rec = if row.mag() {
         rec
@@ -74,7 +75,7 @@ fn score(rec: &RigRecording, row: Row) -> (RigScores, Vec<(f64, f64)>) {
         }
         &rec6
     };
-    let mut filters = row.filters(rec.spec.sensors.len(), 1.0 / rec.spec.rate_hz);
+    let mut filters = row.filters(rec.spec.sensors.len(), 1.0 / rec.spec.rate_hz, robust);
     let run = run_rig(rec, &mut filters, &mut Alone, true);
     let truth: Vec<&[orient::Quat]> = rec.sensors.iter().map(|r| r.truth.as_slice()).collect();
     let own = run
@@ -96,6 +97,7 @@ fn main() {
     let mut minutes = 10.0;
     let mut only6 = false;
     let mut rest = None;
+    let mut robust = Config::new(Kind::Robust).unwrap();
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         match a.as_str() {
@@ -103,8 +105,16 @@ fn main() {
             "--minutes" => minutes = it.next().and_then(|v| v.parse().ok()).expect("--minutes M"),
             "--rest" => rest = Some(it.next().and_then(|v| v.parse().ok()).expect("--rest S")),
             "--6d" => only6 = true,
+            "--set" => {
+                let kv = it.next().expect("--set KEY=VALUE");
+                let (k, v) = kv.split_once('=').expect("--set KEY=VALUE");
+                let v: f64 = v.parse().expect("--set KEY=VALUE: a number");
+                robust.set(k, v).expect("a robust parameter").expect("a valid value");
+            }
             _ => {
-                eprintln!("usage: rig_baseline [--seeds N] [--minutes M] [--rest S] [--6d]");
+                eprintln!(
+                    "usage: rig_baseline [--seeds N] [--minutes M] [--rest S] [--6d] [--set KEY=VALUE].."
+                );
                 std::process::exit(2);
             }
         }
@@ -132,7 +142,7 @@ fn main() {
             vertical[c] += vertical_hinge_fraction(&sim, 60.0) / seeds as f64;
             let t = Instant::now();
             for (r, row) in rows.iter().enumerate() {
-                let (s, per_sensor) = score(&sim.recording, *row);
+                let (s, per_sensor) = score(&sim.recording, *row, &robust);
                 if *preset == "60hz-vigorous" && r < 2 {
                     for (k, name) in OWN.iter().enumerate() {
                         let (t, i) = per_sensor[sim.recording.spec.sensor(name).unwrap()];
