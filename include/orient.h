@@ -531,17 +531,22 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_PARAM_ROBUST_BIAS_TAU_REST 86
 
 /**
- * Parameter slot (robust): Time constant of the bias estimate from the accelerometer
- * correction in motion; default 100 (orient: 40 times tau_acc, so accelerations that
- * leak through the low-pass average out before they move the bias); 0 turns it off.
+ * Parameter slot (robust): Standard deviation the bias estimate in motion settles to
+ * while the inclination correction measures the bias (sigma_m of the motion bias Kalman
+ * filter, VQF's biasSigmaMotion; smaller learns faster and trusts the correction more);
+ * default 5.24e-4 (0.03 deg/s, orient: with the filter's rate and acceleration terms,
+ * chosen on BROAD and simulated gloves, docs/ACCURACY.md); 0 turns the estimate in
+ * motion off.
  *
- * Unit s; range 0 (off) or 0.001 to 1000000; default 100.
+ * Unit rad/s; range 0 (off) or 0 to 1; default 0.0005235987755982988.
  */
-#define ORIENT_PARAM_ROBUST_BIAS_TAU_MOTION 87
+#define ORIENT_PARAM_ROBUST_BIAS_SIGMA_MOTION 100
 
 /**
- * Parameter slot (robust): Largest bias norm the motion estimate may reach; default
- * 0.0349 (orient: 2 deg/s, the rest threshold: a larger bias would also hide rest).
+ * Parameter slot (robust): Largest component the motion estimate may give the bias, and
+ * its measurement error (unless a larger component was learned at rest); default 0.0349
+ * (orient: 2 deg/s, VQF's biasClip and the rest threshold: a larger bias would also hide
+ * rest).
  *
  * Unit rad/s; range 0 to 10; default 0.03490658503988659.
  */

@@ -200,8 +200,8 @@ fn robust_beats_vqf_on_every_target() {
         return;
     }
     // The recommended kind against VQF, the best published filter on these trials
-    // (shared/data/README.md): 9D 3.34 (0.82), 6D* 2.82 (0.82). Measured: 9D 2.36
-    // (0.80), 6D* 2.69 (0.80).
+    // (shared/data/README.md): 9D 3.34 (0.82), 6D* 2.82 (0.82). Measured: 9D 2.28
+    // (0.80), 6D* 2.80 (0.80) (before the motion bias filter, issue 42: 2.36 and 2.69).
     let (total, incl) = means(Kind::Robust, false);
     println!("robust 9D mean {total:.2} ({incl:.2})");
     assert!(total < 3.34 && incl < 0.82, "9D {total:.3} ({incl:.3})");
@@ -255,8 +255,11 @@ const ALL_TRIALS: [&str; 14] =
 fn robust_leads_vqf_over_all_fourteen_trials() {
     let Some(dir) = broad_dir() else { return };
     // VQF over the 14 trials (shared/data/README.md, reproduced by tools/src/bin/robust_cv.rs
-    // with vqf-rs): 9D 2.94 (0.81), 6D* 2.80 (0.81). Measured (docs/ACCURACY.md): 9D 2.32,
-    // 6D* 2.69, inclination 0.80; before issue 19's changes 2.52 / 2.69 / 0.80.
+    // with vqf-rs): 9D 2.94 (0.81), 6D* 2.80 (0.81). Measured (docs/ACCURACY.md): 9D 2.23,
+    // 6D* 2.79, inclination 0.80; before the motion bias filter (issue 42) 2.32 / 2.69 /
+    // 0.80, before issue 19's changes 2.52 / 2.69 / 0.80. The 6D* bound is VQF's own:
+    // the motion bias filter trades 0.1° of it for the 9D error and for simulated gloves,
+    // whose 6D error it halves (docs/ACCURACY.md).
     let config = Config::new(Kind::Robust).unwrap();
     let (mut t9, mut t6, mut incl) = (0.0, 0.0, 0.0);
     for prefix in ALL_TRIALS {
@@ -270,6 +273,6 @@ fn robust_leads_vqf_over_all_fourteen_trials() {
     println!("robust over 14: 9D {t9:.3}, 6D* {t6:.3}, inclination {incl:.3}");
     // Regression bounds (measured plus a little), each below VQF's figure.
     assert!(t9 < 2.4, "9D {t9:.3} (VQF 2.94)");
-    assert!(t6 < 2.75, "6D* {t6:.3} (VQF 2.80)");
+    assert!(t6 < 2.80, "6D* {t6:.3} (VQF 2.80)");
     assert!(incl < 0.81, "inclination {incl:.3} (VQF 0.81)");
 }

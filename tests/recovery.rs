@@ -38,7 +38,7 @@ fn configurations() -> Vec<(Kind, Vec<(&'static str, f64)>)> {
                 &[("rest_rate_std", 0.1)],
                 &[("accel_adapt_tau", 0.0), ("heading_adapt_tau", 0.0)],
             ],
-            Kind::Robust => &[&[("bias_tau_motion", 0.0)], &[("hard_iron_time", 0.0)]],
+            Kind::Robust => &[&[("bias_sigma_motion", 0.0)], &[("hard_iron_time", 0.0)]],
             _ => &[],
         };
         for o in options {

@@ -18,9 +18,10 @@
 //! 2. At rest the gyroscope reads its bias. Rest is detected from the spread of the
 //!    gyroscope and accelerometer around their own low-passed values; the bias then
 //!    follows the low-passed gyroscope. In motion, the accelerometer correction that the
-//!    filter keeps applying is the drift a bias error causes: a slow integral of it,
-//!    mapped back into the sensor frame, estimates the bias components that tilt the
-//!    estimate (the vertical one is unobservable from gravity).
+//!    filter keeps applying is the drift a bias error causes: a Kalman filter on the bias
+//!    takes it as a measurement of the bias's horizontal part in the earth frame
+//!    (`motion_bias`, VQF's formulation), so every sensor axis that turns through the
+//!    horizontal is learned, and the vertical one of the moment is not.
 //! 3. The undisturbed earth field has a fixed norm and dip. A reading whose norm or dip
 //!    leaves the reference is not used for heading; the gyroscope holds the heading
 //!    meanwhile, and corrections resume at the slow heading rate, so there is no jump.
@@ -67,8 +68,9 @@
 //! - (H2) bias step at rest with gain k_b (the bias's own, `bias_tau_rest`),
 //!   b' = (1 - k_b) b + k_b ε with ε the rest estimate's error:
 //!   `P_bb = (1 - k_b)² P_bb + k_b (2 - k_b) σ_r²`, `P_eb *= 1 - k_b`, so a rest brings
-//!   the bias uncertainty to σ_r at any sample rate; the bias learned in motion is not
-//!   credited (it sees the horizontal components only), so the uncertainty errs large;
+//!   the bias uncertainty to σ_r at any sample rate (the motion filter's covariance takes
+//!   the same step on every axis); the bias learned in motion is not credited here (it
+//!   sees the horizontal components only), so the uncertainty errs large;
 //! - (H3) heading step with the gain k of an accepted field, e' = (1 - k) e + k v:
 //!   `P_ee = (1 - k)² P_ee + k (2 - k) σ_v²`, `P_eb *= 1 - k`, with
 //!   `σ_v² = σ_m² + κ² (Δ_n² + Δ_d²)`, Δ_n = |f| / n_ref − 1 and Δ_d = dip(f) − dip_ref the
@@ -212,15 +214,18 @@ settings! {
             doc: "Time constant with which the bias follows the low-passed gyroscope at rest; \
                  default 2 (orient: settles within a typical 5-10 s pause).",
         },
-        bias_tau_motion: f64 = ROBUST_BIAS_TAU_MOTION 87 {
-            unit: "s",
-            default: 100.0,
-            min: 1e-3,
-            max: 1e6,
+        bias_sigma_motion: f64 = ROBUST_BIAS_SIGMA_MOTION 100 {
+            unit: "rad/s",
+            default: 0.000_523_598_775_598_298_8,
+            min: 0.0,
+            max: 1.0,
             zero_off: true,
-            doc: "Time constant of the bias estimate from the accelerometer correction in motion; \
-                 default 100 (orient: 40 times tau_acc, so accelerations that leak through the \
-                 low-pass average out before they move the bias); 0 turns it off.",
+            doc: "Standard deviation the bias estimate in motion settles to while the inclination \
+                 correction measures the bias (sigma_m of the motion bias Kalman filter, VQF's \
+                 biasSigmaMotion; smaller learns faster and trusts the correction more); default \
+                 5.24e-4 (0.03 deg/s, orient: with the filter's rate and acceleration terms, \
+                 chosen on BROAD and simulated gloves, docs/ACCURACY.md); 0 turns the estimate \
+                 in motion off.",
         },
         bias_limit: f64 = ROBUST_BIAS_LIMIT 88 {
             unit: "rad/s",
@@ -228,8 +233,10 @@ settings! {
             min: 0.0,
             max: 10.0,
             zero_off: false,
-            doc: "Largest bias norm the motion estimate may reach; default 0.0349 (orient: 2 deg/s, \
-                 the rest threshold: a larger bias would also hide rest).",
+            doc: "Largest component the motion estimate may give the bias, and its measurement \
+                 error (unless a larger component was learned at rest); default 0.0349 (orient: \
+                 2 deg/s, VQF's biasClip and the rest threshold: a larger bias would also hide \
+                 rest).",
         },
         mag_norm_th: f64 = ROBUST_MAG_NORM_TH 89 {
             unit: "1",
@@ -377,12 +384,15 @@ pub struct Robust {
     cand_clock: f64,
     /// The heading uncertainty (module documentation, (H1)-(H4)).
     heading_var: HeadingVariance,
+    /// The bias filter in motion ([`motion_bias`]).
+    motion: MotionBias,
 }
 
 impl Robust {
     pub fn new(settings: RobustSettings) -> Robust {
         Robust {
             heading_var: HeadingVariance::start(&settings),
+            motion: MotionBias::new(settings.bias_sigma),
             settings,
             q_gyr: Quat::IDENTITY,
             q_inc: Quat::IDENTITY,
@@ -456,6 +466,7 @@ impl Robust {
         self.turn = Turn::IDENTITY;
         self.q = q;
         self.acc_lp.start(q.rotate(r.accel));
+        self.motion.start(q, self.bias);
         self.acc_seen = true;
         self.rest = RestDetector::default();
         self.hi_started = false;
@@ -513,6 +524,7 @@ impl Robust {
             && holds::within(self.cand_dip, -PI, PI)
             && self.cand_clock >= 0.0
             && self.heading_var.valid()
+            && self.motion.valid()
     }
 
     pub(crate) fn codec(&mut self, c: &mut dyn Codec) {
@@ -540,6 +552,7 @@ impl Robust {
         c.f64(&mut self.cand_dip);
         c.f64(&mut self.cand_clock);
         self.heading_var.codec(c);
+        self.motion.codec(c);
     }
 
     /// One step, in place: `None` when it left the orientation non-finite, which no sample
@@ -652,12 +665,13 @@ impl Robust {
             let k_b = lp_gain(dt, s.bias_tau_rest);
             self.bias = self.bias + (self.rest.gyro_lp() - self.bias) * k_b;
             self.heading_var.bias_step(k_b, s.bias_sigma_rest);
+            self.motion.rest_step(k_b, s.bias_sigma_rest);
         }
         self.q_gyr = (self.q_gyr * rotation_of(gyro - self.bias, dt)).normalized_in_range();
         self.heading_var.gyro_step(dt, (gyro - self.bias).norm() * dt, s);
         if let Some(a) = accel {
             step.used_accel = true;
-            self.correct_inclination(dt, a);
+            self.correct_inclination(dt, a, (gyro - self.bias).norm_squared());
         }
         // E′: the sensor to the inclination-corrected frame, for the heading correction
         // and the output.
@@ -681,9 +695,11 @@ mod field;
 mod hard_iron;
 mod heading;
 mod inclination;
+mod motion_bias;
 use field::*;
 use heading::*;
 use inclination::*;
+use motion_bias::MotionBias;
 
 #[cfg(test)]
 mod tests;

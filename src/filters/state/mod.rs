@@ -24,7 +24,7 @@ pub(crate) mod holds;
 use crate::math::{Quat, Vec3};
 
 pub const MAGIC: [u8; 4] = *b"ORST";
-pub const VERSION: u16 = 8;
+pub const VERSION: u16 = 9;
 pub const HEADER: usize = 12;
 pub const TRAILER: usize = 8;
 

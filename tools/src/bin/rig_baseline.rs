@@ -12,7 +12,7 @@
 //!   the mean still time of the rests (the simulator's default unless given).
 //! - `--6d`: only the 6D rows (robust and VQF without magnetometer); otherwise the 9D
 //!   rows too (with the simulator's magnet under the desk).
-//! - `--set KEY=VALUE`: a robust parameter (by its name, `bias_tau_motion` say) for the
+//! - `--set KEY=VALUE`: a robust parameter (by its name, `bias_sigma_motion` say) for the
 //!   robust rows.
 //!
 //! Runs in memory (`orient_tools::rigsim`, `orient_tools::rig::run_rig`); nothing is

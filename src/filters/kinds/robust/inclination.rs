@@ -1,6 +1,7 @@
 //! The inclination correction: the accelerometer low-passed in the almost-inertial frame
 //! ([`Butterworth`]) and the rotation that brings it to the vertical.
 
+use super::motion_bias::{Activity, MotionSettings};
 use super::*;
 
 /// A second-order Butterworth low-pass of a vector, `ÿ = ω² (x − y) − 2ζω ẏ` with
@@ -152,31 +153,41 @@ pub(super) fn to_up_general(a: Vec3) -> Quat {
 }
 
 impl Robust {
-    pub(super) fn correct_inclination(&mut self, dt: f64, a: Vec3) {
+    /// The inclination correction of a sample with the accelerometer reading `a` and the
+    /// de-biased rate's squared norm `w2` (for the motion bias filter).
+    pub(super) fn correct_inclination(&mut self, dt: f64, a: Vec3, w2: f64) {
         let s = &self.settings;
         let a_i = self.q_gyr.rotate(a);
         if !self.acc_seen {
             self.acc_lp.start(a_i);
+            self.motion.start(self.q_inc * self.q_gyr, self.bias);
             self.acc_seen = true;
         }
-        let a_e = self.q_inc.rotate(self.acc_lp.filter(dt, s.tau_acc, a_i));
+        let a_lp = self.acc_lp.filter(dt, s.tau_acc, a_i);
+        // What the low-pass has not averaged out yet: the linear acceleration of the moment.
+        let lin2 = (a_i - a_lp).norm_squared();
+        let a_e = self.q_inc.rotate(a_lp);
         if a_e.norm_squared() < 1e-12 {
             return;
         }
         let c = to_up(a_e);
         // While the low-pass still averages its first readings the corrections undo the
-        // start's error, not a bias's drift: nothing is learned from them.
-        if !self.rest.at_rest() && s.bias_tau_motion > 0.0 && !self.acc_lp.warming {
-            // The correction c undoes the drift of the last step; in the sensor frame,
-            // -2 c.xyz / dt is the rate the bias error added.
-            let drift = (self.q_inc * self.q_gyr).rotate_inverse(c.vector() * 2.0);
-            let mut b = self.bias - drift * (1.0 / s.bias_tau_motion);
-            // The motion estimate may not grow the bias past the limit, but a larger bias
-            // learned at rest (a drifting one, tracked through the rest gate) is kept.
-            let (n, limit) = (b.norm(), s.bias_limit.max(self.bias.norm()));
-            if n > limit {
-                b = b * (limit / n);
-            }
+        // start's error, not a bias's drift: nothing is learned from them (and nothing at
+        // rest, where the rest estimate learns the whole bias).
+        let learning = !self.rest.at_rest() && s.bias_sigma_motion > 0.0 && !self.acc_lp.warming;
+        // The motion estimate may not grow a component past the limit, but a larger bias
+        // learned at rest (a drifting one, tracked through the rest gate) is kept.
+        let limit = s.bias_limit.max(self.bias.max_abs());
+        let motion =
+            MotionSettings { tau: s.tau_acc, sigma_b: s.bias_sigma, sigma_m: s.bias_sigma_motion, limit };
+        if let Some(b) = self.motion.update(
+            dt,
+            self.q_inc * self.q_gyr,
+            c,
+            self.bias,
+            &motion,
+            Activity { learning, rate2: w2, lin2 },
+        ) {
             self.bias = b;
         }
         self.q_inc = (c * self.q_inc).normalized_in_range();

@@ -243,8 +243,8 @@ impl<U: FnMut() -> f64> Codec for Forge<'_, U> {
 }
 
 /// The argument at [`Robust::update`], tried: states at the ends of what `valid`
-/// accepts (every field forged, then the quaternions, the low-pass's coefficients and
-/// the heading covariance made consistent), settings at the ends of their ranges, and
+/// accepts (every field forged, then the quaternions, the low-passes' coefficients and
+/// the covariances made consistent), settings at the ends of their ranges, and
 /// samples at the ends of the runner's bounds (dt from 1e-9 to 1e6 s, each component
 /// under its bound, squared norms from `f64::MIN_POSITIVE`), stepped 20 times from each
 /// of 4,000 states: every number of the state stays finite after every step.
@@ -267,6 +267,14 @@ fn no_accepted_sample_makes_the_step_non_finite() {
         -MAG_CONFIRM_TIME, -norm, PI, -1e300, // reference confirmation, candidate
         1.0, 1.0, 1.0, // heading covariance
         PI, -PI * PI, // innovation low-pass and evidence (H5)
+        // The motion bias filter: four low-passes, its covariance, the window's sums.
+        1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1e12, 1e12, 1e12, -1e6,
+        1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1e12, 1e12, 1e12, -1e6,
+        1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1e12, 1e12, 1e12, -1e6,
+        1.0, 1.0, 1.0, 1.0, 1.0, 1.0, rate, rate, rate, 1e12, 1e12, 1e12, -1e6,
+        rate * rate, rate * rate, rate * rate, rate * rate, rate * rate, rate * rate, rate * rate,
+        rate * rate, rate * rate,
+        16.0, 16.0, 16.0, -8e6, -1e300, -1e6,
     ];
     let unit = |u: &mut dyn FnMut() -> f64| Quat::new(u(), u(), u(), u()).normalized();
     let reading = |u: &mut dyn FnMut() -> f64, bound: f64| loop {
@@ -297,6 +305,7 @@ fn no_accepted_sample_makes_the_step_non_finite() {
         f.turn = Turn { c: c.abs(), s };
         let dt0 = MIN_DT * (MAX_DT / MIN_DT).powf(0.5 * (u() + 1.0));
         f.acc_lp.coefficients(dt0, settings.tau_acc);
+        f.motion.make_consistent(dt0, settings.tau_acc, &mut u);
         let h = &mut f.heading_var;
         h.p_ee = extreme(&mut u, HEADING_VAR_MAX, false);
         h.p_bb = extreme(&mut u, rate * rate, false);
@@ -606,7 +615,7 @@ fn compensates_a_magnet_attached_to_the_sensor() {
 #[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
 fn estimates_bias_in_motion_from_the_inclination_correction() {
     let bias = Vec3::new(0.01, -0.008, 0.0);
-    let settings = RobustSettings { bias_tau_motion: 10.0, ..Default::default() };
+    let settings = RobustSettings::default();
     let mut f = filter(settings, Quat::IDENTITY);
     let mut q = Quat::IDENTITY;
     for i in 0..60_000 {
