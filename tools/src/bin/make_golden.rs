@@ -189,7 +189,7 @@ fn main() {
             Frame::Ned,
             2,
             q0,
-            vec![(id::ROBUST_BIAS_TAU_MOTION, 5.0)],
+            vec![(id::ROBUST_BIAS_SIGMA_MOTION, 3e-4)],
             motion(11, 300, |_| imu),
         ),
         // Mahony's default (k_I = 0) IMU step in a frame other than its native one.
