@@ -544,9 +544,9 @@ typedef struct OrientFilter OrientFilter;
 
 /**
  * Parameter slot (robust): Largest component the motion estimate may give the bias, and
- * its measurement error (unless a larger component was learned at rest); default 0.0349
- * (orient: 2 deg/s, VQF's biasClip and the rest threshold: a larger bias would also hide
- * rest).
+ * its measurement error (a larger component learned at rest raises the bound for every
+ * component to it); default 0.0349 (orient: 2 deg/s, VQF's biasClip and the rest
+ * threshold: a larger bias would also hide rest).
  *
  * Unit rad/s; range 0 to 10; default 0.03490658503988659.
  */
@@ -588,18 +588,19 @@ typedef struct OrientFilter OrientFilter;
 
 /**
  * Parameter slot (robust): Standard deviation of the gyroscope bias before any rest, and
- * the most its uncertainty grows back to, for the heading uncertainty only (eq. H1);
- * default 0.0087 (0.5 deg/s: VQF's biasSigmaInit, and the typical zero-rate offset after
- * soldering in the BMI270 and LSM6DSO datasheets).
+ * the most its uncertainty grows back to: the heading uncertainty's (eq. H1) and the
+ * motion bias filter's starting and largest covariance (0 leaves that filter nothing to
+ * learn); default 0.0087 (0.5 deg/s: VQF's biasSigmaInit, and the typical zero-rate
+ * offset after soldering in the BMI270 and LSM6DSO datasheets).
  *
  * Unit rad/s; range 0 to 10; default 0.008726646259971648.
  */
 #define ORIENT_PARAM_ROBUST_BIAS_SIGMA 94
 
 /**
- * Parameter slot (robust): Standard deviation of the bias learned at rest, for the
- * heading uncertainty only (eq. H2): what the bias uncertainty settles to during a rest;
- * default 5.24e-4 (0.03 deg/s, VQF's biasSigmaRest).
+ * Parameter slot (robust): Standard deviation of the bias learned at rest: what the bias
+ * uncertainty settles to during a rest, the heading uncertainty's (eq. H2) and the
+ * motion bias filter's covariance; default 5.24e-4 (0.03 deg/s, VQF's biasSigmaRest).
  *
  * Unit rad/s; range 0 to 10; default 0.0005235987755982989.
  */

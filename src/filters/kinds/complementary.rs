@@ -232,7 +232,8 @@ impl Complementary {
 
     /// After a gap: the attitude from the accelerometer (and, with `align_heading`, the
     /// magnetometer; else the heading held), the bias ω_b and the stationary values kept,
-    /// but for the rest watch's still reading, which becomes ω_b and ω_b0.
+    /// but for the rest watch's still reading, which becomes ω_b, and ω_b0 when it fails
+    /// the rest test against the old one.
     pub(crate) fn reacquire(&mut self, r: &crate::filters::pipeline::estimator::Reacquisition) -> bool {
         let (q, used_mag) = match r.with_mag {
             Some(q) if self.settings.align_heading.on() => (q, true),
@@ -243,9 +244,14 @@ impl Complementary {
             state.rest = false;
             if let Some(g) = r.still {
                 // The rest watch's still reading: the bias, and the rest test's reference
-                // (a wrong ω_b0 would keep the rest test, and so K_I, off for good).
+                // when the reading fails the rest test against it (a wrong ω_b0 would keep
+                // the rest test, and so K_I, off for good; a right one is a mean, better
+                // than one reading).
                 state.bias = g;
-                state.b0 = g;
+                let gyro_rest = self.settings.gyro_rest;
+                if (g - state.b0).norm_squared() >= gyro_rest * gyro_rest {
+                    state.b0 = g;
+                }
             }
         }
         used_mag

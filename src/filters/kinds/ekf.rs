@@ -315,8 +315,11 @@ impl Ekf {
     pub(crate) fn reacquire(&mut self, r: &crate::filters::pipeline::estimator::Reacquisition) -> bool {
         let (q, used_mag) = r.plain();
         if let Some(g) = r.still {
-            // The rest watch's still reading is the drift δ (and ω is then zero).
-            self.x.d = f64x4::new([g.x, g.y, g.z, 0.0]);
+            // The rest watch's still reading is the drift δ (and ω is then zero), within
+            // the band the drift process can produce (`configure`'s).
+            let bound = DRIFT_PLAUSIBLE * self.settings.drift_std;
+            let c = |x: f64| x.clamp(-bound, bound);
+            self.x.d = f64x4::new([c(g.x), c(g.y), c(g.z), 0.0]);
         }
         let omega = r.gyro - self.drift();
         self.x.q = vector_of((), q);

@@ -51,8 +51,9 @@
 //! vertical, against its reference: magnetic north once the magnetometer was used, else
 //! the start heading), propagated with the error of the vertical bias component b
 //! (rad/s) as the 2×2 covariance `P = [[P_ee, P_eb], [P_eb, P_bb]]` of a linear error
-//! model of this filter's own fixed-gain steps (orient's; no covariance drives the
-//! estimate; the bias terms follow VQF's bias uncertainty and take its defaults). With
+//! model of this filter's own fixed-gain steps (orient's; this covariance drives nothing
+//! but the report; the bias terms follow VQF's bias uncertainty and take its defaults,
+//! which the motion bias filter shares, `motion_bias`). With
 //! σ_g the gyroscope noise density (`gyro_noise`), σ_b the bias before any rest
 //! (`bias_sigma`), σ_r the bias learned at rest (`bias_sigma_rest`), σ_w the bias random
 //! walk (`bias_walk`), σ_s the scale and axis errors' heading error per √rad turned
@@ -234,9 +235,9 @@ settings! {
             max: 10.0,
             zero_off: false,
             doc: "Largest component the motion estimate may give the bias, and its measurement \
-                 error (unless a larger component was learned at rest); default 0.0349 (orient: \
-                 2 deg/s, VQF's biasClip and the rest threshold: a larger bias would also hide \
-                 rest).",
+                 error (a larger component learned at rest raises the bound for every component \
+                 to it); default 0.0349 (orient: 2 deg/s, VQF's biasClip and the rest threshold: \
+                 a larger bias would also hide rest).",
         },
         mag_norm_th: f64 = ROBUST_MAG_NORM_TH 89 {
             unit: "1",
@@ -282,9 +283,10 @@ settings! {
             max: 10.0,
             zero_off: false,
             doc: "Standard deviation of the gyroscope bias before any rest, and the most its \
-                 uncertainty grows back to, for the heading uncertainty only (eq. H1); default \
-                 0.0087 (0.5 deg/s: VQF's biasSigmaInit, and the typical zero-rate offset after \
-                 soldering in the BMI270 and LSM6DSO datasheets).",
+                 uncertainty grows back to: the heading uncertainty's (eq. H1) and the motion \
+                 bias filter's starting and largest covariance (0 leaves that filter nothing to \
+                 learn); default 0.0087 (0.5 deg/s: VQF's biasSigmaInit, and the typical \
+                 zero-rate offset after soldering in the BMI270 and LSM6DSO datasheets).",
         },
         bias_sigma_rest: f64 = ROBUST_BIAS_SIGMA_REST 95 {
             unit: "rad/s",
@@ -292,9 +294,9 @@ settings! {
             min: 0.0,
             max: 10.0,
             zero_off: false,
-            doc: "Standard deviation of the bias learned at rest, for the heading uncertainty only \
-                 (eq. H2): what the bias uncertainty settles to during a rest; default 5.24e-4 \
-                 (0.03 deg/s, VQF's biasSigmaRest).",
+            doc: "Standard deviation of the bias learned at rest: what the bias uncertainty settles \
+                 to during a rest, the heading uncertainty's (eq. H2) and the motion bias \
+                 filter's covariance; default 5.24e-4 (0.03 deg/s, VQF's biasSigmaRest).",
         },
         bias_walk: f64 = ROBUST_BIAS_WALK 96 {
             unit: "rad/s/sqrt(s)",
@@ -572,7 +574,7 @@ impl Robust {
     /// `Robust::valid` accepts, with settings in their ranges, and a sample within the
     /// runner's bounds (dt in [1e-9, 1e6] s; each component under 1e4 rad/s, 1e5 m/s²
     /// and 1e12, and the accelerometer's and magnetometer's squared norms at least
-    /// `f64::MIN_POSITIVE`), every value the step computes is finite:
+    /// `f64::MIN_POSITIVE`), every value the step stores is finite:
     /// - Every low-pass (rest detector, bias at rest, magnetic reference and candidate,
     ///   hard iron) moves by a gain `dt / (τ + dt)` in [0, 1] towards a bounded input:
     ///   it stays between its old value and its input. The Butterworth low-pass is the
@@ -584,20 +586,22 @@ impl Robust {
     /// - Every division and normalisation has a divisor bounded away from zero:
     ///   quaternions are products of unit ones (so their squared norms, near 1, are in
     ///   `inv_sqrt`'s fast range, and are normalised without its range test); the
-    ///   accelerometer's earth vector is tested (`1e-12`), the motion-bias scale divides
-    ///   by a norm only when it exceeds a non-negative limit; the low-pass gains divide by
+    ///   accelerometer's earth vector is tested (`1e-12`); the low-pass gains divide by
     ///   τ + dt > 0; the heading error divides x′ by y′ only when y′ > 4|x′| (a quotient
     ///   under 1/4); a magnetometer reading's rotated norm is its own (nonzero) norm to
     ///   rounding, and a difference of fields that vanishes gives a NaN dip that fails
     ///   every comparison and is never stored.
+    /// - The motion bias filter (`motion_bias`) may compute an infinite or NaN value from
+    ///   low-passes at the ends of their range (its 1/det, its products): it stores its
+    ///   update only when the bias and the covariance come out finite, and clips the bias
+    ///   to its bound.
     /// - Angles: `sin`/`cos` of any finite argument (|ω| dt up to 2e11 rad) are finite;
     ///   `asin` sees a clamped argument, `atan2` finite ones.
     /// - Clocks grow by dt at most per step and saturate in floating point before
     ///   overflowing.
     ///
     /// A step from a state at the very ends of `valid`'s bounds may leave one a little
-    /// beyond them (the low-pass's output up to about 3e14 from a rate of 1e12, a bias
-    /// component up to √3 times its bound after the motion estimate's rescaling); the
+    /// beyond them (the low-pass's output up to about 3e14 from a rate of 1e12); the
     /// argument holds the same from there, every bound being as far from overflow. The
     /// filter's own states from bounded readings stay well inside. The reference norm is
     /// held within `holds::MAG_NORM_MAX`: a compensated field may be larger than any
@@ -672,6 +676,9 @@ impl Robust {
         if let Some(a) = accel {
             step.used_accel = true;
             self.correct_inclination(dt, a, (gyro - self.bias).norm_squared());
+        } else {
+            // The next correction removes this sample's drift too: its time counts.
+            self.motion.elapse(dt, (gyro - self.bias).norm_squared());
         }
         // E′: the sensor to the inclination-corrected frame, for the heading correction
         // and the output.

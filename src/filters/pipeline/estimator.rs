@@ -93,8 +93,10 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     /// Re-acquisition after a gap (native frame): `keep` has the accelerometer's
     /// inclination and the heading held before the gap, `with_mag` the accelerometer's
     /// and magnetometer's attitude when the sample has a usable magnetometer. Each kind
-    /// takes one, starts its low-passes and detectors over and keeps its bias estimate.
-    /// Returns true when the magnetometer's attitude was taken.
+    /// takes one, starts its low-passes and detectors over and keeps its bias estimate,
+    /// but for the rest watch's still reading ([`Reacquisition::still`]), which becomes
+    /// the bias of a kind that learns one. Returns true when the magnetometer's attitude
+    /// was taken.
     fn reacquire(&mut self, r: &Reacquisition) -> bool;
     /// The [`Diagnostics`] fields this filter reports with its settings: those of
     /// [`Kind::diagnostics`], less those of an option that is off.

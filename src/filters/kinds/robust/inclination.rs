@@ -163,7 +163,10 @@ impl Robust {
             self.motion.start(self.q_inc * self.q_gyr, self.bias);
             self.acc_seen = true;
         }
-        let a_lp = self.acc_lp.filter(dt, s.tau_acc, a_i);
+        // The reading stands for the time since the last one (a gyroscope faster than the
+        // accelerometer gives samples without one).
+        let held = self.motion.accel_dt(dt);
+        let a_lp = self.acc_lp.filter(held, s.tau_acc, a_i);
         // What the low-pass has not averaged out yet: the linear acceleration of the moment.
         let lin2 = (a_i - a_lp).norm_squared();
         let a_e = self.q_inc.rotate(a_lp);

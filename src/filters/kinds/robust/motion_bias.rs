@@ -17,12 +17,16 @@
 //! ```
 //!
 //! with `V = σ_f² dt / T_f` (the bias forgotten from 0 to σ_f = 0.1 °/s over T_f = 100 s),
-//! `W = diag(w, w, w / 10⁻⁴) (1 + |ω|²/ω_s²)` and `w = σ_m⁴ / V + σ_m²` (the variance
-//! that makes σ_m the steady standard deviation of a bias measured at every step), σ_m =
-//! `bias_sigma_motion`, |ω|² the mean squared rate since the last update and ω_s =
-//! [`SCALE_RATE`]: while the sensor turns fast its gyroscope's scale and axis errors
-//! look like bias to the correction (orient's; VQF has no such term, and the glove and
-//! BROAD figures of docs/ACCURACY.md chose it). The vertical row has no measurement: its pseudo-measurement of
+//! `W = diag(w, w, w / 10⁻⁴) (1 + |ω|²/ω_s² + |a_l|²/a_s²)` and `w = σ_m⁴ / V + σ_m²`
+//! (the variance that makes σ_m the steady standard deviation of a bias measured at
+//! every step), σ_m = `bias_sigma_motion`, |ω|² the mean squared rate and |a_l|² the mean
+//! squared linear acceleration (the accelerometer in the almost-inertial frame less its
+//! low-pass) since the last update, ω_s = [`SCALE_RATE`] and a_s = [`SCALE_ACCEL`]:
+//! while the sensor turns fast its gyroscope's scale and axis errors look like bias to
+//! the correction, and so does acceleration the low-pass has not yet averaged out
+//! (orient's; VQF has neither term, and the glove and BROAD figures of docs/ACCURACY.md
+//! chose them). The filter learns only from two low-pass time constants after a start
+//! ([`SETTLED`]). The vertical row has no measurement: its pseudo-measurement of
 //! zero, 10⁴ times less certain, only keeps the unobservable direction from wandering.
 //! Each component of e and of b̂ is clipped to `bias_limit`, or to the bias's own larger
 //! component learned at rest. The filter runs every [`EVERY`] samples on the corrections
@@ -50,6 +54,11 @@ const SCALE_RATE: f64 = 0.2;
 /// taught 2.5° of tilt in 20 s without it, `rejects_zero_mean_linear_acceleration`).
 const SCALE_ACCEL: f64 = 0.25;
 
+/// Bounds of the window's time (s) and squared-rate integral: far beyond any window with
+/// accelerometer readings, so that the sums stay finite on a stream without any.
+const MAX_T: f64 = 1e12;
+const MAX_RATE2: f64 = 1e300;
+
 /// The vertical pseudo-measurement's variance against the horizontal ones' (VQF's
 /// biasVerticalForgettingFactor).
 const VERTICAL_FACTOR: f64 = 1e-4;
@@ -63,11 +72,14 @@ pub(super) struct MotionBias {
     pub(super) p: [[f64; 3]; 3],
     /// The corrections of the samples since the last update (twice their vector parts,
     /// earth frame), their time and count, and the integral of the squared rate over
-    /// them (in units of [`SCALE_RATE`]²).
+    /// them (the squared rate in units of [`SCALE_RATE`]², plus the squared linear
+    /// acceleration in units of [`SCALE_ACCEL`]²).
     sum_c: Vec3,
     t: f64,
     n: u32,
     rate2: f64,
+    /// Seconds of samples without an accelerometer reading since the last one.
+    gap: f64,
     /// Seconds since the low-passes started (up to [`SETTLED`] τ): the corrections of
     /// the first ones undo the start's error, not a bias's drift.
     age: f64,
@@ -123,6 +135,13 @@ fn apply(a: &M3, v: Vec3) -> Vec3 {
     )
 }
 
+/// The determinant of a 3×3 matrix.
+fn det3(a: &M3) -> f64 {
+    a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
+        + a[0][1] * (a[1][2] * a[2][0] - a[1][0] * a[2][2])
+        + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
+}
+
 /// The inverse of a symmetric positive definite 3×3 matrix (adjugate over determinant).
 fn inverse(a: &M3) -> Option<M3> {
     let c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
@@ -162,6 +181,24 @@ impl MotionBias {
         self.age = 0.0;
     }
 
+    /// A sample without an accelerometer reading (so without a correction): its `dt` and
+    /// squared rate count in the window, as the next correction removes its drift too.
+    /// (A stream without accelerometer readings would add up forever: the sums stop at
+    /// the bounds `valid` holds them to.)
+    pub(super) fn elapse(&mut self, dt: f64, rate2: f64) {
+        self.gap = (self.gap + dt).min(MAX_T);
+        self.t = (self.t + dt).min(MAX_T);
+        self.rate2 = (self.rate2 + rate2 * dt / (SCALE_RATE * SCALE_RATE)).min(MAX_RATE2);
+    }
+
+    /// The time the accelerometer's reading of this sample stands for: its own `dt` and
+    /// that of the samples without one since the last (which it starts over).
+    pub(super) fn accel_dt(&mut self, dt: f64) -> f64 {
+        let held = self.gap + dt;
+        self.gap = 0.0;
+        held
+    }
+
     /// A rest step of gain `k_b` towards a bias known to σ_r: the covariance as the
     /// heading model's (H2), on every axis.
     pub(super) fn rest_step(&mut self, k_b: f64, sigma_r: f64) {
@@ -189,15 +226,18 @@ impl MotionBias {
         now: Activity,
     ) -> Option<Vec3> {
         let Activity { learning, rate2, lin2 } = now;
-        self.rate2 += (rate2 / (SCALE_RATE * SCALE_RATE) + lin2 / (SCALE_ACCEL * SCALE_ACCEL)) * dt;
+        self.rate2 = (self.rate2
+            + (rate2 / (SCALE_RATE * SCALE_RATE) + lin2 / (SCALE_ACCEL * SCALE_ACCEL)) * dt)
+            .min(MAX_RATE2);
         self.sum_c = self.sum_c + c.vector() * 2.0;
-        self.t += dt;
+        self.t = (self.t + dt).min(MAX_T);
         self.n += 1;
         if self.n < EVERY {
             return None;
         }
         let (dt, sum_c) = (self.t, self.sum_c);
-        // The measurement's variance grows with the window's mean squared rate.
+        // The measurement's variance grows with the window's mean squared rate and linear
+        // acceleration.
         let scale = 1.0 + self.rate2 / dt;
         self.rate2 = 0.0;
         self.sum_c = Vec3::ZERO;
@@ -283,6 +323,23 @@ impl MotionBias {
         self.n %= EVERY;
     }
 
+    /// P's correlations (0 where a variance is 0, and so its covariances).
+    fn correlations(&self) -> M3 {
+        let d: [f64; 3] = core::array::from_fn(|i| self.p[i][i].max(0.0).sqrt());
+        core::array::from_fn(|i| {
+            core::array::from_fn(|j| {
+                let n = d[i] * d[j];
+                if i == j {
+                    1.0
+                } else if n > 0.0 {
+                    self.p[i][j] / n
+                } else {
+                    0.0
+                }
+            })
+        })
+    }
+
     pub(super) fn valid(&self) -> bool {
         self.r_lp.iter().all(Butterworth::valid)
             && self.rb_lp.valid()
@@ -290,11 +347,16 @@ impl MotionBias {
             && (0..3).all(|i| self.p[i][i] >= 0.0)
             // A covariance's off-diagonal elements: |P_ij| ≤ √(P_ii P_jj).
             && (0..3).all(|i| (0..3).all(|j| self.p[i][j].powi(2) <= self.p[i][i] * self.p[j][j] * (1.0 + 1e-9)))
+            // And positive semi-definite as a whole (the pairwise bound allows, say,
+            // correlations 1, 1, −1, whose determinant is negative): the correlations'
+            // determinant ≥ 0 to rounding.
+            && det3(&self.correlations()) >= -1e-9
             && self.sum_c.is_finite()
-            && (0.0..=1e12).contains(&self.t)
+            && (0.0..=MAX_T).contains(&self.t)
             && self.n < EVERY
-            && (0.0..=1e300).contains(&self.rate2)
+            && (0.0..=MAX_RATE2).contains(&self.rate2)
             && (0.0..=1e6).contains(&self.age)
+            && (0.0..=MAX_T).contains(&self.gap)
     }
 
     pub(super) fn codec(&mut self, c: &mut dyn Codec) {
@@ -310,5 +372,6 @@ impl MotionBias {
         c.u32(&mut self.n);
         c.f64(&mut self.rate2);
         c.f64(&mut self.age);
+        c.f64(&mut self.gap);
     }
 }

@@ -274,7 +274,7 @@ fn no_accepted_sample_makes_the_step_non_finite() {
         1.0, 1.0, 1.0, 1.0, 1.0, 1.0, rate, rate, rate, 1e12, 1e12, 1e12, -1e6,
         rate * rate, rate * rate, rate * rate, rate * rate, rate * rate, rate * rate, rate * rate,
         rate * rate, rate * rate,
-        16.0, 16.0, 16.0, -8e6, -1e300, -1e6,
+        16.0, 16.0, 16.0, -8e6, -1e300, -1e6, -8e6,
     ];
     let unit = |u: &mut dyn FnMut() -> f64| Quat::new(u(), u(), u(), u()).normalized();
     let reading = |u: &mut dyn FnMut() -> f64, bound: f64| loop {
@@ -627,6 +627,33 @@ fn estimates_bias_in_motion_from_the_inclination_correction() {
     assert!(!f.at_rest());
     // Rotation about all axes makes every component observable from gravity.
     assert!((f.bias() - bias).norm() < 1e-3, "{:?}", f.bias());
+}
+
+/// The motion bias filter measures a rate: the drift each correction removes over the
+/// time since the last one. A gyroscope at four times the accelerometer's rate must give
+/// the same learning as one accelerometer reading per gyroscope reading (counting only
+/// the samples with a reading, the filter read four times the rate and learnt with four
+/// times the gain).
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn the_bias_in_motion_is_learnt_alike_with_fewer_accelerometer_readings() {
+    let bias = Vec3::new(0.01, -0.008, 0.0);
+    let learnt = |every: usize| {
+        let mut f = filter(RobustSettings::default(), Quat::IDENTITY);
+        let mut q = Quat::IDENTITY;
+        for i in 0..6_000 {
+            let t = i as f64 * DT;
+            let w = Vec3::new(0.4 * libm::sin(0.3 * t), 0.4 * libm::cos(0.2 * t), 0.3);
+            q = q * rotation_of(w, DT);
+            let a = (i % every == 0).then(|| q.rotate_inverse(G));
+            f.update(DT, w + bias, a, None).unwrap();
+        }
+        f.bias()
+    };
+    let (all, quarter) = (learnt(1), learnt(4));
+    // Halfway there after 60 s, the same way.
+    assert!((all - bias).norm() < 0.6 * bias.norm(), "{all:?}");
+    assert!((quarter - all).norm() < 0.1 * bias.norm(), "every sample {all:?}, every 4th {quarter:?}");
 }
 
 /// (H1) alone, without noise or walk, is a bias error of σ_b integrated: σ_b t; (H3)
