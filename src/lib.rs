@@ -26,6 +26,8 @@
 pub mod filters;
 mod isa;
 /// cbindgen:ignore
+pub mod joints;
+/// cbindgen:ignore
 pub mod math;
 /// cbindgen:ignore
 pub mod offline;

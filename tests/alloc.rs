@@ -185,3 +185,46 @@ fn the_rest_bias_option_allocates_only_when_set() {
         assert_eq!(n, 0, "{kind:?}");
     }
 }
+
+#[test]
+fn joint_updates_and_outputs_do_not_allocate() {
+    use orient::joints::{JointKind, JointParams, JointSpec, Joints};
+    // A finger: hand (0), proximal (1) through a 2-DoF joint, middle (2) through a hinge;
+    // each sensor's filter a robust 6D one.
+    let x = Vec3::new(1.0, 0.0, 0.0);
+    let z = Vec3::new(0.0, 0.0, 1.0);
+    let specs = [
+        JointSpec { kind: JointKind::TwoDof, parent: 0, child: 1, axis_parent: z, axis_child: x },
+        JointSpec { kind: JointKind::Hinge, parent: 1, child: 2, axis_parent: x, axis_child: x },
+    ];
+    let mut joints = Joints::new(3, &specs, &[], JointParams::default()).unwrap();
+    let mut filters: Vec<Filter> =
+        (0..3).map(|_| Filter::new(&Config::new(Kind::Robust).unwrap()).unwrap()).collect();
+    let sample = |t: f64| Sample {
+        dt: 0.01,
+        gyro: Some(Vec3::new(libm::sin(t), 0.3, libm::cos(2.0 * t))),
+        accel: Some(Vec3::new(0.5 * libm::sin(t), 0.2, 9.8)),
+        mag: None,
+    };
+    // Started outside the count: the filters' first samples and the joints' first rows.
+    let mut row = [sample(0.0); 3];
+    for i in 0..100 {
+        row = [sample(i as f64 * 0.01); 3];
+        for f in &mut filters {
+            f.update(&row[0]).unwrap();
+        }
+        let refs: Vec<&Filter> = filters.iter().collect();
+        joints.update_from(&refs, &row).unwrap();
+    }
+    let refs: Vec<&Filter> = filters.iter().collect();
+    let sensors: Vec<Quat> = filters.iter().map(Filter::sensor_quaternion).collect();
+    let allocations = allocations_during(|| {
+        for i in 0..200 {
+            joints.update(&sensors, &row).unwrap();
+            joints.update_from(&refs, &[sample(i as f64 * 0.01); 3]).unwrap();
+            let _ = (joints.segment_quaternion(2), joints.angles(1), joints.rating(0), joints.axes(1));
+            let _ = joints.update(&sensors[..2], &row);
+        }
+    });
+    assert_eq!(allocations, 0);
+}

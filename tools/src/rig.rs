@@ -361,19 +361,7 @@ impl RigRecording {
     }
 }
 
-/// The twist of `q` about the unit axis `n`: the angle (rad, in (-π, π]) of the rotation
-/// about `n` in the swing-twist decomposition `q = swing ⊗ twist`.
-pub fn twist_angle(q: Quat, n: Vec3) -> f64 {
-    let p = q.vector().dot(n);
-    let a = 2.0 * libm::atan2(p, q.w);
-    if a > core::f64::consts::PI {
-        a - 2.0 * core::f64::consts::PI
-    } else if a <= -core::f64::consts::PI {
-        a + 2.0 * core::f64::consts::PI
-    } else {
-        a
-    }
-}
+pub use orient::joints::twist_angle;
 
 /// The yaw (rad) of an ENU orientation: the twist about the vertical.
 pub fn yaw_of(q: Quat) -> f64 {
@@ -387,20 +375,13 @@ pub fn yaw_of(q: Quat) -> f64 {
 /// `axis_parent` and then `axis_child` that make up the relative orientation (exactly
 /// when the axes are true, nearest otherwise).
 pub fn joint_angles(spec: &RigSpec, j: &RigJoint, q_parent: Quat, q_child: Quat) -> (f64, f64) {
-    let r0 = spec.sensors[j.parent].mounting.conj() * spec.sensors[j.child].mounting;
-    // The joint's rotation in the parent sensor's frame.
-    let rot = (q_parent.conj() * q_child * r0.conj()).normalized();
-    let a = j.axis_parent;
-    match j.kind {
-        JointKind::Hinge => (twist_angle(rot, a), f64::NAN),
-        JointKind::TwoDof => {
-            let b = r0.rotate(j.axis_child);
-            let (u, v) = (b - a * b.dot(a), rot.rotate(b) - a * rot.rotate(b).dot(a));
-            let alpha = libm::atan2(a.dot(u.cross(v)), u.dot(v));
-            let rest = Quat::from_axis_angle(a, -alpha) * rot;
-            (alpha, twist_angle(rest, b))
-        }
-    }
+    let kind = match j.kind {
+        JointKind::Hinge => orient::joints::JointKind::Hinge,
+        JointKind::TwoDof => orient::joints::JointKind::TwoDof,
+    };
+    let (m_p, m_c) = (spec.sensors[j.parent].mounting, spec.sensors[j.child].mounting);
+    let [a, b] = orient::joints::angles(kind, j.axis_parent, j.axis_child, m_p, m_c, q_parent, q_child);
+    (a, b)
 }
 
 /// The error angle (rad) of one joint at one row: with `r = q_parent⁻¹ ⊗ q_child` for the

@@ -87,14 +87,14 @@ impl JointStage for Trace<'_> {
             let d = twist_angle(want * sensors[j.child].conj(), Vec3::new(0.0, 0.0, 1.0));
             let d0 =
                 twist_angle(raw[j.parent] * (tp.conj() * tc) * raw[j.child].conj(), Vec3::new(0.0, 0.0, 1.0));
-            let e = self.joints.estimator(k);
+            let e = &self.joints.joints;
             let _ = write!(
                 self.out,
                 ",{:.3},{:.3},{:.3},{:.4}",
                 d.to_degrees(),
                 d0.to_degrees(),
-                e.rating(),
-                e.drift().to_degrees()
+                e.rating(k),
+                e.drift(k).to_degrees()
             );
         }
         let _ = writeln!(self.out);

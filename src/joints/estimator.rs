@@ -1,0 +1,479 @@
+//! One joint's estimator: the child's heading relative to its parent, from the two
+//! sensors' own (6D or 9D) orientation estimates and readings.
+//!
+//! Every sensor runs its own filter, whose heading is free and drifts without a
+//! magnetometer. The child's orientation is corrected by a rotation about the vertical,
+//! then by a small tilt, `q'_c = T(φ) ⊗ R_z(Δ) ⊗ q_c`: `Δ` is the child's heading
+//! relative to its parent (a common turn about the vertical leaves every constraint
+//! unchanged, so the parent's own correction does not enter). An extended Kalman filter
+//! per joint estimates the error state
+//!
+//! `x = [Δ, β_p (3), β_c (3), u_p (2), u_c (2), o_p (3), o_c (3), φ (2)]`:
+//! - `Δ`: the relative heading (rad);
+//! - `β_p`, `β_c`: what remains of each sensor's gyroscope bias after its filter (rad/s,
+//!   sensor frame); the relative heading drifts at `dΔ/dt = g_c·β_c − g_p·β_p`, with `g`
+//!   the vertical in each sensor's frame, so the drift seen while the sensors turn
+//!   reveals the vertical bias of each;
+//! - `u_p`, `u_c`: the axis corrections (rad): `j = normalize(j₀ + u₁ b₁ + u₂ b₂)` with
+//!   `b₁, b₂` a basis perpendicular to the axis, folded into `j` after each update (the
+//!   axes a host gives are off by a few degrees; they are refined from motion);
+//! - `o_p`, `o_c`: the joint centre in each sensor's frame (m), the lever arms;
+//! - `φ`: the child's tilt correction about the earth's x and y (rad).
+//!
+//! Prediction and every measurement only while a sensor turns (at rest both filters hold,
+//! and so does the joint; the joint centre's force is then gravity on both sides, which
+//! says nothing about heading). Prediction over `dt`: `Δ ← Δ + dt (g_c·β_c − g_p·β_p)`, `P ← F P Fᵀ + Q dt`.
+//!
+//! Measurements, with the earth-frame axes `e_p = R(q_p) j_p` and
+//! `e_c = R(T R_z(Δ)) R(q_c) j_c`:
+//! - a hinge: `e_p − e_c = 0`, three scalar updates: the axis seen from both sides is one
+//!   line. `∂/∂Δ = −ẑ × e_c`; its horizontal part fixes `Δ` (the gain grows with the
+//!   axis' horizontal length: a vertical hinge says nothing about heading), its vertical
+//!   part the axes' tilt (Laidig, Lehmann, Bégin, Seel, EMBC 2019);
+//! - a 2-DoF joint: `e_p · e_c = 0`: the first axis, fixed in the parent, stays
+//!   perpendicular to the second, fixed in the child (Laidig, Weygers, Seel, Sensors
+//!   2022);
+//! - every joint: the joint centre's specific force seen from both sides is one vector,
+//!   `R(q_p)(a_p + M_p o_p) − R(T R_z(Δ) q_c)(a_c + M_c o_c) = 0` with
+//!   `M o = ω × (ω × o) + ω̇ × o`: while the rig accelerates horizontally it fixes `Δ`
+//!   whatever the axes' direction.
+//!
+//! Each scalar update: `S = h P hᵀ + R` with `R = r / dt` (the residuals' errors, laxity,
+//! soft tissue and the filters' inclination errors, are correlated over a fraction of a
+//! second: `r` is their variance times their correlation time, so the gain does not
+//! depend on the rate); an innovation beyond `gate √S` is down-weighted (Huber);
+//! `K = P hᵀ / S`, `δx ← δx + K (ν − h δx)`, `P ← P − K h P`. The step applied to `Δ` and
+//! to `φ` is at most `max_rate · dt`: the heading never jumps.
+//!
+//! The observability rating is the information the constraints gave about `Δ`,
+//! `h_Δ² / R`, low-passed over `rating_tau` and scaled to [0, 1] by its value for a
+//! horizontal axis: 0 at rest and while a hinge's axis is vertical.
+
+// Index loops over the state layout read like the equations.
+#![allow(clippy::needless_range_loop)]
+
+use super::JointKind;
+use crate::math::{Quat, Vec3};
+
+const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
+/// The state's size and layout (see the module doc).
+const N: usize = 19;
+const BP: usize = 1;
+const BC: usize = 4;
+const UP_: usize = 7;
+const UC: usize = 9;
+const OP: usize = 11;
+const OC: usize = 14;
+const TX: usize = 17;
+
+/// The joint estimator's tuning: noise densities in continuous time, so that none depends
+/// on the sample rate. The defaults were chosen on simulated gloves (seeds 1-3 of the
+/// tools' `rigsim`) and held on others (seeds 4-6): `rig_joints` in the tools.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointParams {
+    /// Hinge residual noise density per component (rad²·s).
+    pub r_hinge: f64,
+    /// 2-DoF residual noise density (rad²·s).
+    pub r_2dof: f64,
+    /// Random walk of the relative heading (rad²/s).
+    pub q_heading: f64,
+    /// Random walk of each residual bias component (rad²/s³).
+    pub q_rate: f64,
+    /// Random walk of each axis correction (rad²/s); 0 with `axis_std0` 0 keeps the axes.
+    pub q_axis: f64,
+    /// Initial standard deviations: relative heading (rad), residual bias (rad/s), axes
+    /// (rad).
+    pub heading_std0: f64,
+    pub rate_std0: f64,
+    pub axis_std0: f64,
+    /// The largest correction of the relative heading (and of the tilt) per second
+    /// (rad/s).
+    pub max_rate: f64,
+    /// Rest: both gyroscopes below this norm (rad/s) for `rest_time` seconds.
+    pub rest_gyro: f64,
+    pub rest_time: f64,
+    /// Joint centre specific-force residual noise density per component ((m/s²)²·s); 0
+    /// leaves the constraint out.
+    pub r_acc: f64,
+    /// Initial standard deviation (m) and random walk (m²/s) of each lever-arm component.
+    pub lever_std0: f64,
+    pub q_lever: f64,
+    /// Initial standard deviation (rad) and random walk (rad²/s) of the tilt correction.
+    pub tilt_std0: f64,
+    pub q_tilt: f64,
+    /// Innovations beyond this many standard deviations are down-weighted.
+    pub gate: f64,
+    /// The rating's low-pass time constant (s).
+    pub rating_tau: f64,
+}
+
+impl Default for JointParams {
+    fn default() -> JointParams {
+        let d = 1f64.to_radians();
+        JointParams {
+            r_hinge: 0.05f64.powi(2) * 0.5,
+            r_2dof: 0.08f64.powi(2) * 0.5,
+            q_heading: (0.1 * d).powi(2),
+            q_rate: 3e-7,
+            q_axis: 0.0,
+            heading_std0: 1.0 * d,
+            rate_std0: 0.5 * d,
+            axis_std0: 0.09,
+            max_rate: 5.0 * d,
+            rest_gyro: 0.15,
+            rest_time: 0.3,
+            r_acc: 0.003,
+            lever_std0: 0.05,
+            q_lever: 1e-10,
+            tilt_std0: 0.0,
+            q_tilt: 3e-5,
+            gate: 3.0,
+            rating_tau: 2.0,
+        }
+    }
+}
+
+impl JointParams {
+    /// Every field finite and not negative, and `gate`, `rating_tau` above zero.
+    pub(crate) fn is_valid(&self) -> bool {
+        let p = self;
+        let all = [
+            p.r_hinge,
+            p.r_2dof,
+            p.q_heading,
+            p.q_rate,
+            p.q_axis,
+            p.heading_std0,
+            p.rate_std0,
+            p.axis_std0,
+            p.max_rate,
+            p.rest_gyro,
+            p.rest_time,
+            p.r_acc,
+            p.lever_std0,
+            p.q_lever,
+            p.tilt_std0,
+            p.q_tilt,
+            p.gate,
+            p.rating_tau,
+        ];
+        all.iter().all(|v| v.is_finite() && *v >= 0.0)
+            && p.gate > 0.0
+            && p.rating_tau > 0.0
+            && p.r_hinge > 0.0
+            && p.r_2dof > 0.0
+    }
+}
+
+/// An axis with a perpendicular basis, carried along as the axis is refined.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Axis {
+    j: Vec3,
+    b1: Vec3,
+    b2: Vec3,
+}
+
+impl Axis {
+    fn new(j: Vec3) -> Axis {
+        let j = j.normalized();
+        let helper = if j.x.abs() <= j.y.abs() && j.x.abs() <= j.z.abs() {
+            Vec3::new(1.0, 0.0, 0.0)
+        } else if j.y.abs() <= j.z.abs() {
+            Vec3::new(0.0, 1.0, 0.0)
+        } else {
+            UP
+        };
+        let b1 = j.cross(helper).normalized();
+        Axis { j, b1, b2: j.cross(b1) }
+    }
+
+    fn fold(&mut self, u1: f64, u2: f64) {
+        self.j = (self.j + self.b1 * u1 + self.b2 * u2).normalized();
+        self.b1 = (self.b1 - self.j * self.j.dot(self.b1)).normalized();
+        self.b2 = self.j.cross(self.b1);
+    }
+}
+
+fn comp(v: Vec3, i: usize) -> f64 {
+    [v.x, v.y, v.z][i]
+}
+
+fn rot_z(psi: f64) -> Quat {
+    Quat::new(libm::cos(0.5 * psi), 0.0, 0.0, libm::sin(0.5 * psi))
+}
+
+/// One joint's estimator (see the module doc). Fixed size: no update allocates.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct JointEstimator {
+    kind: JointKind,
+    p_axis: Axis,
+    c_axis: Axis,
+    x: [f64; N],
+    p: [[f64; N]; N],
+    params: JointParams,
+    /// How long both sensors have been still (s).
+    still: f64,
+    /// The vertical in the parent's and the child's sensor frame at the last motion.
+    g: [Vec3; 2],
+    /// The previous gyroscope readings (parent, child), for the angular accelerations.
+    prev_gyro: Option<(Vec3, Vec3)>,
+    rating: f64,
+    /// `h_Δ² / R` for a horizontal axis: the rating's scale.
+    info_scale: f64,
+}
+
+impl JointEstimator {
+    pub(crate) fn new(kind: JointKind, axis_parent: Vec3, axis_child: Vec3, params: JointParams) -> Self {
+        let mut p = [[0.0; N]; N];
+        let diag = [
+            (0..1, params.heading_std0),
+            (BP..UP_, params.rate_std0),
+            (UP_..OP, params.axis_std0),
+            (OP..TX, params.lever_std0),
+            (TX..N, params.tilt_std0),
+        ];
+        for (range, std) in diag {
+            for k in range {
+                p[k][k] = std * std;
+            }
+        }
+        JointEstimator {
+            kind,
+            p_axis: Axis::new(axis_parent),
+            c_axis: Axis::new(axis_child),
+            x: [0.0; N],
+            p,
+            params,
+            still: 0.0,
+            g: [Vec3::ZERO; 2],
+            prev_gyro: None,
+            rating: 0.0,
+            info_scale: 1.0,
+        }
+    }
+
+    /// Every state and covariance entry is finite.
+    pub(crate) fn is_finite(&self) -> bool {
+        self.x.iter().chain(self.p.iter().flatten()).all(|v| v.is_finite())
+            && self.p_axis.j.is_finite()
+            && self.c_axis.j.is_finite()
+    }
+
+    /// A row without both sensors' readings: the estimate holds, and the next row's
+    /// angular acceleration is not taken across the gap.
+    pub(crate) fn hold(&mut self) {
+        self.prev_gyro = None;
+    }
+
+    /// The relative heading `Δ` (rad).
+    pub(crate) fn heading(&self) -> f64 {
+        self.x[0]
+    }
+
+    /// The relative heading's drift at the last motion (rad/s): `g_c·β_c − g_p·β_p`.
+    pub(crate) fn drift(&self) -> f64 {
+        let v = |o: usize| Vec3::new(self.x[o], self.x[o + 1], self.x[o + 2]);
+        self.g[1].dot(v(BC)) - self.g[0].dot(v(BP))
+    }
+
+    /// The child's correction, earth frame: `T(φ) ⊗ R_z(Δ)`.
+    pub(crate) fn correction(&self) -> Quat {
+        let t = Vec3::new(self.x[TX], self.x[TX + 1], 0.0);
+        let a = t.norm();
+        let tilt = if a > 1e-12 { Quat::from_axis_angle(t, a) } else { Quat::new(1.0, 0.0, 0.0, 0.0) };
+        tilt * rot_z(self.x[0])
+    }
+
+    /// The standard deviation of `Δ` (rad).
+    pub(crate) fn heading_std(&self) -> f64 {
+        self.p[0][0].max(0.0).sqrt()
+    }
+
+    /// The observability rating in [0, 1].
+    pub(crate) fn rating(&self) -> f64 {
+        self.rating
+    }
+
+    /// The axes as refined (unit, sensor frames).
+    pub(crate) fn axes(&self) -> (Vec3, Vec3) {
+        (self.p_axis.j, self.c_axis.j)
+    }
+
+    /// One sample: the two sensors' orientations (sensor to earth, the child's without
+    /// this joint's correction), their gyroscope (rad/s) and accelerometer (m/s²)
+    /// readings, and the interval `dt` (s). A `dt` outside (0, 1) s changes nothing.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn update(
+        &mut self,
+        q_p: Quat,
+        q_c: Quat,
+        gyro_p: Vec3,
+        gyro_c: Vec3,
+        acc_p: Vec3,
+        acc_c: Vec3,
+        dt: f64,
+    ) {
+        let prm = self.params;
+        if !(dt > 0.0 && dt < 1.0) {
+            return;
+        }
+        let prev = self.prev_gyro.replace((gyro_p, gyro_c));
+        let moving = gyro_p.norm_squared().max(gyro_c.norm_squared()) > prm.rest_gyro * prm.rest_gyro;
+        self.still = if moving { 0.0 } else { self.still + dt };
+        let alpha = dt / (prm.rating_tau + dt);
+        let rest = self.still >= prm.rest_time;
+        for k in TX..N {
+            self.p[k][k] += prm.q_tilt * dt;
+        }
+        if rest {
+            self.rating -= alpha * self.rating;
+        } else {
+            self.g = [q_p.rotate_inverse(UP), q_c.rotate_inverse(UP)];
+            self.predict(dt);
+        }
+        let rz = self.correction();
+        let tilt = |v: Vec3, h: &mut [f64; N], i: usize| {
+            h[TX] = comp(Vec3::new(1.0, 0.0, 0.0).cross(v), i);
+            h[TX + 1] = comp(Vec3::new(0.0, 1.0, 0.0).cross(v), i);
+        };
+        let e_p = q_p.rotate(self.p_axis.j);
+        let e_c = rz.rotate(q_c.rotate(self.c_axis.j));
+        let dp = [q_p.rotate(self.p_axis.b1), q_p.rotate(self.p_axis.b2)];
+        let dc = [rz.rotate(q_c.rotate(self.c_axis.b1)), rz.rotate(q_c.rotate(self.c_axis.b2))];
+        let mut dx = [0.0; N];
+        let mut info = 0.0;
+        match (rest, self.kind) {
+            (true, _) => {}
+            (false, JointKind::Hinge) => {
+                let r = e_p - e_c;
+                let d_delta = -UP.cross(e_c);
+                let rr = prm.r_hinge / dt;
+                for i in 0..3 {
+                    let mut h = [0.0; N];
+                    h[0] = comp(d_delta, i);
+                    h[UP_] = comp(dp[0], i);
+                    h[UP_ + 1] = comp(dp[1], i);
+                    h[UC] = -comp(dc[0], i);
+                    h[UC + 1] = -comp(dc[1], i);
+                    tilt(-e_c, &mut h, i);
+                    info += h[0] * h[0] / rr;
+                    self.scalar_update(&h, -comp(r, i), rr, &mut dx);
+                }
+                self.info_scale = 1.0 / rr;
+            }
+            (false, JointKind::TwoDof) => {
+                let f = e_p.dot(e_c);
+                let mut h = [0.0; N];
+                h[0] = e_p.dot(UP.cross(e_c));
+                h[UP_] = dp[0].dot(e_c);
+                h[UP_ + 1] = dp[1].dot(e_c);
+                h[UC] = e_p.dot(dc[0]);
+                h[UC + 1] = e_p.dot(dc[1]);
+                h[TX] = e_p.dot(Vec3::new(1.0, 0.0, 0.0).cross(e_c));
+                h[TX + 1] = e_p.dot(Vec3::new(0.0, 1.0, 0.0).cross(e_c));
+                let rr = prm.r_2dof / dt;
+                info += h[0] * h[0] / rr;
+                self.scalar_update(&h, -f, rr, &mut dx);
+                self.info_scale = 1.0 / rr;
+            }
+        }
+        if let (true, false, Some((gp0, gc0))) = (prm.r_acc > 0.0, rest, prev) {
+            let (wp, wc) = (gyro_p, gyro_c);
+            let (dwp, dwc) = ((gyro_p - gp0) * (1.0 / dt), (gyro_c - gc0) * (1.0 / dt));
+            let m = |w: Vec3, dw: Vec3, o: Vec3| w.cross(w.cross(o)) + dw.cross(o);
+            let vec = |o: usize| Vec3::new(self.x[o], self.x[o + 1], self.x[o + 2]);
+            let (op, oc) = (vec(OP), vec(OC));
+            let fp = q_p.rotate(acc_p + m(wp, dwp, op));
+            let fc = rz.rotate(q_c.rotate(acc_c + m(wc, dwc, oc)));
+            let r = fp - fc;
+            let d_delta = -UP.cross(fc);
+            let unit = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), UP];
+            let cp = unit.map(|e| q_p.rotate(m(wp, dwp, e)));
+            let cc = unit.map(|e| rz.rotate(q_c.rotate(m(wc, dwc, e))));
+            let rr = prm.r_acc / dt;
+            for i in 0..3 {
+                let mut h = [0.0; N];
+                h[0] = comp(d_delta, i);
+                for k in 0..3 {
+                    h[OP + k] = comp(cp[k], i);
+                    h[OC + k] = -comp(cc[k], i);
+                }
+                tilt(-fc, &mut h, i);
+                self.scalar_update(&h, -comp(r, i), rr, &mut dx);
+            }
+        }
+        self.rating += alpha * ((info / self.info_scale).min(1.0) - self.rating);
+        let step = prm.max_rate * dt;
+        self.x[0] += dx[0].clamp(-step, step);
+        for k in BP..UP_ {
+            self.x[k] += dx[k];
+        }
+        self.p_axis.fold(dx[UP_], dx[UP_ + 1]);
+        self.c_axis.fold(dx[UC], dx[UC + 1]);
+        for k in OP..TX {
+            self.x[k] += dx[k];
+        }
+        for k in TX..N {
+            self.x[k] += dx[k].clamp(-step, step);
+        }
+    }
+
+    /// `Δ ← Δ + dt fᵀx`, `P ← F P Fᵀ + Q dt` with `F = I + dt e₀ fᵀ`,
+    /// `f = [0, −g_p, g_c, 0 …]`.
+    fn predict(&mut self, dt: f64) {
+        let prm = self.params;
+        let mut f = [0.0; N];
+        for k in 0..3 {
+            f[BP + k] = -comp(self.g[0], k);
+            f[BC + k] = comp(self.g[1], k);
+        }
+        self.x[0] += dt * (0..N).map(|k| f[k] * self.x[k]).sum::<f64>();
+        // F P Fᵀ = P + dt (e₀ vᵀ + v e₀ᵀ) + dt² (fᵀ P f) e₀ e₀ᵀ, v = P f.
+        let mut v = [0.0; N];
+        for (i, vi) in v.iter_mut().enumerate() {
+            *vi = (0..N).map(|k| self.p[i][k] * f[k]).sum();
+        }
+        let fpf: f64 = (0..N).map(|k| f[k] * v[k]).sum();
+        for k in 0..N {
+            self.p[0][k] += dt * v[k];
+            self.p[k][0] += dt * v[k];
+        }
+        self.p[0][0] += dt * dt * fpf + prm.q_heading * dt;
+        for k in BP..UP_ {
+            self.p[k][k] += prm.q_rate * dt;
+        }
+        for k in UP_..OP {
+            self.p[k][k] += prm.q_axis * dt;
+        }
+        for k in OP..TX {
+            self.p[k][k] += prm.q_lever * dt;
+        }
+    }
+
+    /// A scalar measurement `0 = z + h δx + v` with innovation `nu` before `δx` and noise
+    /// variance `r`.
+    fn scalar_update(&mut self, h: &[f64; N], nu: f64, r: f64, dx: &mut [f64; N]) {
+        let mut ph = [0.0; N];
+        for i in 0..N {
+            ph[i] = (0..N).map(|k| self.p[i][k] * h[k]).sum();
+        }
+        let hph: f64 = (0..N).map(|k| h[k] * ph[k]).sum();
+        let nu = nu - (0..N).map(|k| h[k] * dx[k]).sum::<f64>();
+        let mut s = hph + r;
+        let g2 = self.params.gate * self.params.gate;
+        if nu * nu > g2 * s {
+            s = hph + r * nu * nu / (g2 * s);
+        }
+        if !(s.is_finite() && s > 0.0 && nu.is_finite()) {
+            return;
+        }
+        for i in 0..N {
+            dx[i] += ph[i] / s * nu;
+        }
+        for i in 0..N {
+            for k in 0..N {
+                self.p[i][k] -= ph[i] * ph[k] / s;
+            }
+        }
+    }
+}

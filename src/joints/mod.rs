@@ -1,0 +1,434 @@
+//! Joints: a rig's segments held together by what its joints allow, without a
+//! magnetometer.
+//!
+//! A hand, a glove or a mocap suit is a rig: sensors on segments, segments joined by
+//! joints. Every sensor runs its own filter ([`crate::Filter`], 6D or 9D); without a
+//! trustworthy magnetometer each one's heading drifts on its own, and after minutes the
+//! model's segments twist apart. A joint fixes the relative heading of its two segments
+//! whenever its axes are not vertical: a hinge's axis, seen from the parent and from the
+//! child, is one line; a 2-DoF joint's two axes stay perpendicular; and the joint centre
+//! moves with both segments. [`Joints`](crate::joints::Joints) estimates, sample by sample and in memory fixed
+//! at creation, each child's heading relative to its parent ([`estimator`](crate::joints::estimator) has the
+//! equations), and gives each segment's corrected orientation and each joint's angles.
+//!
+//! The joints form a forest: each segment is the child of at most one joint, and no chain
+//! of joints returns to where it started. A segment that is no joint's child is a root:
+//! its orientation is its filter's. Each child's correction is its parent's times its
+//! own, so a chain (wrist, MCP, PIP) follows its root.
+//!
+//! ```
+//! use orient::joints::{JointKind, JointParams, JointSpec, Joints};
+//! use orient::{Quat, Sample, Vec3};
+//! // A forearm (segment 0) and a hand (1) joined by a hinge about both sensors' x axis.
+//! let hinge = JointSpec {
+//!     kind: JointKind::Hinge,
+//!     parent: 0,
+//!     child: 1,
+//!     axis_parent: Vec3::new(1.0, 0.0, 0.0),
+//!     axis_child: Vec3::new(1.0, 0.0, 0.0),
+//! };
+//! let mut joints = Joints::new(2, &[hinge], &[], JointParams::default())?;
+//! // Each row: every filter's sensor orientation after its update, and its sample.
+//! let sample = Sample {
+//!     dt: 0.01,
+//!     gyro: Some(Vec3::new(0.5, 0.0, 0.0)),
+//!     accel: Some(Vec3::new(0.0, 0.0, 9.81)),
+//!     mag: None,
+//! };
+//! joints.update(&[Quat::IDENTITY, Quat::IDENTITY], &[sample, sample])?;
+//! let hand = joints.segment_quaternion(1);
+//! let [flexion, _] = joints.angles(0);
+//! assert!(hand.is_finite() && flexion.abs() < 1e-9);
+//! # Ok::<(), orient::joints::JointError>(())
+//! ```
+
+#![forbid(unsafe_code)]
+
+mod axes;
+pub mod estimator;
+
+pub use axes::{estimate_hinge_axes, HingeAxes};
+pub use estimator::JointParams;
+
+use crate::filters::{Filter, Sample};
+use crate::math::{Quat, Vec3};
+use estimator::JointEstimator;
+
+/// The most joints one [`Joints`] holds: a suit of 20 segments has 19, two hands 30.
+pub const MAX_JOINTS: usize = 64;
+
+/// What a joint allows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// One degree of freedom: the child turns about one axis, `axis_parent` in the
+    /// parent's sensor frame and `axis_child` in the child's, the same line at every
+    /// instant (an elbow, a knee, a finger's PIP and DIP joints).
+    Hinge,
+    /// Two degrees of freedom: the child turns about `axis_parent` (fixed in the parent),
+    /// then about `axis_child` (fixed in the child), the two perpendicular (a wrist, a
+    /// finger's MCP joint, an ankle).
+    TwoDof,
+}
+
+/// One joint: segment indices and unit axes in the sensors' frames.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointSpec {
+    pub kind: JointKind,
+    /// The parent segment (its sensor's index).
+    pub parent: usize,
+    /// The child segment.
+    pub child: usize,
+    /// The first axis in the parent sensor's frame (any length but zero).
+    pub axis_parent: Vec3,
+    /// The hinge's axis, or a 2-DoF joint's second axis, in the child sensor's frame.
+    pub axis_child: Vec3,
+}
+
+/// Why a rig's joints or a row of its samples were refused. Nothing changes on an error.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointError {
+    /// More than [`MAX_JOINTS`] joints (the count).
+    TooMany(usize),
+    /// Joint `k` names a segment at or beyond the rig's count.
+    NoSuchSegment(usize),
+    /// Joint `k`'s child is its parent.
+    OwnParent(usize),
+    /// Joint `k`'s child is already another joint's child.
+    TwoParents(usize),
+    /// Joint `k` closes a cycle.
+    Cycle(usize),
+    /// Joint `k` has an axis that is zero, not finite or too small to normalise.
+    BadAxis(usize),
+    /// Mounting `s` is not a usable quaternion (zero or not finite).
+    BadMounting(usize),
+    /// A parameter is not finite, negative, or zero where it divides.
+    BadParams,
+    /// A slice's length is not the number of segments (what it is).
+    WrongLength(usize),
+    /// Segment `s`'s orientation or sample has a value that is not finite.
+    NonFinite(usize),
+}
+
+impl core::fmt::Display for JointError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            JointError::TooMany(n) => write!(f, "{n} joints: at most {MAX_JOINTS}"),
+            JointError::NoSuchSegment(k) => write!(f, "joint {k} names a segment the rig does not have"),
+            JointError::OwnParent(k) => write!(f, "joint {k}: the child is its own parent"),
+            JointError::TwoParents(k) => write!(f, "joint {k}: the child already has a parent"),
+            JointError::Cycle(k) => write!(f, "joint {k} closes a cycle"),
+            JointError::BadAxis(k) => write!(f, "joint {k}: an axis is zero or not finite"),
+            JointError::BadMounting(s) => write!(f, "mounting {s} is not a rotation"),
+            JointError::BadParams => write!(f, "a joint parameter is not finite or out of range"),
+            JointError::WrongLength(n) => write!(f, "{n} entries: one per segment expected"),
+            JointError::NonFinite(s) => write!(f, "segment {s}: a value is not finite"),
+        }
+    }
+}
+
+impl std::error::Error for JointError {}
+
+/// A rig's joints and their estimates. Made once ([`Joints::new`], which allocates);
+/// [`Joints::update`] and every getter allocate nothing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Joints {
+    specs: Vec<JointSpec>,
+    /// One estimator per joint, in `specs`' order.
+    estimators: Vec<JointEstimator>,
+    /// The joints' indices, every parent's joint before its children's.
+    order: Vec<usize>,
+    /// Per segment: the mounting (sensor to segment, `v_segment = m v_sensor`).
+    mountings: Vec<Quat>,
+    /// Per segment: the correction (earth frame) and the corrected sensor orientation.
+    corrections: Vec<Quat>,
+    sensors: Vec<Quat>,
+    /// Per joint: the angles at the last update.
+    angles: Vec<[f64; 2]>,
+    /// Per segment: [`Joints::update_from`]'s buffer.
+    scratch: Vec<Quat>,
+    params: JointParams,
+}
+
+impl Joints {
+    /// The joints of a rig of `segments` segments (one sensor, one filter each), with the
+    /// sensors' `mountings` (sensor to segment; empty for the identity everywhere) that
+    /// give the angles' zero (the reference pose, where every segment's frame is the
+    /// same), and the estimator's tuning. An error names the first joint (or segment)
+    /// that is wrong.
+    pub fn new(
+        segments: usize,
+        joints: &[JointSpec],
+        mountings: &[Quat],
+        params: JointParams,
+    ) -> Result<Joints, JointError> {
+        if joints.len() > MAX_JOINTS {
+            return Err(JointError::TooMany(joints.len()));
+        }
+        if !params.is_valid() {
+            return Err(JointError::BadParams);
+        }
+        let mountings: Vec<Quat> = match mountings.len() {
+            0 => vec![Quat::IDENTITY; segments],
+            n if n == segments => mountings.to_vec(),
+            n => return Err(JointError::WrongLength(n)),
+        };
+        for (s, m) in mountings.iter().enumerate() {
+            let n2 = m.norm_squared();
+            if !(m.is_finite() && n2.is_finite() && n2 >= f64::MIN_POSITIVE) {
+                return Err(JointError::BadMounting(s));
+            }
+        }
+        let mountings: Vec<Quat> = mountings.iter().map(|m| m.normalized()).collect();
+        let mut parent: Vec<Option<usize>> = vec![None; segments];
+        let mut specs = Vec::with_capacity(joints.len());
+        for (k, j) in joints.iter().enumerate() {
+            if j.parent >= segments || j.child >= segments {
+                return Err(JointError::NoSuchSegment(k));
+            }
+            if j.parent == j.child {
+                return Err(JointError::OwnParent(k));
+            }
+            let usable = |a: Vec3| a.is_finite() && a.norm_squared().is_finite() && a.norm() > 1e-12;
+            if !(usable(j.axis_parent) && usable(j.axis_child)) {
+                return Err(JointError::BadAxis(k));
+            }
+            if parent[j.child].is_some() {
+                return Err(JointError::TwoParents(k));
+            }
+            parent[j.child] = Some(j.parent);
+            // Up from the child: a cycle comes back to it within `segments` steps.
+            let mut s = j.parent;
+            for _ in 0..segments {
+                if s == j.child {
+                    return Err(JointError::Cycle(k));
+                }
+                match parent[s] {
+                    Some(p) => s = p,
+                    None => break,
+                }
+            }
+            specs.push(JointSpec {
+                axis_parent: j.axis_parent.normalized(),
+                axis_child: j.axis_child.normalized(),
+                ..*j
+            });
+        }
+        let depth = |mut s: usize| {
+            let mut d = 0;
+            while let Some(p) = parent[s] {
+                s = p;
+                d += 1;
+            }
+            d
+        };
+        let mut order: Vec<usize> = (0..specs.len()).collect();
+        order.sort_by_key(|&k| depth(specs[k].child));
+        let estimators =
+            specs.iter().map(|j| JointEstimator::new(j.kind, j.axis_parent, j.axis_child, params)).collect();
+        Ok(Joints {
+            angles: vec![[0.0, 0.0]; specs.len()],
+            specs,
+            estimators,
+            order,
+            mountings,
+            corrections: vec![Quat::IDENTITY; segments],
+            sensors: vec![Quat::IDENTITY; segments],
+            scratch: vec![Quat::IDENTITY; segments],
+            params,
+        })
+    }
+
+    /// The number of segments.
+    pub fn segments(&self) -> usize {
+        self.mountings.len()
+    }
+
+    /// The joints as given (axes normalised).
+    pub fn specs(&self) -> &[JointSpec] {
+        &self.specs
+    }
+
+    /// Starts every estimate over: no correction, the given axes.
+    pub fn reset(&mut self) {
+        for (e, j) in self.estimators.iter_mut().zip(&self.specs) {
+            *e = JointEstimator::new(j.kind, j.axis_parent, j.axis_child, self.params);
+        }
+        self.corrections.fill(Quat::IDENTITY);
+        self.angles.fill([0.0, 0.0]);
+    }
+
+    /// One row: each segment's sensor orientation (sensor to earth, from its filter after
+    /// this row's sample: [`Filter::sensor_quaternion`]) and the sample that filter took.
+    /// A joint whose two samples do not both have gyroscope and accelerometer readings
+    /// holds its estimate this row; the child's `dt` is the joint's. `WrongLength` or
+    /// `NonFinite` (a quaternion or reading) change nothing.
+    pub fn update(&mut self, sensors: &[Quat], samples: &[Sample]) -> Result<(), JointError> {
+        let n = self.segments();
+        for len in [sensors.len(), samples.len()] {
+            if len != n {
+                return Err(JointError::WrongLength(len));
+            }
+        }
+        for (s, (q, x)) in sensors.iter().zip(samples).enumerate() {
+            let finite = |v: Option<Vec3>| v.map_or(true, Vec3::is_finite);
+            let n2 = q.norm_squared();
+            if !(q.is_finite()
+                && n2.is_finite()
+                && n2 >= f64::MIN_POSITIVE
+                && x.dt.is_finite()
+                && finite(x.gyro)
+                && finite(x.accel))
+            {
+                return Err(JointError::NonFinite(s));
+            }
+        }
+        for &k in &self.order {
+            let j = self.specs[k];
+            let (sp, sc) = (&samples[j.parent], &samples[j.child]);
+            let est = &mut self.estimators[k];
+            if let (Some(gp), Some(gc), Some(ap), Some(ac)) = (sp.gyro, sc.gyro, sp.accel, sc.accel) {
+                let (qp, qc) = (sensors[j.parent].normalized(), sensors[j.child].normalized());
+                est.update(qp, qc, gp, gc, ap, ac, sc.dt);
+                if !est.is_finite() {
+                    // Finite inputs keep the state finite; should rounding ever not, the
+                    // joint starts over rather than stay stuck.
+                    *est = JointEstimator::new(j.kind, j.axis_parent, j.axis_child, self.params);
+                }
+            } else {
+                est.hold();
+            }
+            self.corrections[j.child] = (self.corrections[j.parent] * est.correction()).normalized();
+        }
+        for (s, q) in sensors.iter().enumerate() {
+            self.sensors[s] = (self.corrections[s] * q.normalized()).normalized();
+        }
+        for k in 0..self.specs.len() {
+            self.angles[k] = self.joint_angles(k);
+        }
+        Ok(())
+    }
+
+    /// [`Joints::update`] from the filters themselves (`filters[s]` took `samples[s]`).
+    pub fn update_from(&mut self, filters: &[&Filter], samples: &[Sample]) -> Result<(), JointError> {
+        if filters.len() != self.segments() {
+            return Err(JointError::WrongLength(filters.len()));
+        }
+        // The row's orientations in a buffer made with the joints: no allocation here.
+        let mut sensors = core::mem::take(&mut self.scratch);
+        for (q, f) in sensors.iter_mut().zip(filters) {
+            *q = f.sensor_quaternion();
+        }
+        let result = self.update(&sensors, samples);
+        self.scratch = sensors;
+        result
+    }
+
+    /// Segment `s`'s sensor orientation (sensor to earth) with the joints' correction.
+    pub fn sensor_quaternion(&self, s: usize) -> Quat {
+        self.sensors[s]
+    }
+
+    /// Segment `s`'s orientation (segment to earth), the bone rotation a host draws: the
+    /// corrected sensor orientation with the mounting applied, `q_sensor ⊗ m⁻¹`.
+    pub fn segment_quaternion(&self, s: usize) -> Quat {
+        (self.sensors[s] * self.mountings[s].conj()).normalized()
+    }
+
+    /// Segment `s`'s correction (earth frame, applied on the left of its filter's
+    /// orientation): the identity for a root.
+    pub fn correction(&self, s: usize) -> Quat {
+        self.corrections[s]
+    }
+
+    /// Joint `k`'s angles (rad) at the last update, zero in the reference pose (every
+    /// segment's frame the same), positive by the right-hand rule about the joint's
+    /// (refined) axes: a hinge gives `[θ, NaN]`, the child's turn about the axis; a 2-DoF
+    /// joint `[α, β]`, the turn about `axis_parent` and then about `axis_child` that make
+    /// up the child's orientation relative to its parent (exactly when the axes are
+    /// true, the nearest such pair otherwise).
+    pub fn angles(&self, k: usize) -> [f64; 2] {
+        self.angles[k]
+    }
+
+    /// Joint `k`'s observability rating in [0, 1]: how much its constraints told about
+    /// the relative heading over the last seconds (`rating_tau`). Near 0 at rest and while
+    /// a hinge's axis is vertical, when the relative heading is held; near 1 for a
+    /// horizontal axis in motion.
+    pub fn rating(&self, k: usize) -> f64 {
+        self.estimators[k].rating()
+    }
+
+    /// Joint `k`'s relative heading correction (rad, about the vertical): the turn added
+    /// to the child's filter relative to its parent's.
+    pub fn relative_heading(&self, k: usize) -> f64 {
+        self.estimators[k].heading()
+    }
+
+    /// The standard deviation of [`Joints::relative_heading`] (rad).
+    pub fn heading_std(&self, k: usize) -> f64 {
+        self.estimators[k].heading_std()
+    }
+
+    /// The rate at which joint `k`'s two filters' headings drift apart (rad/s), from the
+    /// vertical gyroscope bias each leaves.
+    pub fn drift(&self, k: usize) -> f64 {
+        self.estimators[k].drift()
+    }
+
+    /// Joint `k`'s axes as refined from motion (unit; parent's and child's sensor frame).
+    pub fn axes(&self, k: usize) -> (Vec3, Vec3) {
+        self.estimators[k].axes()
+    }
+
+    fn joint_angles(&self, k: usize) -> [f64; 2] {
+        let j = &self.specs[k];
+        let (a, b) = self.axes(k);
+        angles(
+            j.kind,
+            a,
+            b,
+            self.mountings[j.parent],
+            self.mountings[j.child],
+            self.sensors[j.parent],
+            self.sensors[j.child],
+        )
+    }
+}
+
+/// The twist of `q` about the unit axis `n`: the angle (rad, in (-π, π]) of the rotation
+/// about `n` in the swing-twist decomposition `q = swing ⊗ twist`.
+pub fn twist_angle(q: Quat, n: Vec3) -> f64 {
+    let p = q.vector().dot(n);
+    let a = 2.0 * libm::atan2(p, q.w);
+    if a > core::f64::consts::PI {
+        a - 2.0 * core::f64::consts::PI
+    } else if a <= -core::f64::consts::PI {
+        a + 2.0 * core::f64::consts::PI
+    } else {
+        a
+    }
+}
+
+/// A joint's angles ([`Joints::angles`]) from its axes `a` (parent sensor frame) and `b`
+/// (child's), the mountings `m_p`, `m_c` (sensor to segment) and the sensor orientations
+/// `q_p`, `q_c` (sensor to earth).
+pub fn angles(kind: JointKind, a: Vec3, b: Vec3, m_p: Quat, m_c: Quat, q_p: Quat, q_c: Quat) -> [f64; 2] {
+    // The child sensor's orientation relative to the parent's in the reference pose, and
+    // the joint's rotation in the parent sensor's frame.
+    let r0 = m_p.conj() * m_c;
+    let rot = (q_p.conj() * q_c * r0.conj()).normalized();
+    match kind {
+        JointKind::Hinge => [twist_angle(rot, a), f64::NAN],
+        JointKind::TwoDof => {
+            let b = r0.rotate(b);
+            let rb = rot.rotate(b);
+            let (u, v) = (b - a * b.dot(a), rb - a * rb.dot(a));
+            let alpha = libm::atan2(a.dot(u.cross(v)), u.dot(v));
+            let rest = Quat::from_axis_angle(a, -alpha) * rot;
+            [alpha, twist_angle(rest, b)]
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

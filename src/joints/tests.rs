@@ -1,0 +1,306 @@
+use super::*;
+
+const G: f64 = 9.81;
+const X: Vec3 = Vec3::new(1.0, 0.0, 0.0);
+const Y: Vec3 = Vec3::new(0.0, 1.0, 0.0);
+const Z: Vec3 = Vec3::new(0.0, 0.0, 1.0);
+
+fn rot(axis: Vec3, angle: f64) -> Quat {
+    Quat::from_axis_angle(axis, angle)
+}
+
+fn hinge(parent: usize, child: usize, axis: Vec3) -> JointSpec {
+    JointSpec { kind: JointKind::Hinge, parent, child, axis_parent: axis, axis_child: axis }
+}
+
+/// Body rates (rad/s) that take `a` to `b` in `dt`.
+fn rate(a: Quat, b: Quat, dt: f64) -> Vec3 {
+    let d = (a.conj() * b).normalized();
+    let d = if d.w < 0.0 { d.scale(-1.0) } else { d };
+    let s = d.vector().norm();
+    if s < 1e-15 {
+        return Vec3::ZERO;
+    }
+    d.vector() * (2.0 * libm::atan2(s, d.w) / s / dt)
+}
+
+/// A sample of a sensor at the joint centre (no lever arm, no linear acceleration) whose
+/// orientation goes from `q0` to `q1` in `dt`.
+fn sample(q0: Quat, q1: Quat, dt: f64) -> Sample {
+    Sample { dt, gyro: Some(rate(q0, q1, dt)), accel: Some(q1.rotate_inverse(Z * G)), mag: None }
+}
+
+/// The parent's motion: turns about every axis, its x axis mostly horizontal.
+fn parent_at(t: f64) -> Quat {
+    rot(Z, 0.5 * libm::sin(0.3 * t)) * rot(Y, 0.6 * libm::sin(0.7 * t)) * rot(X, 0.4 * libm::sin(1.1 * t))
+}
+
+fn flexion_at(t: f64) -> f64 {
+    0.5 + 0.8 * libm::sin(1.9 * t)
+}
+
+/// The angle (rad) of the child's orientation relative to its parent's, estimate against
+/// truth.
+fn relative_error(est_p: Quat, est_c: Quat, true_p: Quat, true_c: Quat) -> f64 {
+    let e = (est_p.conj() * est_c).conj() * (true_p.conj() * true_c);
+    2.0 * libm::atan2(e.vector().norm(), e.w.abs())
+}
+
+/// A parent and a hinged child over `seconds` at 100 Hz, the child's filter drifting in
+/// heading at `drift` rad/s: the largest relative error over the last 10 s.
+fn run_hinge(axis: Vec3, drift: f64, seconds: f64) -> (Joints, f64) {
+    let dt = 0.01;
+    let mut joints = Joints::new(2, &[hinge(0, 1, axis)], &[], JointParams::default()).unwrap();
+    let child_at = |t: f64| parent_at(t) * rot(axis, flexion_at(t));
+    let mut worst: f64 = 0.0;
+    let steps = (seconds / dt) as usize;
+    for i in 1..=steps {
+        let (t0, t1) = ((i - 1) as f64 * dt, i as f64 * dt);
+        let (p0, p1, c0, c1) = (parent_at(t0), parent_at(t1), child_at(t0), child_at(t1));
+        // The child's filter: the truth turned about the vertical by its heading drift.
+        let c_filter = rot(Z, drift * t1) * c1;
+        joints.update(&[p1, c_filter], &[sample(p0, p1, dt), sample(c0, c1, dt)]).unwrap();
+        if t1 > seconds - 10.0 {
+            let e = relative_error(joints.sensor_quaternion(0), joints.sensor_quaternion(1), p1, c1);
+            worst = worst.max(e);
+        }
+    }
+    (joints, worst)
+}
+
+#[test]
+fn a_hinge_holds_the_child_to_its_parent_while_its_heading_drifts() {
+    // Alone, the child would be 30 degrees off after a minute.
+    let drift = 0.5f64.to_radians();
+    let (joints, worst) = run_hinge(X, drift, 60.0);
+    assert!(worst < 1f64.to_radians(), "{} deg", worst.to_degrees());
+    // The correction is the drift undone, and the rating says the axis told it.
+    let expected = -drift * 60.0;
+    assert!(
+        (joints.relative_heading(0) - expected).abs() < 1f64.to_radians(),
+        "{}",
+        joints.relative_heading(0)
+    );
+    assert!(joints.rating(0) > 0.3, "{}", joints.rating(0));
+}
+
+#[test]
+fn the_hinge_angle_is_the_flexion() {
+    let (joints, _) = run_hinge(X, 0.0, 20.0);
+    let [theta, other] = joints.angles(0);
+    assert!((theta - flexion_at(20.0)).abs() < 0.5f64.to_radians(), "{theta}");
+    assert!(other.is_nan());
+}
+
+#[test]
+fn a_vertical_hinge_says_nothing_and_the_heading_holds() {
+    // A door: the parent upright turning about the vertical, the child about the same
+    // vertical axis. Nothing fixes the relative heading; it must not move.
+    let dt = 0.01;
+    let mut joints = Joints::new(2, &[hinge(0, 1, Z)], &[], JointParams::default()).unwrap();
+    let p_at = |t: f64| rot(Z, 0.7 * libm::sin(0.9 * t));
+    let c_at = |t: f64| p_at(t) * rot(Z, 0.6 * libm::sin(1.7 * t));
+    let mut most: f64 = 0.0;
+    for i in 1..=3000 {
+        let (t0, t1) = ((i - 1) as f64 * dt, i as f64 * dt);
+        let (p0, p1, c0, c1) = (p_at(t0), p_at(t1), c_at(t0), c_at(t1));
+        let offset = rot(Z, 0.3);
+        joints.update(&[p1, offset * c1], &[sample(p0, p1, dt), sample(c0, c1, dt)]).unwrap();
+        most = most.max(joints.relative_heading(0).abs());
+    }
+    assert!(joints.rating(0) < 0.01, "{}", joints.rating(0));
+    assert!(most < 0.5f64.to_radians(), "{} deg", most.to_degrees());
+}
+
+#[test]
+fn at_rest_the_estimate_holds_and_the_rating_falls() {
+    let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 30.0);
+    let q = parent_at(30.0);
+    let c = q * rot(X, flexion_at(30.0));
+    let still = |q: Quat| Sample {
+        dt: 0.01,
+        gyro: Some(Vec3::ZERO),
+        accel: Some(q.rotate_inverse(Z * G)),
+        mag: None,
+    };
+    // The rig stops (the rest detector needs `rest_time`), then lies still for 20 s.
+    for _ in 0..100 {
+        joints.update(&[q, c], &[still(q), still(c)]).unwrap();
+    }
+    let heading = joints.relative_heading(0);
+    for _ in 0..2000 {
+        joints.update(&[q, c], &[still(q), still(c)]).unwrap();
+    }
+    assert_eq!(joints.relative_heading(0), heading);
+    assert!(joints.rating(0) < 0.01, "{}", joints.rating(0));
+}
+
+#[test]
+fn a_chain_composes_the_corrections_down_from_its_root() {
+    // Segment 2 hangs from 1, which hangs from 0: listed child first, estimated in order.
+    let joints = [hinge(1, 2, X), hinge(0, 1, X)];
+    let mut rig = Joints::new(3, &joints, &[], JointParams::default()).unwrap();
+    let dt = 0.01;
+    let at = |t: f64| {
+        let p = parent_at(t);
+        let c = p * rot(X, flexion_at(t));
+        (p, c, c * rot(X, 0.3 * flexion_at(t + 1.0)))
+    };
+    for i in 1..=1000 {
+        let (t0, t1) = ((i - 1) as f64 * dt, i as f64 * dt);
+        let ((p0, c0, g0), (p1, c1, g1)) = (at(t0), at(t1));
+        let drift = |k: f64| rot(Z, k * 0.01 * t1);
+        let sensors = [p1, drift(1.0) * c1, drift(-1.0) * g1];
+        rig.update(&sensors, &[sample(p0, p1, dt), sample(c0, c1, dt), sample(g0, g1, dt)]).unwrap();
+    }
+    assert_eq!(rig.correction(0), Quat::IDENTITY);
+    let own = |k: usize| rot(Z, rig.relative_heading(k));
+    let chained = rig.correction(1) * own(0);
+    let d = chained.conj() * rig.correction(2);
+    assert!(d.vector().norm() < 1e-3, "{d:?}");
+    let ((_, _, _), (p, c, g)) = (at(0.0), at(10.0));
+    for (est, truth) in [(1, c), (2, g)] {
+        let e = relative_error(rig.sensor_quaternion(0), rig.sensor_quaternion(est), p, truth);
+        assert!(e < 1.5f64.to_radians(), "segment {est}: {} deg", e.to_degrees());
+    }
+}
+
+#[test]
+fn two_dof_angles_are_the_turns_about_the_two_axes() {
+    for (alpha, beta) in [(0.3, -0.2), (-1.0, 0.7), (0.0, 0.0), (1.2, 1.1)] {
+        let q_p = parent_at(alpha * 3.0);
+        let q_c = q_p * rot(Z, alpha) * rot(X, beta);
+        let [a, b] = angles(JointKind::TwoDof, Z, X, Quat::IDENTITY, Quat::IDENTITY, q_p, q_c);
+        assert!((a - alpha).abs() < 1e-12 && (b - beta).abs() < 1e-12, "{a} {b} for {alpha} {beta}");
+    }
+}
+
+#[test]
+fn angles_are_zero_in_the_reference_pose_whatever_the_mountings() {
+    let (m_p, m_c) = (rot(Vec3::new(1.0, 2.0, 3.0), 0.7), rot(Vec3::new(-1.0, 0.5, 0.2), 1.9));
+    // The reference pose: both segments' frames the same, q_sensor = q_segment ⊗ m.
+    let seg = parent_at(1.3);
+    let (q_p, q_c) = (seg * m_p, seg * m_c);
+    for kind in [JointKind::Hinge, JointKind::TwoDof] {
+        let r = angles(kind, X, Y, m_p, m_c, q_p, q_c);
+        assert!(r[0].abs() < 1e-12, "{kind:?} {r:?}");
+        assert!(kind == JointKind::Hinge || r[1].abs() < 1e-12, "{kind:?} {r:?}");
+    }
+}
+
+#[test]
+fn a_segment_is_its_corrected_sensor_with_the_mounting_applied() {
+    let m = rot(Vec3::new(0.3, -1.0, 0.4), 0.8);
+    let mut joints = Joints::new(2, &[hinge(0, 1, X)], &[Quat::IDENTITY, m], JointParams::default()).unwrap();
+    let (p, c) = (parent_at(0.5), parent_at(0.9));
+    let s = |q: Quat| Sample {
+        dt: 0.01,
+        gyro: Some(Vec3::new(1.0, 0.0, 0.0)),
+        accel: Some(q.rotate_inverse(Z * G)),
+        mag: None,
+    };
+    joints.update(&[p, c], &[s(p), s(c)]).unwrap();
+    let expected = (joints.correction(1) * c * m.conj()).normalized();
+    assert!(joints.segment_quaternion(1).angle_to(expected) < 1e-12);
+    assert!(joints.segment_quaternion(0).angle_to(p) < 1e-12);
+}
+
+#[test]
+fn bad_rigs_are_refused_naming_the_joint() {
+    let p = JointParams::default();
+    let ok = hinge(0, 1, X);
+    let cases: [(usize, Vec<JointSpec>, JointError); 7] = [
+        (2, vec![hinge(0, 2, X)], JointError::NoSuchSegment(0)),
+        (2, vec![hinge(1, 1, X)], JointError::OwnParent(0)),
+        (3, vec![ok, hinge(2, 1, X)], JointError::TwoParents(1)),
+        (2, vec![ok, hinge(1, 0, X)], JointError::Cycle(1)),
+        (4, vec![hinge(0, 1, X), hinge(1, 2, X), hinge(2, 3, X), hinge(3, 0, X)], JointError::Cycle(3)),
+        (2, vec![hinge(0, 1, Vec3::ZERO)], JointError::BadAxis(0)),
+        (2, vec![JointSpec { axis_child: Vec3::new(f64::NAN, 0.0, 1.0), ..ok }], JointError::BadAxis(0)),
+    ];
+    for (segments, joints, error) in cases {
+        assert_eq!(Joints::new(segments, &joints, &[], p).unwrap_err(), error, "{joints:?}");
+    }
+    let many = vec![ok; MAX_JOINTS + 1];
+    assert_eq!(Joints::new(2, &many, &[], p).unwrap_err(), JointError::TooMany(MAX_JOINTS + 1));
+    assert_eq!(Joints::new(2, &[ok], &[Quat::IDENTITY], p).unwrap_err(), JointError::WrongLength(1));
+    let zero = Quat::new(0.0, 0.0, 0.0, 0.0);
+    assert_eq!(Joints::new(2, &[ok], &[Quat::IDENTITY, zero], p).unwrap_err(), JointError::BadMounting(1));
+    for bad in [
+        JointParams { gate: 0.0, ..p },
+        JointParams { q_rate: -1.0, ..p },
+        JointParams { r_acc: f64::NAN, ..p },
+    ] {
+        assert_eq!(Joints::new(2, &[ok], &[], bad).unwrap_err(), JointError::BadParams);
+    }
+    // A forest: two roots, and a segment in no joint.
+    assert!(Joints::new(5, &[ok, hinge(2, 3, Y)], &[], p).is_ok());
+}
+
+#[test]
+fn a_bad_row_changes_nothing() {
+    let (mut joints, _) = run_hinge(X, 0.01, 5.0);
+    // Debug's text: a hinge's second angle is NaN, which `==` never equals.
+    let before = format!("{joints:?}");
+    let heading = joints.relative_heading(0);
+    let q = parent_at(5.0);
+    let good = Sample { dt: 0.01, gyro: Some(X), accel: Some(Z * G), mag: None };
+    let nan = Vec3::new(f64::NAN, 0.0, 0.0);
+    let rows: [(Vec<Quat>, Vec<Sample>, JointError); 5] = [
+        (vec![q], vec![good, good], JointError::WrongLength(1)),
+        (vec![q, q], vec![good], JointError::WrongLength(1)),
+        (vec![q, Quat::new(f64::NAN, 0.0, 0.0, 0.0)], vec![good, good], JointError::NonFinite(1)),
+        (vec![q, Quat::new(0.0, 0.0, 0.0, 0.0)], vec![good, good], JointError::NonFinite(1)),
+        (vec![q, q], vec![Sample { gyro: Some(nan), ..good }, good], JointError::NonFinite(0)),
+    ];
+    for (sensors, samples, error) in rows {
+        assert_eq!(joints.update(&sensors, &samples), Err(error));
+        assert_eq!(format!("{joints:?}"), before);
+    }
+    // A row without an accelerometer reading is accepted: the joint holds.
+    let gyro_only = Sample { accel: None, ..good };
+    joints.update(&[q, q], &[gyro_only, gyro_only]).unwrap();
+    assert_eq!(joints.relative_heading(0), heading);
+}
+
+#[test]
+fn reset_starts_every_joint_over() {
+    let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 10.0);
+    assert!(joints.relative_heading(0) != 0.0);
+    joints.reset();
+    let fresh = Joints::new(2, &[hinge(0, 1, X)], &[], JointParams::default()).unwrap();
+    assert_eq!(joints.relative_heading(0), 0.0);
+    assert_eq!(joints.correction(1), Quat::IDENTITY);
+    assert_eq!(joints.estimators, fresh.estimators);
+}
+
+#[test]
+fn the_hinge_axes_come_from_motion() {
+    // The true axes: x in the parent's frame, and x turned by the child's mounting.
+    let tilt = rot(Vec3::new(0.2, 1.0, -0.3), 0.5);
+    let (jp, jc) = (X, tilt.rotate_inverse(X));
+    let dt = 0.01;
+    let (mut wp, mut wc) = (Vec::new(), Vec::new());
+    for i in 1..=500 {
+        let (t0, t1) = ((i - 1) as f64 * dt, i as f64 * dt);
+        let c = |t: f64| parent_at(t) * rot(X, flexion_at(t)) * tilt;
+        wp.push(rate(parent_at(t0), parent_at(t1), dt));
+        wc.push(rate(c(t0), c(t1), dt));
+    }
+    let off = |v: Vec3| rot(Vec3::new(0.3, 0.5, 1.0).cross(v), 5f64.to_radians()).rotate(v);
+    let h = estimate_hinge_axes(&wp, &wc, (off(jp), off(jc))).unwrap();
+    let angle = |a: Vec3, b: Vec3| libm::atan2(a.cross(b).norm(), a.dot(b)).to_degrees();
+    assert!(angle(h.axis_parent, jp) < 0.1 && angle(h.axis_child, jc) < 0.1, "{h:?}");
+    assert!(h.quality < 0.01, "{h:?}");
+    // Not a hinge: the child turns about two axes; the quality says so.
+    let wc2: Vec<Vec3> = wc.iter().enumerate().map(|(i, w)| *w + Y * libm::sin(i as f64 * 0.05)).collect();
+    let bad = estimate_hinge_axes(&wp, &wc2, (jp, jc)).unwrap();
+    assert!(bad.quality > 0.1, "{bad:?}");
+    // What it refuses.
+    assert!(estimate_hinge_axes(&wp, &wc[1..], (jp, jc)).is_none());
+    assert!(estimate_hinge_axes(&[], &[], (jp, jc)).is_none());
+    assert!(estimate_hinge_axes(&wp, &wc, (Vec3::ZERO, jc)).is_none());
+    let mut nan = wp.clone();
+    nan[3] = Vec3::new(f64::NAN, 0.0, 0.0);
+    assert!(estimate_hinge_axes(&nan, &wc, (jp, jc)).is_none());
+}
