@@ -294,6 +294,22 @@ fn replay_rig_scores_what_a_direct_computation_gives() {
     let joints = std::fs::read_to_string(dir.join("out/joints.csv")).unwrap();
     assert_eq!(joints.lines().count(), t.len() + 1);
     assert!(joints.lines().next().unwrap().contains("index_mcp_1,index_mcp_2,index_pip"));
+    // The default is the joints; --no-joints every sensor alone, further apart.
+    assert!(stdout.contains("robust 6D (joints)"), "{stdout}");
+    let alone = Command::new(env!("CARGO_BIN_EXE_replay"))
+        .args(["--rig", dir.join("in/rig.json").to_str().unwrap(), "--out-dir"])
+        .arg(dir.join("alone"))
+        .args(["--no-mag", "--no-joints"])
+        .output()
+        .unwrap();
+    let alone = String::from_utf8_lossy(&alone.stdout);
+    assert!(alone.contains("robust 6D (every sensor alone)"), "{alone}");
+    let mut est = Vec::new();
+    for s in &spec.sensors {
+        est.push(read_quats(&dir.join("alone").join(format!("{}.csv", s.name)), q).1);
+    }
+    let apart = direct_scores(spec, &t, &est, &truth);
+    assert!(direct.0 < 0.5 * apart.0, "joints {direct:?}, alone {apart:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

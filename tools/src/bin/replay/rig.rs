@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! replay --rig DIR/rig.json --out-dir OUT [--no-mag] [--kind KIND] [--set KEY=VALUE]...
-//!     [--no-align] [--svg FILE]
+//!     [--no-align] [--no-joints] [--svg FILE]
 //! ```
 //!
 //! - KIND: one of orient's kinds (default robust), or `vqf` (vqf-rs, its defaults) to
@@ -10,6 +10,15 @@
 //! - Headings are aligned once, at the last row of the reference pose (every segment
 //!   turned to the segments' mean heading, `Filter::align_rig_heading`), unless
 //!   `--no-align` or the description has no reference pose.
+//! - The joints (`orient::joints`, default tuning) then hold every child to its parent:
+//!   each child's heading relative to its parent from the joint constraints, from the
+//!   alignment on (from the first row without one). The joints run on 6D estimates: every
+//!   magnetometer is left out, and the rig's common heading is the reference pose's (the
+//!   segments' mean at the alignment), which RIG-FORMAT.md leaves free. A magnetometer
+//!   read near a hand or a desk turns a 9D estimate faster than the joints follow (a
+//!   simulated 5-minute glove with a magnet under the desk: 4.0 deg with every sensor
+//!   9D, 3.5 deg with the hand 9D and the fingers 6D, 0.9 deg all 6D). `--no-joints`:
+//!   every sensor alone, with its magnetometer unless `--no-mag`.
 //! - Writes `OUT/<sensor>.csv` (`t,quat_w,quat_x,quat_y,quat_z`: the sensor's
 //!   orientation, sensor to earth, ENU, one row per input row) and `OUT/joints.csv`: `t`
 //!   and per joint its angles in degrees (`orient_tools::rig::joint_angles`): a hinge's
@@ -20,20 +29,22 @@
 //!   joints' rows with t ≥ 10 s, the worst joint, the last minute) and each joint's RMSE;
 //!   `--svg` plots each joint's error over time.
 //!
-//! The per-row loop is `orient_tools::rig::run_rig`; a joint estimator plugs in there as
-//! a `JointStage` (today: `Alone`, every sensor on its own).
+//! The per-row loop is `orient_tools::rig::run_rig`, with the joints as its
+//! `JointStage` (`orient_tools::joints`).
 
 use super::{fail, plot};
 use orient::{Config, Filter, Kind};
+use orient_tools::joints::{JointParams, Joints};
 use orient_tools::rig::{
-    joint_angles, joint_errors, run_rig, score_rig, Alone, JointKind, RigRecording, SensorFilter,
+    joint_angles, joint_errors, reference_row, run_rig, score_rig, Alone, JointKind, RigRecording,
+    SensorFilter,
 };
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::exit;
 
 pub const USAGE: &str = "usage: replay --rig DIR/rig.json --out-dir OUT [--no-mag] [--kind KIND] \
-                         [--set KEY=VALUE]... [--no-align] [--svg FILE]";
+                         [--set KEY=VALUE]... [--no-align] [--no-joints] [--svg FILE]";
 
 struct Args {
     rig: PathBuf,
@@ -43,12 +54,14 @@ struct Args {
     kind: Option<Kind>,
     sets: Vec<(String, f64)>,
     align: bool,
+    joints: bool,
     svg: Option<PathBuf>,
 }
 
 fn parse(args: Vec<String>) -> Args {
     let (mut rig, mut out_dir, mut no_mag, mut kind, mut sets, mut align, mut svg) =
         (None, None, false, Some(Kind::Robust), Vec::new(), true, None);
+    let mut joints = true;
     let mut it = args.into_iter();
     while let Some(arg) = it.next() {
         let mut value =
@@ -58,6 +71,7 @@ fn parse(args: Vec<String>) -> Args {
             "--out-dir" => out_dir = Some(PathBuf::from(value("--out-dir"))),
             "--no-mag" => no_mag = true,
             "--no-align" => align = false,
+            "--no-joints" => joints = false,
             "--kind" | "--filter" => {
                 let v = value(&arg);
                 kind = match v.trim() {
@@ -89,6 +103,7 @@ fn parse(args: Vec<String>) -> Args {
         kind,
         sets,
         align,
+        joints,
         svg,
     }
 }
@@ -104,7 +119,9 @@ fn write_csv(path: &Path, header: &str, rows: impl Iterator<Item = String>) -> s
 
 pub fn main(args: Vec<String>) {
     let args = parse(args);
-    let rec = RigRecording::read(&args.rig, !args.no_mag).unwrap_or_else(|e| fail(e));
+    // With joints the rig runs 6D (see the module doc).
+    let with_mag = !args.no_mag && !args.joints;
+    let rec = RigRecording::read(&args.rig, with_mag).unwrap_or_else(|e| fail(e));
     let spec = &rec.spec;
     if args.svg.is_some() && !rec.has_truth() {
         fail("--svg: the recording has no truth columns (quat_*)");
@@ -112,7 +129,7 @@ pub fn main(args: Vec<String>) {
     let dt = 1.0 / spec.rate_hz;
     let mut filters: Vec<SensorFilter> = (0..spec.sensors.len())
         .map(|_| match args.kind {
-            None => SensorFilter::vqf(dt, !args.no_mag),
+            None => SensorFilter::vqf(dt, with_mag),
             Some(kind) => {
                 let mut config = Config::new(kind).unwrap_or_else(|e| fail(e));
                 for (key, value) in &args.sets {
@@ -129,7 +146,13 @@ pub fn main(args: Vec<String>) {
     if args.kind.is_none() && !args.sets.is_empty() {
         fail("--set applies to orient's kinds, not to vqf");
     }
-    let run = run_rig(&rec, &mut filters, &mut Alone, args.align);
+    let run = if args.joints && !spec.joints.is_empty() {
+        let start = if args.align { reference_row(spec, rec.t()).unwrap_or(0) } else { 0 };
+        run_rig(&rec, &mut filters, &mut Joints::new(spec, start, JointParams::default()), args.align)
+    } else {
+        run_rig(&rec, &mut filters, &mut Alone, args.align)
+    };
+    let stage = if args.joints { "joints" } else { "every sensor alone" };
     let t = rec.t();
 
     let write = || -> std::io::Result<()> {
@@ -164,9 +187,9 @@ pub fn main(args: Vec<String>) {
     }
 
     let name = args.kind.map_or("vqf", |k| k.name());
-    let dims = if args.no_mag { "6D" } else { "9D" };
+    let dims = if with_mag { "9D" } else { "6D" };
     say!(
-        "{name} {dims}, {} sensors, {} joints, {} rows from {} in {:.1} ms, {} rejected, headings {}",
+        "{name} {dims} ({stage}), {} sensors, {} joints, {} rows from {} in {:.1} ms, {} rejected, headings {}",
         spec.sensors.len(),
         spec.joints.len(),
         t.len(),
@@ -198,7 +221,7 @@ pub fn main(args: Vec<String>) {
     }
     if let Some(path) = &args.svg {
         let names: Vec<&str> = spec.joints.iter().map(|j| j.name.as_str()).collect();
-        let title = format!("{} ({name} {dims}, every sensor alone)", args.rig.display());
+        let title = format!("{} ({name} {dims}, {stage})", args.rig.display());
         if let Err(e) = plot::write_rig_svg(path, &title, t, &names, &errors) {
             eprintln!("replay: cannot write {}: {e}", path.display());
             exit(1);
