@@ -76,6 +76,30 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_SENSOR_MAG 2
 
 /**
+ * OrientJoint.kind: one degree of freedom. The child turns about one axis,
+ * `axis_parent` in the parent sensor's frame and `axis_child` in the child's, the same
+ * line at every instant (an elbow, a knee, a finger's PIP and DIP joints).
+ */
+#define ORIENT_JOINT_HINGE 0
+
+/**
+ * OrientJoint.kind: two degrees of freedom. The child turns about `axis_parent` (fixed
+ * in the parent), then about `axis_child` (fixed in the child), the two perpendicular (a
+ * wrist, a finger's MCP joint, an ankle).
+ */
+#define ORIENT_JOINT_TWO_DOF 1
+
+/**
+ * The most joints one OrientJoints holds (two hands have 30, a suit 19).
+ */
+#define ORIENT_MAX_JOINTS 64
+
+/**
+ * The most segments one OrientJoints holds.
+ */
+#define ORIENT_MAX_SEGMENTS 256
+
+/**
  * Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
  * kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
  * EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
@@ -852,8 +876,8 @@ enum OrientStatus
    */
   ORIENT_STATUS_NULL_POINTER = 1,
   /**
-   * The handle is not a live OrientFilter: freed, or never returned by
-   * orient_filter_new (a copy of a handle's bytes included).
+   * The handle is not a live OrientFilter (OrientJoints): freed, or never returned by
+   * orient_filter_new (orient_joints_new), a copy of a handle's bytes included.
    */
   ORIENT_STATUS_INVALID_HANDLE = 2,
   /**
@@ -949,6 +973,12 @@ enum OrientStatus
    * (orient_smooth_arrays: see orient_smooth_memory).
    */
   ORIENT_STATUS_OUT_OF_MEMORY = 21,
+  /**
+   * A joint of orient_joints_new names a segment the rig does not have, is its own
+   * child's parent, gives its child a second parent, closes a cycle, or has an axis
+   * that is zero, NaN or infinite; orient_last_error names the joint.
+   */
+  ORIENT_STATUS_INVALID_JOINT = 22,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -1058,6 +1088,13 @@ typedef enum OrientInit OrientInit;
 typedef int32_t OrientInit;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
+
+/**
+ * A rig's joints and their estimates (opaque to C): create with orient_joints_new,
+ * release with orient_joints_free. Its address is its identity in the registry of live
+ * handles, as a filter's is.
+ */
+typedef struct OrientJoints OrientJoints;
 
 /**
  * A Hamilton quaternion, scalar first. As an orientation it maps sensor to earth
@@ -1272,6 +1309,86 @@ typedef struct OrientParamInfo {
 } OrientParamInfo;
 
 /**
+ * One joint of a rig: segment indices (a segment is one sensor with its filter, by its
+ * index in the filters array of orient_joints_update) and axes in the sensors' frames
+ * (any length but zero; normalised).
+ */
+typedef struct OrientJoint {
+  /**
+   * ORIENT_JOINT_HINGE or ORIENT_JOINT_TWO_DOF.
+   */
+  int32_t kind;
+  /**
+   * The parent segment.
+   */
+  uint32_t parent;
+  /**
+   * The child segment.
+   */
+  uint32_t child;
+  uint32_t reserved;
+  /**
+   * The (first) axis in the parent sensor's frame.
+   */
+  struct OrientVec3 axis_parent;
+  /**
+   * The hinge's axis, or the second axis of a 2-DoF joint, in the child sensor's frame.
+   */
+  struct OrientVec3 axis_child;
+} OrientJoint;
+
+/**
+ * One sensor sample (88 bytes).
+ */
+typedef struct OrientSample {
+  /**
+   * Seconds since the previous sample; finite, at least 1e-9 and at most 1e6.
+   */
+  double dt;
+  /**
+   * Angular rate, rad/s, sensor frame.
+   */
+  struct OrientVec3 gyro;
+  /**
+   * Specific force, m/s^2, sensor frame (reads about +9.81 along "up" at rest).
+   */
+  struct OrientVec3 accel;
+  /**
+   * Magnetic field, any unit consistent over the run (uT in the examples).
+   */
+  struct OrientVec3 mag;
+  /**
+   * ORIENT_SAMPLE_* bits saying which fields hold readings; other bits must be 0.
+   * Fields whose bit is clear are ignored, whatever they hold.
+   */
+  uint32_t flags;
+  /**
+   * Must be 0.
+   */
+  uint32_t reserved;
+} OrientSample;
+
+/**
+ * A hinge's axes estimated from motion (orient_estimate_hinge_axes).
+ */
+typedef struct OrientHingeAxes {
+  /**
+   * The axis in the parent sensor's frame (unit, on the side of the guess).
+   */
+  struct OrientVec3 axis_parent;
+  /**
+   * The axis in the child sensor's frame.
+   */
+  struct OrientVec3 axis_child;
+  /**
+   * RMS residual over RMS angular rate perpendicular to the axis: 0 for an ideal
+   * hinge, a few hundredths with laxity and noise, near 1 when the motion did not turn
+   * the joint or the joint is no hinge (at most 1). Below 0.1 the axes can be trusted.
+   */
+  double quality;
+} OrientHingeAxes;
+
+/**
  * Euler angles, radians, intrinsic Z-Y'-X'': R = Rz(yaw) * Ry(pitch) * Rx(roll).
  */
 typedef struct OrientEuler {
@@ -1314,37 +1431,6 @@ typedef struct OrientUncertainty {
    */
   double inclination;
 } OrientUncertainty;
-
-/**
- * One sensor sample (88 bytes).
- */
-typedef struct OrientSample {
-  /**
-   * Seconds since the previous sample; finite, at least 1e-9 and at most 1e6.
-   */
-  double dt;
-  /**
-   * Angular rate, rad/s, sensor frame.
-   */
-  struct OrientVec3 gyro;
-  /**
-   * Specific force, m/s^2, sensor frame (reads about +9.81 along "up" at rest).
-   */
-  struct OrientVec3 accel;
-  /**
-   * Magnetic field, any unit consistent over the run (uT in the examples).
-   */
-  struct OrientVec3 mag;
-  /**
-   * ORIENT_SAMPLE_* bits saying which fields hold readings; other bits must be 0.
-   * Fields whose bit is clear are ignored, whatever they hold.
-   */
-  uint32_t flags;
-  /**
-   * Must be 0.
-   */
-  uint32_t reserved;
-} OrientSample;
 
 #ifdef __cplusplus
 extern "C" {
@@ -1565,6 +1651,129 @@ const char *orient_last_error(void);
  * beta = sqrt(3/4) * gyro_error (both rad/s). NaN for a negative or non-finite input.
  */
 double orient_madgwick_beta(double gyro_error);
+
+/**
+ * Creates a rig's joints: `n_joints` joints (NULL only when 0) over `n_segments`
+ * segments, with the sensors' `mountings` (sensor to segment, as
+ * orient_filter_set_mounting; NULL for the identity everywhere, else `n_segments` of
+ * them), which give the joint angles' zero: the reference pose, every segment's frame
+ * the same. The joints form a forest (each segment the child of at most one joint, no
+ * cycle); a segment that is no joint's child is a root, whose orientation is its
+ * filter's. On success `*out` is a new handle; on failure it is set to NULL (when `out`
+ * is not NULL). INVALID_JOINT for a joint that names a segment at or beyond
+ * `n_segments`, whose child is its parent, whose child is already another joint's
+ * child, that closes a cycle, or whose axis is zero, NaN or infinite; the detail names
+ * the joint. INVALID_ARGUMENT for an unknown kind, a non-zero reserved field or
+ * `n_segments` 0; COUNT_TOO_LARGE for more than ORIENT_MAX_JOINTS joints or
+ * ORIENT_MAX_SEGMENTS segments, or when the most handles the library holds are live; a
+ * mounting is checked as orient_filter_set_quaternion checks its quaternion:
+ * NON_FINITE, ZERO_VECTOR or TOO_LARGE.
+ */
+OrientStatus orient_joints_new(const struct OrientJoint *joints,
+                               size_t n_joints,
+                               size_t n_segments,
+                               const struct OrientQuaternion *mountings,
+                               struct OrientJoints **out);
+
+/**
+ * Releases a rig's joints (the filters are the host's and stay). NULL is a no-op
+ * (ORIENT_STATUS_OK); a handle already freed, or any pointer orient_joints_new did not
+ * return (an OrientFilter among them), is INVALID_HANDLE and nothing is read or freed
+ * through it.
+ */
+OrientStatus orient_joints_free(struct OrientJoints *joints);
+
+/**
+ * One row of the rig: after `filters[s]` took `samples[s]` (orient_filter_update or
+ * orient_filters_update), for each of the `n` segments (`n` as given to
+ * orient_joints_new), updates every joint from the filters' sensor orientations
+ * (orient_filter_sensor_quaternion) and the samples' gyroscope and accelerometer
+ * readings. A joint whose two samples do not both have both readings holds its estimate
+ * this row; the child's dt is the joint's, and one outside (0, 1) s holds it too.
+ * Allocates nothing. Every handle and sample is checked before anything changes:
+ * INVALID_ARGUMENT for an `n` that is not the rig's segment count or a sample with
+ * unknown flag bits or a non-zero reserved field, NULL_POINTER for a NULL array or
+ * filter, INVALID_HANDLE for a `joints` or filter that is not live, NON_FINITE for a
+ * NaN or infinite dt, gyroscope or accelerometer reading; the detail names the segment.
+ */
+OrientStatus orient_joints_update(struct OrientJoints *joints,
+                                  OrientFilter *const *filters,
+                                  const struct OrientSample *samples,
+                                  size_t n);
+
+/**
+ * Segment `segment`'s orientation (segment to earth, the filters' earth frame) after
+ * the last orient_joints_update: its sensor's orientation with the joints' correction and
+ * the mounting applied, the bone rotation a host draws. Before the first update, the
+ * identity's rotation by the mounting's inverse. INVALID_ARGUMENT for a segment at or
+ * beyond the rig's count.
+ */
+OrientStatus orient_joints_segment_quaternion(const struct OrientJoints *joints,
+                                              size_t segment,
+                                              struct OrientQuaternion *out);
+
+/**
+ * Joint `joint`'s angles (radians) after the last orient_joints_update, in
+ * `angles[0]` and `angles[1]` (room for 2): zero in the reference pose (every segment's frame the same, see
+ * orient_joints_new's mountings), positive by the right-hand rule about the joint's axes
+ * as refined from motion. A hinge: `angles[0]` its angle, `angles[1]` NaN. A 2-DoF joint:
+ * the turn about `axis_parent`, then the turn about `axis_child` that make up the
+ * child's orientation relative to its parent. 0 before the first update.
+ * INVALID_ARGUMENT for a joint at or beyond the rig's count.
+ */
+OrientStatus orient_joints_angles(const struct OrientJoints *joints,
+                                  size_t joint,
+                                  double *angles);
+
+/**
+ * Joint `joint`'s observability rating in [0, 1]: how much its constraints told about
+ * the child's heading relative to its parent over the last two seconds. Near 0 at rest
+ * and while a hinge's axis is vertical, when the relative heading is held; near 1 for a
+ * horizontal axis in motion. INVALID_ARGUMENT for a joint at or beyond the rig's count.
+ */
+OrientStatus orient_joints_rating(const struct OrientJoints *joints, size_t joint, double *rating);
+
+/**
+ * Joint `joint`'s correction of its child's heading relative to its parent (radians,
+ * about the vertical) and its standard deviation. INVALID_ARGUMENT for a joint at or
+ * beyond the rig's count. `sigma` may be NULL.
+ */
+OrientStatus orient_joints_relative_heading(const struct OrientJoints *joints,
+                                            size_t joint,
+                                            double *heading,
+                                            double *sigma);
+
+/**
+ * Joint `joint`'s axes as refined from motion (unit; the parent sensor's and the child
+ * sensor's frame). INVALID_ARGUMENT for a joint at or beyond the rig's count.
+ */
+OrientStatus orient_joints_axes(const struct OrientJoints *joints,
+                                size_t joint,
+                                struct OrientVec3 *axis_parent,
+                                struct OrientVec3 *axis_child);
+
+/**
+ * Starts every joint's estimate over: no correction, the axes as given. For a rig whose
+ * filters were reset or whose headings were aligned again (orient_rig_align_heading).
+ */
+OrientStatus orient_joints_reset(struct OrientJoints *joints);
+
+/**
+ * A hinge's axes from `n` gyroscope readings of its parent and child sensors taken at
+ * the same instants (rad/s; a few seconds of the joint turning while the segments move),
+ * started from the host's guesses `guess_parent`, `guess_child` (sensor frames; the
+ * result is on their side): the pair that best makes the angular rate perpendicular to
+ * the axis the same on both sides (Seel, Schauer, Raisch 2012), with its quality.
+ * Allocates nothing. INVALID_ARGUMENT for n = 0, COUNT_TOO_LARGE for an `n` no array can
+ * hold, NON_FINITE for a NaN or infinite reading or guess, ZERO_VECTOR for a guess too
+ * short to normalise (its squared norm below DBL_MIN).
+ */
+OrientStatus orient_estimate_hinge_axes(const struct OrientVec3 *gyro_parent,
+                                        const struct OrientVec3 *gyro_child,
+                                        size_t n,
+                                        struct OrientVec3 guess_parent,
+                                        struct OrientVec3 guess_child,
+                                        struct OrientHingeAxes *out);
 
 /**
  * Writes the offline defaults to `*config`: the recommended kind

@@ -34,8 +34,8 @@ namespace Orient.Native
         /// </summary>
         NullPointer = 1,
         /// <summary>
-        /// The handle is not a live OrientFilter: freed, or never returned by
-        /// orient_filter_new (a copy of a handle's bytes included).
+        /// The handle is not a live OrientFilter (OrientJoints): freed, or never returned by
+        /// orient_filter_new (orient_joints_new), a copy of a handle's bytes included.
         /// </summary>
         InvalidHandle = 2,
         /// <summary>
@@ -131,6 +131,12 @@ namespace Orient.Native
         /// (orient_smooth_arrays: see orient_smooth_memory).
         /// </summary>
         OutOfMemory = 21,
+        /// <summary>
+        /// A joint of orient_joints_new names a segment the rig does not have, is its own
+        /// child's parent, gives its child a second parent, closes a cycle, or has an axis
+        /// that is zero, NaN or infinite; orient_last_error names the joint.
+        /// </summary>
+        InvalidJoint = 22,
     }
 
     /// <summary>
@@ -223,6 +229,30 @@ namespace Orient.Native
         /// The magnetometer.
         /// </summary>
         public const uint SensorMag = 2;
+
+        /// <summary>
+        /// OrientJoint.kind: one degree of freedom. The child turns about one axis,
+        /// `axis_parent` in the parent sensor's frame and `axis_child` in the child's, the same
+        /// line at every instant (an elbow, a knee, a finger's PIP and DIP joints).
+        /// </summary>
+        public const uint JointHinge = 0;
+
+        /// <summary>
+        /// OrientJoint.kind: two degrees of freedom. The child turns about `axis_parent` (fixed
+        /// in the parent), then about `axis_child` (fixed in the child), the two perpendicular (a
+        /// wrist, a finger's MCP joint, an ankle).
+        /// </summary>
+        public const uint JointTwoDof = 1;
+
+        /// <summary>
+        /// The most joints one OrientJoints holds (two hands have 30, a suit 19).
+        /// </summary>
+        public const uint MaxJoints = 64;
+
+        /// <summary>
+        /// The most segments one OrientJoints holds.
+        /// </summary>
+        public const uint MaxSegments = 256;
 
         /// <summary>
         /// Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
@@ -1252,6 +1282,104 @@ namespace Orient.Native
     }
 
     /// <summary>
+    /// One joint of a rig: segment indices (a segment is one sensor with its filter, by its
+    /// index in the filters array of orient_joints_update) and axes in the sensors' frames
+    /// (any length but zero; normalised).
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public partial struct Joint
+    {
+        /// <summary>
+        /// ORIENT_JOINT_HINGE or ORIENT_JOINT_TWO_DOF.
+        /// </summary>
+        public int Kind;
+
+        /// <summary>
+        /// The parent segment.
+        /// </summary>
+        public uint Parent;
+
+        /// <summary>
+        /// The child segment.
+        /// </summary>
+        public uint Child;
+
+        public uint Reserved;
+
+        /// <summary>
+        /// The (first) axis in the parent sensor's frame.
+        /// </summary>
+        public Vec3 AxisParent;
+
+        /// <summary>
+        /// The hinge's axis, or the second axis of a 2-DoF joint, in the child sensor's frame.
+        /// </summary>
+        public Vec3 AxisChild;
+    }
+
+    /// <summary>
+    /// One sensor sample (88 bytes).
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public partial struct Sample
+    {
+        /// <summary>
+        /// Seconds since the previous sample; finite, at least 1e-9 and at most 1e6.
+        /// </summary>
+        public double Dt;
+
+        /// <summary>
+        /// Angular rate, rad/s, sensor frame.
+        /// </summary>
+        public Vec3 Gyro;
+
+        /// <summary>
+        /// Specific force, m/s^2, sensor frame (reads about +9.81 along "up" at rest).
+        /// </summary>
+        public Vec3 Accel;
+
+        /// <summary>
+        /// Magnetic field, any unit consistent over the run (uT in the examples).
+        /// </summary>
+        public Vec3 Mag;
+
+        /// <summary>
+        /// ORIENT_SAMPLE_* bits saying which fields hold readings; other bits must be 0.
+        /// Fields whose bit is clear are ignored, whatever they hold.
+        /// </summary>
+        public uint Flags;
+
+        /// <summary>
+        /// Must be 0.
+        /// </summary>
+        public uint Reserved;
+    }
+
+    /// <summary>
+    /// A hinge's axes estimated from motion (orient_estimate_hinge_axes).
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public partial struct HingeAxes
+    {
+        /// <summary>
+        /// The axis in the parent sensor's frame (unit, on the side of the guess).
+        /// </summary>
+        public Vec3 AxisParent;
+
+        /// <summary>
+        /// The axis in the child sensor's frame.
+        /// </summary>
+        public Vec3 AxisChild;
+
+        /// <summary>
+        /// RMS residual over RMS angular rate perpendicular to the axis: 0 for an ideal
+        /// hinge, a few hundredths with laxity and noise, near 1 when the motion did not turn
+        /// the joint or the joint is no hinge (at most 1). Below 0.1 the axes can be trusted.
+        /// </summary>
+        public double Quality;
+    }
+
+    /// <summary>
     /// Euler angles, radians, intrinsic Z-Y'-X'': R = Rz(yaw) * Ry(pitch) * Rx(roll).
     /// </summary>
     [StructLayout(LayoutKind.Sequential)]
@@ -1302,44 +1430,6 @@ namespace Orient.Native
         /// Inclination error (tilt of the estimated vertical): EKF, from its covariance.
         /// </summary>
         public double Inclination;
-    }
-
-    /// <summary>
-    /// One sensor sample (88 bytes).
-    /// </summary>
-    [StructLayout(LayoutKind.Sequential)]
-    public partial struct Sample
-    {
-        /// <summary>
-        /// Seconds since the previous sample; finite, at least 1e-9 and at most 1e6.
-        /// </summary>
-        public double Dt;
-
-        /// <summary>
-        /// Angular rate, rad/s, sensor frame.
-        /// </summary>
-        public Vec3 Gyro;
-
-        /// <summary>
-        /// Specific force, m/s^2, sensor frame (reads about +9.81 along "up" at rest).
-        /// </summary>
-        public Vec3 Accel;
-
-        /// <summary>
-        /// Magnetic field, any unit consistent over the run (uT in the examples).
-        /// </summary>
-        public Vec3 Mag;
-
-        /// <summary>
-        /// ORIENT_SAMPLE_* bits saying which fields hold readings; other bits must be 0.
-        /// Fields whose bit is clear are ignored, whatever they hold.
-        /// </summary>
-        public uint Flags;
-
-        /// <summary>
-        /// Must be 0.
-        /// </summary>
-        public uint Reserved;
     }
 
     /// <summary>
@@ -1579,6 +1669,117 @@ namespace Orient.Native
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern double orient_madgwick_beta(double gyroError);
+
+        /// <summary>
+        /// Creates a rig's joints: `n_joints` joints (NULL only when 0) over `n_segments`
+        /// segments, with the sensors' `mountings` (sensor to segment, as
+        /// orient_filter_set_mounting; NULL for the identity everywhere, else `n_segments` of
+        /// them), which give the joint angles' zero: the reference pose, every segment's frame
+        /// the same. The joints form a forest (each segment the child of at most one joint, no
+        /// cycle); a segment that is no joint's child is a root, whose orientation is its
+        /// filter's. On success `*out` is a new handle; on failure it is set to NULL (when `out`
+        /// is not NULL). INVALID_JOINT for a joint that names a segment at or beyond
+        /// `n_segments`, whose child is its parent, whose child is already another joint's
+        /// child, that closes a cycle, or whose axis is zero, NaN or infinite; the detail names
+        /// the joint. INVALID_ARGUMENT for an unknown kind, a non-zero reserved field or
+        /// `n_segments` 0; COUNT_TOO_LARGE for more than ORIENT_MAX_JOINTS joints or
+        /// ORIENT_MAX_SEGMENTS segments, or when the most handles the library holds are live; a
+        /// mounting is checked as orient_filter_set_quaternion checks its quaternion:
+        /// NON_FINITE, ZERO_VECTOR or TOO_LARGE.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_new(Joint* joints, UIntPtr nJoints, UIntPtr nSegments, Quaternion* mountings, IntPtr* @out);
+
+        /// <summary>
+        /// Releases a rig's joints (the filters are the host's and stay). NULL is a no-op
+        /// (ORIENT_STATUS_OK); a handle already freed, or any pointer orient_joints_new did not
+        /// return (an OrientFilter among them), is INVALID_HANDLE and nothing is read or freed
+        /// through it.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_free(IntPtr joints);
+
+        /// <summary>
+        /// One row of the rig: after `filters[s]` took `samples[s]` (orient_filter_update or
+        /// orient_filters_update), for each of the `n` segments (`n` as given to
+        /// orient_joints_new), updates every joint from the filters' sensor orientations
+        /// (orient_filter_sensor_quaternion) and the samples' gyroscope and accelerometer
+        /// readings. A joint whose two samples do not both have both readings holds its estimate
+        /// this row; the child's dt is the joint's, and one outside (0, 1) s holds it too.
+        /// Allocates nothing. Every handle and sample is checked before anything changes:
+        /// INVALID_ARGUMENT for an `n` that is not the rig's segment count or a sample with
+        /// unknown flag bits or a non-zero reserved field, NULL_POINTER for a NULL array or
+        /// filter, INVALID_HANDLE for a `joints` or filter that is not live, NON_FINITE for a
+        /// NaN or infinite dt, gyroscope or accelerometer reading; the detail names the segment.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_update(IntPtr joints, IntPtr* filters, Sample* samples, UIntPtr n);
+
+        /// <summary>
+        /// Segment `segment`'s orientation (segment to earth, the filters' earth frame) after
+        /// the last orient_joints_update: its sensor's orientation with the joints' correction and
+        /// the mounting applied, the bone rotation a host draws. Before the first update, the
+        /// identity's rotation by the mounting's inverse. INVALID_ARGUMENT for a segment at or
+        /// beyond the rig's count.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_segment_quaternion(IntPtr joints, UIntPtr segment, Quaternion* @out);
+
+        /// <summary>
+        /// Joint `joint`'s angles (radians) after the last orient_joints_update, in
+        /// `angles[0]` and `angles[1]` (room for 2): zero in the reference pose (every segment's frame the same, see
+        /// orient_joints_new's mountings), positive by the right-hand rule about the joint's axes
+        /// as refined from motion. A hinge: `angles[0]` its angle, `angles[1]` NaN. A 2-DoF joint:
+        /// the turn about `axis_parent`, then the turn about `axis_child` that make up the
+        /// child's orientation relative to its parent. 0 before the first update.
+        /// INVALID_ARGUMENT for a joint at or beyond the rig's count.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_angles(IntPtr joints, UIntPtr joint, double* angles);
+
+        /// <summary>
+        /// Joint `joint`'s observability rating in [0, 1]: how much its constraints told about
+        /// the child's heading relative to its parent over the last two seconds. Near 0 at rest
+        /// and while a hinge's axis is vertical, when the relative heading is held; near 1 for a
+        /// horizontal axis in motion. INVALID_ARGUMENT for a joint at or beyond the rig's count.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_rating(IntPtr joints, UIntPtr joint, double* rating);
+
+        /// <summary>
+        /// Joint `joint`'s correction of its child's heading relative to its parent (radians,
+        /// about the vertical) and its standard deviation. INVALID_ARGUMENT for a joint at or
+        /// beyond the rig's count. `sigma` may be NULL.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_relative_heading(IntPtr joints, UIntPtr joint, double* heading, double* sigma);
+
+        /// <summary>
+        /// Joint `joint`'s axes as refined from motion (unit; the parent sensor's and the child
+        /// sensor's frame). INVALID_ARGUMENT for a joint at or beyond the rig's count.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_axes(IntPtr joints, UIntPtr joint, Vec3* axisParent, Vec3* axisChild);
+
+        /// <summary>
+        /// Starts every joint's estimate over: no correction, the axes as given. For a rig whose
+        /// filters were reset or whose headings were aligned again (orient_rig_align_heading).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_reset(IntPtr joints);
+
+        /// <summary>
+        /// A hinge's axes from `n` gyroscope readings of its parent and child sensors taken at
+        /// the same instants (rad/s; a few seconds of the joint turning while the segments move),
+        /// started from the host's guesses `guess_parent`, `guess_child` (sensor frames; the
+        /// result is on their side): the pair that best makes the angular rate perpendicular to
+        /// the axis the same on both sides (Seel, Schauer, Raisch 2012), with its quality.
+        /// Allocates nothing. INVALID_ARGUMENT for n = 0, COUNT_TOO_LARGE for an `n` no array can
+        /// hold, NON_FINITE for a NaN or infinite reading or guess, ZERO_VECTOR for a guess too
+        /// short to normalise (its squared norm below DBL_MIN).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_estimate_hinge_axes(Vec3* gyroParent, Vec3* gyroChild, UIntPtr n, Vec3 guessParent, Vec3 guessChild, HingeAxes* @out);
 
         /// <summary>
         /// Writes the offline defaults to `*config`: the recommended kind

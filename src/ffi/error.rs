@@ -106,7 +106,7 @@ pub(crate) fn status_message(status: i32) -> &'static [u8] {
     match status {
         0 => b"ok\0",
         1 => b"a required pointer argument is NULL\0",
-        2 => b"the handle is not a live OrientFilter\0",
+        2 => b"the handle is not a live OrientFilter or OrientJoints\0",
         3 => b"this filter kind is not built in this version\0",
         4 => b"unknown enum value, flag bit or index\0",
         5 => b"the filter kind has no such parameter\0",
@@ -126,6 +126,7 @@ pub(crate) fn status_message(status: i32) -> &'static [u8] {
         19 => b"output buffer too small\0",
         20 => b"state blob truncated, corrupted, or of another version or kind\0",
         21 => b"a buffer the call needs could not be allocated\0",
+        22 => b"a joint names a missing segment, its own child, a second parent, a cycle or a bad axis\0",
         _ => b"unknown status code\0",
     }
 }

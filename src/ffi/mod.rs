@@ -21,6 +21,7 @@ mod convert;
 mod error;
 mod handles;
 mod info;
+mod joints; // issue 42
 mod offline;
 mod outputs;
 mod param_ids;
@@ -43,6 +44,7 @@ pub use config::*;
 pub(crate) use convert::*;
 pub use handles::*;
 pub use info::*;
+pub use joints::*; // issue 42
 pub use offline::*;
 pub use outputs::*;
 pub use param_ids::*;

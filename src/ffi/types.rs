@@ -35,8 +35,8 @@ pub enum OrientStatus {
     Ok = 0,
     /// A required pointer argument is NULL (checked before anything else).
     NullPointer = 1,
-    /// The handle is not a live OrientFilter: freed, or never returned by
-    /// orient_filter_new (a copy of a handle's bytes included).
+    /// The handle is not a live OrientFilter (OrientJoints): freed, or never returned by
+    /// orient_filter_new (orient_joints_new), a copy of a handle's bytes included.
     InvalidHandle = 2,
     /// The kind is known but not built in this version of the library (reserved: every
     /// kind is built in this version).
@@ -93,6 +93,10 @@ pub enum OrientStatus {
     /// A buffer the call needs could not be allocated; nothing was changed
     /// (orient_smooth_arrays: see orient_smooth_memory).
     OutOfMemory = 21,
+    /// A joint of orient_joints_new names a segment the rig does not have, is its own
+    /// child's parent, gives its child a second parent, closes a cycle, or has an axis
+    /// that is zero, NaN or infinite; orient_last_error names the joint.
+    InvalidJoint = 22,
 }
 
 /// Filter kinds, as the `kind` argument and `OrientConfig.kind`.

@@ -21,28 +21,42 @@ pub struct HingeAxes {
 /// hinge's axis is the same on both sides (Seel, Schauer, Raisch, IEEE Sensors 2012), by
 /// Levenberg-Marquardt over the axes' spherical coordinates. A few seconds of the joint
 /// turning while the segments move about other axes too are enough. `None` when the
-/// slices' lengths differ or are zero, a reading or the guess is not finite, or a guess
-/// is zero.
+/// slices' lengths differ or are zero, a reading or a guess is not finite, or a guess is
+/// too short to normalise (its squared norm below the smallest normal double).
 pub fn estimate_hinge_axes(
     gyro_parent: &[Vec3],
     gyro_child: &[Vec3],
     guess: (Vec3, Vec3),
 ) -> Option<HingeAxes> {
-    let usable = |v: Vec3| v.is_finite() && v.norm() > 1e-12 && v.norm().is_finite();
-    if gyro_parent.len() != gyro_child.len()
-        || gyro_parent.is_empty()
-        || !gyro_parent.iter().chain(gyro_child).all(|w| w.is_finite())
-        || !(usable(guess.0) && usable(guess.1))
-    {
+    if gyro_parent.len() != gyro_child.len() {
         return None;
     }
+    estimate_hinge_axes_by(gyro_parent.len(), |i| (gyro_parent[i], gyro_child[i]), guess)
+}
+
+/// [`estimate_hinge_axes`] over `n` pairs of readings `reading(i)` (parent, child), for a
+/// host whose readings are not two slices. `None` when `n` is 0, a reading or a guess is
+/// not finite, or a guess's squared norm is below the smallest normal double.
+pub fn estimate_hinge_axes_by(
+    n: usize,
+    reading: impl Fn(usize) -> (Vec3, Vec3),
+    guess: (Vec3, Vec3),
+) -> Option<HingeAxes> {
+    let usable =
+        |v: Vec3| v.is_finite() && v.norm_squared().is_finite() && v.norm_squared() >= f64::MIN_POSITIVE;
+    let finite = |i: usize| reading(i).0.is_finite() && reading(i).1.is_finite();
+    if n == 0 || !(0..n).all(finite) || !(usable(guess.0) && usable(guess.1)) {
+        return None;
+    }
+    let gyro_parent = |i: usize| reading(i).0;
+    let gyro_child = |i: usize| reading(i).1;
     let sph = |v: Vec3| [libm::asin(v.z.clamp(-1.0, 1.0)), libm::atan2(v.y, v.x)];
     let axis =
         |a: f64, b: f64| Vec3::new(libm::cos(a) * libm::cos(b), libm::cos(a) * libm::sin(b), libm::sin(a));
     let resid = |x: &[f64; 4], i: usize| {
-        gyro_parent[i].cross(axis(x[0], x[1])).norm() - gyro_child[i].cross(axis(x[2], x[3])).norm()
+        gyro_parent(i).cross(axis(x[0], x[1])).norm() - gyro_child(i).cross(axis(x[2], x[3])).norm()
     };
-    let cost = |x: &[f64; 4]| (0..gyro_parent.len()).map(|i| resid(x, i).powi(2)).sum::<f64>();
+    let cost = |x: &[f64; 4]| (0..n).map(|i| resid(x, i).powi(2)).sum::<f64>();
     let (g0, g1) = (sph(guess.0.normalized()), sph(guess.1.normalized()));
     let mut x = [g0[0], g0[1], g1[0], g1[1]];
     let mut lambda = 1e-3;
@@ -50,7 +64,7 @@ pub fn estimate_hinge_axes(
     for _ in 0..50 {
         let mut jtj = [[0.0; 4]; 4];
         let mut jtr = [0.0; 4];
-        for i in 0..gyro_parent.len() {
+        for i in 0..n {
             let r = resid(&x, i);
             let mut jac = [0.0; 4];
             for (k, d) in jac.iter_mut().enumerate() {
@@ -91,8 +105,8 @@ pub fn estimate_hinge_axes(
     if jc.dot(guess.1) < 0.0 {
         jc = -jc;
     }
-    let n = gyro_parent.len() as f64;
-    let scale = (gyro_parent.iter().map(|w| w.cross(jp).norm_squared()).sum::<f64>() / n).sqrt();
+    let n = n as f64;
+    let scale = ((0..n as usize).map(|i| gyro_parent(i).cross(jp).norm_squared()).sum::<f64>() / n).sqrt();
     let quality = ((c / n).sqrt() / scale.max(1e-12)).min(1.0);
     Some(HingeAxes { axis_parent: jp, axis_child: jc, quality })
 }

@@ -47,7 +47,7 @@
 mod axes;
 pub mod estimator;
 
-pub use axes::{estimate_hinge_axes, HingeAxes};
+pub use axes::{estimate_hinge_axes, estimate_hinge_axes_by, HingeAxes};
 pub use estimator::JointParams;
 
 use crate::filters::{Filter, Sample};
@@ -144,8 +144,9 @@ pub struct Joints {
     sensors: Vec<Quat>,
     /// Per joint: the angles at the last update.
     angles: Vec<[f64; 2]>,
-    /// Per segment: [`Joints::update_from`]'s buffer.
+    /// Per segment: [`Joints::update_each`]'s buffers.
     scratch: Vec<Quat>,
+    scratch_samples: Vec<Sample>,
     params: JointParams,
 }
 
@@ -234,6 +235,7 @@ impl Joints {
             corrections: vec![Quat::IDENTITY; segments],
             sensors: vec![Quat::IDENTITY; segments],
             scratch: vec![Quat::IDENTITY; segments],
+            scratch_samples: vec![Sample::default(); segments],
             params,
         })
     }
@@ -313,13 +315,23 @@ impl Joints {
         if filters.len() != self.segments() {
             return Err(JointError::WrongLength(filters.len()));
         }
-        // The row's orientations in a buffer made with the joints: no allocation here.
-        let mut sensors = core::mem::take(&mut self.scratch);
-        for (q, f) in sensors.iter_mut().zip(filters) {
-            *q = f.sensor_quaternion();
+        if samples.len() != self.segments() {
+            return Err(JointError::WrongLength(samples.len()));
         }
-        let result = self.update(&sensors, samples);
-        self.scratch = sensors;
+        self.update_each(|s| (filters[s].sensor_quaternion(), samples[s]))
+    }
+
+    /// [`Joints::update`] with each segment's orientation and sample from `row(s)`, for
+    /// a host whose rows are not two slices; into buffers made with the joints, so that
+    /// nothing is allocated here.
+    pub fn update_each(&mut self, mut row: impl FnMut(usize) -> (Quat, Sample)) -> Result<(), JointError> {
+        let (mut sensors, mut samples) =
+            (core::mem::take(&mut self.scratch), core::mem::take(&mut self.scratch_samples));
+        for (s, (q, x)) in sensors.iter_mut().zip(samples.iter_mut()).enumerate() {
+            (*q, *x) = row(s);
+        }
+        let result = self.update(&sensors, &samples);
+        (self.scratch, self.scratch_samples) = (sensors, samples);
         result
     }
 

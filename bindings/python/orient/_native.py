@@ -26,6 +26,22 @@ SENSOR_ACCEL = 1
 #: The magnetometer.
 SENSOR_MAG = 2
 
+#: OrientJoint.kind: one degree of freedom. The child turns about one axis,
+#: `axis_parent` in the parent sensor's frame and `axis_child` in the child's, the same
+#: line at every instant (an elbow, a knee, a finger's PIP and DIP joints).
+JOINT_HINGE = 0
+
+#: OrientJoint.kind: two degrees of freedom. The child turns about `axis_parent` (fixed
+#: in the parent), then about `axis_child` (fixed in the child), the two perpendicular (a
+#: wrist, a finger's MCP joint, an ankle).
+JOINT_TWO_DOF = 1
+
+#: The most joints one OrientJoints holds (two hands have 30, a suit 19).
+MAX_JOINTS = 64
+
+#: The most segments one OrientJoints holds.
+MAX_SEGMENTS = 256
+
 #: Number of parameter slots in `OrientConfig.params`. Slots 0-7 are common to every
 #: kind; each kind has its own block (Madgwick 8-15, Mahony 16-23, complementary 24-39,
 #: EKF 40-55, GMVDK 56-79, robust 80-103); 104-127 are free for later versions.
@@ -617,8 +633,8 @@ class Status(enum.IntEnum):
     OK = 0
     #: A required pointer argument is NULL (checked before anything else).
     NULL_POINTER = 1
-    #: The handle is not a live OrientFilter: freed, or never returned by
-    #: orient_filter_new (a copy of a handle's bytes included).
+    #: The handle is not a live OrientFilter (OrientJoints): freed, or never returned by
+    #: orient_filter_new (orient_joints_new), a copy of a handle's bytes included.
     INVALID_HANDLE = 2
     #: The kind is known but not built in this version of the library (reserved: every
     #: kind is built in this version).
@@ -675,6 +691,10 @@ class Status(enum.IntEnum):
     #: A buffer the call needs could not be allocated; nothing was changed
     #: (orient_smooth_arrays: see orient_smooth_memory).
     OUT_OF_MEMORY = 21
+    #: A joint of orient_joints_new names a segment the rig does not have, is its own
+    #: child's parent, gives its child a second parent, closes a cycle, or has an axis
+    #: that is zero, NaN or infinite; orient_last_error names the joint.
+    INVALID_JOINT = 22
 
 
 class Kind(enum.IntEnum):
@@ -886,6 +906,62 @@ class OrientParamInfo(Structure):
     ]
 
 
+class OrientJoint(Structure):
+    """One joint of a rig: segment indices (a segment is one sensor with its filter, by its
+    index in the filters array of orient_joints_update) and axes in the sensors' frames
+    (any length but zero; normalised).
+    """
+
+    _fields_ = [
+        # ORIENT_JOINT_HINGE or ORIENT_JOINT_TWO_DOF.
+        ("kind", c_int32),
+        # The parent segment.
+        ("parent", c_uint32),
+        # The child segment.
+        ("child", c_uint32),
+        ("reserved", c_uint32),
+        # The (first) axis in the parent sensor's frame.
+        ("axis_parent", OrientVec3),
+        # The hinge's axis, or the second axis of a 2-DoF joint, in the child sensor's frame.
+        ("axis_child", OrientVec3),
+    ]
+
+
+class OrientSample(Structure):
+    """One sensor sample (88 bytes)."""
+
+    _fields_ = [
+        # Seconds since the previous sample; finite, at least 1e-9 and at most 1e6.
+        ("dt", c_double),
+        # Angular rate, rad/s, sensor frame.
+        ("gyro", OrientVec3),
+        # Specific force, m/s^2, sensor frame (reads about +9.81 along "up" at rest).
+        ("accel", OrientVec3),
+        # Magnetic field, any unit consistent over the run (uT in the examples).
+        ("mag", OrientVec3),
+        # ORIENT_SAMPLE_* bits saying which fields hold readings; other bits must be 0.
+        # Fields whose bit is clear are ignored, whatever they hold.
+        ("flags", c_uint32),
+        # Must be 0.
+        ("reserved", c_uint32),
+    ]
+
+
+class OrientHingeAxes(Structure):
+    """A hinge's axes estimated from motion (orient_estimate_hinge_axes)."""
+
+    _fields_ = [
+        # The axis in the parent sensor's frame (unit, on the side of the guess).
+        ("axis_parent", OrientVec3),
+        # The axis in the child sensor's frame.
+        ("axis_child", OrientVec3),
+        # RMS residual over RMS angular rate perpendicular to the axis: 0 for an ideal
+        # hinge, a few hundredths with laxity and noise, near 1 when the motion did not turn
+        # the joint or the joint is no hinge (at most 1). Below 0.1 the axes can be trusted.
+        ("quality", c_double),
+    ]
+
+
 class OrientEuler(Structure):
     """Euler angles, radians, intrinsic Z-Y'-X'': R = Rz(yaw) * Ry(pitch) * Rx(roll)."""
 
@@ -916,26 +992,6 @@ class OrientUncertainty(Structure):
         ("heading", c_double),
         # Inclination error (tilt of the estimated vertical): EKF, from its covariance.
         ("inclination", c_double),
-    ]
-
-
-class OrientSample(Structure):
-    """One sensor sample (88 bytes)."""
-
-    _fields_ = [
-        # Seconds since the previous sample; finite, at least 1e-9 and at most 1e6.
-        ("dt", c_double),
-        # Angular rate, rad/s, sensor frame.
-        ("gyro", OrientVec3),
-        # Specific force, m/s^2, sensor frame (reads about +9.81 along "up" at rest).
-        ("accel", OrientVec3),
-        # Magnetic field, any unit consistent over the run (uT in the examples).
-        ("mag", OrientVec3),
-        # ORIENT_SAMPLE_* bits saying which fields hold readings; other bits must be 0.
-        # Fields whose bit is clear are ignored, whatever they hold.
-        ("flags", c_uint32),
-        # Must be 0.
-        ("reserved", c_uint32),
     ]
 
 
@@ -988,6 +1044,51 @@ PROTOTYPES = {
     "orient_status_message": (c_char_p, [c_int32]),
     "orient_last_error": (c_char_p, []),
     "orient_madgwick_beta": (c_double, [c_double]),
+    "orient_joints_new": (
+        c_int32,
+        [
+            POINTER(OrientJoint),
+            c_size_t,
+            c_size_t,
+            POINTER(OrientQuaternion),
+            POINTER(c_void_p),
+        ],
+    ),
+    "orient_joints_free": (c_int32, [c_void_p]),
+    "orient_joints_update": (
+        c_int32,
+        [
+            c_void_p,
+            POINTER(c_void_p),
+            POINTER(OrientSample),
+            c_size_t,
+        ],
+    ),
+    "orient_joints_segment_quaternion": (c_int32, [c_void_p, c_size_t, POINTER(OrientQuaternion)]),
+    "orient_joints_angles": (c_int32, [c_void_p, c_size_t, POINTER(c_double)]),
+    "orient_joints_rating": (c_int32, [c_void_p, c_size_t, POINTER(c_double)]),
+    "orient_joints_relative_heading": (
+        c_int32,
+        [
+            c_void_p,
+            c_size_t,
+            POINTER(c_double),
+            POINTER(c_double),
+        ],
+    ),
+    "orient_joints_axes": (c_int32, [c_void_p, c_size_t, POINTER(OrientVec3), POINTER(OrientVec3)]),
+    "orient_joints_reset": (c_int32, [c_void_p]),
+    "orient_estimate_hinge_axes": (
+        c_int32,
+        [
+            POINTER(OrientVec3),
+            POINTER(OrientVec3),
+            c_size_t,
+            OrientVec3,
+            OrientVec3,
+            POINTER(OrientHingeAxes),
+        ],
+    ),
     "orient_smooth_config_default": (c_int32, [POINTER(OrientConfig)]),
     "orient_smooth_memory": (c_int32, [c_size_t, POINTER(c_size_t)]),
     "orient_smooth_arrays": (

@@ -1,0 +1,445 @@
+//! The C calls for a rig's joints (issue 42): the handle, its update from the filters'
+//! orientations, and its outputs. See `crate::joints`.
+
+use super::*;
+use crate::filters::pipeline::sample::check_quaternion;
+use crate::joints::{estimate_hinge_axes_by, JointError, JointKind, JointParams, JointSpec, Joints};
+
+/// OrientJoint.kind: one degree of freedom. The child turns about one axis,
+/// `axis_parent` in the parent sensor's frame and `axis_child` in the child's, the same
+/// line at every instant (an elbow, a knee, a finger's PIP and DIP joints).
+pub const ORIENT_JOINT_HINGE: i32 = 0;
+/// OrientJoint.kind: two degrees of freedom. The child turns about `axis_parent` (fixed
+/// in the parent), then about `axis_child` (fixed in the child), the two perpendicular (a
+/// wrist, a finger's MCP joint, an ankle).
+pub const ORIENT_JOINT_TWO_DOF: i32 = 1;
+/// The most joints one OrientJoints holds (two hands have 30, a suit 19).
+pub const ORIENT_MAX_JOINTS: usize = 64;
+const _: () = assert!(ORIENT_MAX_JOINTS == crate::joints::MAX_JOINTS);
+/// The most segments one OrientJoints holds.
+pub const ORIENT_MAX_SEGMENTS: usize = 256;
+
+/// One joint of a rig: segment indices (a segment is one sensor with its filter, by its
+/// index in the filters array of orient_joints_update) and axes in the sensors' frames
+/// (any length but zero; normalised).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct OrientJoint {
+    /// ORIENT_JOINT_HINGE or ORIENT_JOINT_TWO_DOF.
+    pub kind: i32,
+    /// The parent segment.
+    pub parent: u32,
+    /// The child segment.
+    pub child: u32,
+    pub reserved: u32,
+    /// The (first) axis in the parent sensor's frame.
+    pub axis_parent: OrientVec3,
+    /// The hinge's axis, or the second axis of a 2-DoF joint, in the child sensor's frame.
+    pub axis_child: OrientVec3,
+}
+
+/// A hinge's axes estimated from motion (orient_estimate_hinge_axes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct OrientHingeAxes {
+    /// The axis in the parent sensor's frame (unit, on the side of the guess).
+    pub axis_parent: OrientVec3,
+    /// The axis in the child sensor's frame.
+    pub axis_child: OrientVec3,
+    /// RMS residual over RMS angular rate perpendicular to the axis: 0 for an ideal
+    /// hinge, a few hundredths with laxity and noise, near 1 when the motion did not turn
+    /// the joint or the joint is no hinge (at most 1). Below 0.1 the axes can be trusted.
+    pub quality: f64,
+}
+
+/// A rig's joints and their estimates (opaque to C): create with orient_joints_new,
+/// release with orient_joints_free. Its address is its identity in the registry of live
+/// handles, as a filter's is.
+pub struct OrientJoints {
+    pub(crate) joints: Joints,
+}
+
+/// The registry entry of a joints handle: its address with bit 1 set, which no filter's
+/// address has (both are 8-byte aligned boxes), so neither kind of handle passes for the
+/// other.
+fn key(h: *const OrientJoints) -> usize {
+    h as usize | 2
+}
+
+unsafe fn joints_ref<'a>(h: *const OrientJoints) -> Result<&'a OrientJoints, OrientStatus> {
+    if h.is_null() {
+        return Err(null());
+    }
+    if !registry::HANDLES.contains(key(h)) {
+        return Err(fail(OrientStatus::InvalidHandle, format_args!("not a live OrientJoints handle: {h:p}")));
+    }
+    Ok(&*h)
+}
+
+unsafe fn joints_mut<'a>(h: *mut OrientJoints) -> Result<&'a mut OrientJoints, OrientStatus> {
+    joints_ref(h)?;
+    Ok(&mut *h)
+}
+
+fn joint_error(e: JointError) -> OrientStatus {
+    let status = match e {
+        JointError::TooMany(_) => OrientStatus::CountTooLarge,
+        JointError::NoSuchSegment(_)
+        | JointError::OwnParent(_)
+        | JointError::TwoParents(_)
+        | JointError::Cycle(_)
+        | JointError::BadAxis(_) => OrientStatus::InvalidJoint,
+        JointError::BadMounting(_) => OrientStatus::ZeroVector,
+        JointError::BadParams | JointError::WrongLength(_) => OrientStatus::InvalidArgument,
+        JointError::NonFinite(_) => OrientStatus::NonFinite,
+    };
+    fail(status, format_args!("{e}"))
+}
+
+fn index(i: usize, n: usize, what: &str) -> Result<usize, OrientStatus> {
+    if i < n {
+        Ok(i)
+    } else {
+        Err(fail(OrientStatus::InvalidArgument, format_args!("{what} {i}: the rig has {n}")))
+    }
+}
+
+/// Creates a rig's joints: `n_joints` joints (NULL only when 0) over `n_segments`
+/// segments, with the sensors' `mountings` (sensor to segment, as
+/// orient_filter_set_mounting; NULL for the identity everywhere, else `n_segments` of
+/// them), which give the joint angles' zero: the reference pose, every segment's frame
+/// the same. The joints form a forest (each segment the child of at most one joint, no
+/// cycle); a segment that is no joint's child is a root, whose orientation is its
+/// filter's. On success `*out` is a new handle; on failure it is set to NULL (when `out`
+/// is not NULL). INVALID_JOINT for a joint that names a segment at or beyond
+/// `n_segments`, whose child is its parent, whose child is already another joint's
+/// child, that closes a cycle, or whose axis is zero, NaN or infinite; the detail names
+/// the joint. INVALID_ARGUMENT for an unknown kind, a non-zero reserved field or
+/// `n_segments` 0; COUNT_TOO_LARGE for more than ORIENT_MAX_JOINTS joints or
+/// ORIENT_MAX_SEGMENTS segments, or when the most handles the library holds are live; a
+/// mounting is checked as orient_filter_set_quaternion checks its quaternion:
+/// NON_FINITE, ZERO_VECTOR or TOO_LARGE.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_new(
+    joints: *const OrientJoint,
+    n_joints: usize,
+    n_segments: usize,
+    mountings: *const OrientQuaternion,
+    out: *mut *mut OrientJoints,
+) -> OrientStatus {
+    guard(|| {
+        if out.is_null() {
+            return Err(null());
+        }
+        out.write(core::ptr::null_mut());
+        if n_joints > ORIENT_MAX_JOINTS {
+            return Err(fail(
+                OrientStatus::CountTooLarge,
+                format_args!("{n_joints} joints: at most ORIENT_MAX_JOINTS ({ORIENT_MAX_JOINTS})"),
+            ));
+        }
+        if n_segments == 0 || n_segments > ORIENT_MAX_SEGMENTS {
+            let status =
+                if n_segments == 0 { OrientStatus::InvalidArgument } else { OrientStatus::CountTooLarge };
+            return Err(fail(
+                status,
+                format_args!("{n_segments} segments: from 1 to ORIENT_MAX_SEGMENTS ({ORIENT_MAX_SEGMENTS})"),
+            ));
+        }
+        let given = items(joints, n_joints, "joints")?;
+        let mut specs = [JointSpec {
+            kind: JointKind::Hinge,
+            parent: 0,
+            child: 0,
+            axis_parent: Vec3::ZERO,
+            axis_child: Vec3::ZERO,
+        }; ORIENT_MAX_JOINTS];
+        for (k, (j, spec)) in given.iter().zip(specs.iter_mut()).enumerate() {
+            let kind = match j.kind {
+                ORIENT_JOINT_HINGE => JointKind::Hinge,
+                ORIENT_JOINT_TWO_DOF => JointKind::TwoDof,
+                other => {
+                    return Err(fail(
+                        OrientStatus::InvalidArgument,
+                        format_args!("joint {k}: unknown kind {other}"),
+                    ))
+                }
+            };
+            if j.reserved != 0 {
+                return Err(fail(
+                    OrientStatus::InvalidArgument,
+                    format_args!("joint {k}: reserved field not 0"),
+                ));
+            }
+            *spec = JointSpec {
+                kind,
+                parent: j.parent as usize,
+                child: j.child as usize,
+                axis_parent: vec_from(j.axis_parent),
+                axis_child: vec_from(j.axis_child),
+            };
+        }
+        let mut m = [Quat::IDENTITY; ORIENT_MAX_SEGMENTS];
+        if !mountings.is_null() {
+            for (s, (q, into)) in
+                items(mountings, n_segments, "mountings")?.iter().zip(m.iter_mut()).enumerate()
+            {
+                let q = quat_from(*q);
+                check_quaternion(q).map_err(|e| {
+                    let status = from_core(e);
+                    fail(status, format_args!("mounting {s}: {e}"))
+                })?;
+                *into = q;
+            }
+        }
+        let j = Joints::new(n_segments, &specs[..n_joints], &m[..n_segments], JointParams::default())
+            .map_err(joint_error)?;
+        let h = Box::into_raw(Box::new(OrientJoints { joints: j }));
+        if !registry::HANDLES.insert(key(h)) {
+            drop(Box::from_raw(h));
+            return Err(fail(
+                OrientStatus::CountTooLarge,
+                format_args!("{} handles are live, the most this library holds at once", registry::CAPACITY),
+            ));
+        }
+        out.write(h);
+        Ok(())
+    })
+}
+
+/// Releases a rig's joints (the filters are the host's and stay). NULL is a no-op
+/// (ORIENT_STATUS_OK); a handle already freed, or any pointer orient_joints_new did not
+/// return (an OrientFilter among them), is INVALID_HANDLE and nothing is read or freed
+/// through it.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_free(joints: *mut OrientJoints) -> OrientStatus {
+    guard(|| {
+        if joints.is_null() {
+            return Ok(());
+        }
+        if !registry::HANDLES.remove(key(joints)) {
+            return Err(fail(
+                OrientStatus::InvalidHandle,
+                format_args!("not a live OrientJoints handle: {joints:p}"),
+            ));
+        }
+        drop(Box::from_raw(joints));
+        Ok(())
+    })
+}
+
+/// One row of the rig: after `filters[s]` took `samples[s]` (orient_filter_update or
+/// orient_filters_update), for each of the `n` segments (`n` as given to
+/// orient_joints_new), updates every joint from the filters' sensor orientations
+/// (orient_filter_sensor_quaternion) and the samples' gyroscope and accelerometer
+/// readings. A joint whose two samples do not both have both readings holds its estimate
+/// this row; the child's dt is the joint's, and one outside (0, 1) s holds it too.
+/// Allocates nothing. Every handle and sample is checked before anything changes:
+/// INVALID_ARGUMENT for an `n` that is not the rig's segment count or a sample with
+/// unknown flag bits or a non-zero reserved field, NULL_POINTER for a NULL array or
+/// filter, INVALID_HANDLE for a `joints` or filter that is not live, NON_FINITE for a
+/// NaN or infinite dt, gyroscope or accelerometer reading; the detail names the segment.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_update(
+    joints: *mut OrientJoints,
+    filters: *const *mut OrientFilter,
+    samples: *const OrientSample,
+    n: usize,
+) -> OrientStatus {
+    guard(|| {
+        need(filters.is_null() || samples.is_null())?;
+        let j = joints_mut(joints)?;
+        let segments = j.joints.segments();
+        if n != segments {
+            return Err(fail(
+                OrientStatus::InvalidArgument,
+                format_args!("n = {n}: the rig has {segments} segments"),
+            ));
+        }
+        let handles = items(filters, n, "filters")?;
+        let rows = items(samples, n, "samples")?;
+        for (s, (h, x)) in handles.iter().zip(rows).enumerate() {
+            if h.is_null() {
+                return Err(fail(OrientStatus::NullPointer, format_args!("filter {s} is NULL")));
+            }
+            handle(*h)
+                .map_err(|status| fail(status, format_args!("filter {s}: not a live OrientFilter handle")))?;
+            host_sample(x).map_err(|status| {
+                fail(status, format_args!("sample {s}: unknown flag bits or reserved field"))
+            })?;
+        }
+        let row = |s: usize| {
+            // Checked above: every handle is live and every sample's flags are known.
+            let f = &(*handles[s]).filter;
+            (f.sensor_quaternion(), host_sample(&rows[s]).map(|x| x.to_sample()).unwrap_or_default())
+        };
+        j.joints.update_each(row).map_err(|e| match e {
+            JointError::NonFinite(s) => {
+                fail(OrientStatus::NonFinite, format_args!("segment {s}: a value is NaN or infinite"))
+            }
+            e => joint_error(e),
+        })
+    })
+}
+
+/// Segment `segment`'s orientation (segment to earth, the filters' earth frame) after
+/// the last orient_joints_update: its sensor's orientation with the joints' correction and
+/// the mounting applied, the bone rotation a host draws. Before the first update, the
+/// identity's rotation by the mounting's inverse. INVALID_ARGUMENT for a segment at or
+/// beyond the rig's count.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_segment_quaternion(
+    joints: *const OrientJoints,
+    segment: usize,
+    out: *mut OrientQuaternion,
+) -> OrientStatus {
+    guard(|| {
+        put(out, || {
+            let j = &joints_ref(joints)?.joints;
+            Ok(quat_to(j.segment_quaternion(index(segment, j.segments(), "segment")?)))
+        })
+    })
+}
+
+/// Joint `joint`'s angles (radians) after the last orient_joints_update, in
+/// `angles[0]` and `angles[1]` (room for 2): zero in the reference pose (every segment's frame the same, see
+/// orient_joints_new's mountings), positive by the right-hand rule about the joint's axes
+/// as refined from motion. A hinge: `angles[0]` its angle, `angles[1]` NaN. A 2-DoF joint:
+/// the turn about `axis_parent`, then the turn about `axis_child` that make up the
+/// child's orientation relative to its parent. 0 before the first update.
+/// INVALID_ARGUMENT for a joint at or beyond the rig's count.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_angles(
+    joints: *const OrientJoints,
+    joint: usize,
+    angles: *mut f64,
+) -> OrientStatus {
+    guard(|| {
+        put(angles.cast::<[f64; 2]>(), || {
+            let j = &joints_ref(joints)?.joints;
+            Ok(j.angles(index(joint, j.specs().len(), "joint")?))
+        })
+    })
+}
+
+/// Joint `joint`'s observability rating in [0, 1]: how much its constraints told about
+/// the child's heading relative to its parent over the last two seconds. Near 0 at rest
+/// and while a hinge's axis is vertical, when the relative heading is held; near 1 for a
+/// horizontal axis in motion. INVALID_ARGUMENT for a joint at or beyond the rig's count.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_rating(
+    joints: *const OrientJoints,
+    joint: usize,
+    rating: *mut f64,
+) -> OrientStatus {
+    guard(|| {
+        put(rating, || {
+            let j = &joints_ref(joints)?.joints;
+            Ok(j.rating(index(joint, j.specs().len(), "joint")?))
+        })
+    })
+}
+
+/// Joint `joint`'s correction of its child's heading relative to its parent (radians,
+/// about the vertical) and its standard deviation. INVALID_ARGUMENT for a joint at or
+/// beyond the rig's count. `sigma` may be NULL.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_relative_heading(
+    joints: *const OrientJoints,
+    joint: usize,
+    heading: *mut f64,
+    sigma: *mut f64,
+) -> OrientStatus {
+    guard(|| {
+        need(heading.is_null())?;
+        let j = &joints_ref(joints)?.joints;
+        let k = index(joint, j.specs().len(), "joint")?;
+        heading.write(j.relative_heading(k));
+        if !sigma.is_null() {
+            sigma.write(j.heading_std(k));
+        }
+        Ok(())
+    })
+}
+
+/// Joint `joint`'s axes as refined from motion (unit; the parent sensor's and the child
+/// sensor's frame). INVALID_ARGUMENT for a joint at or beyond the rig's count.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_axes(
+    joints: *const OrientJoints,
+    joint: usize,
+    axis_parent: *mut OrientVec3,
+    axis_child: *mut OrientVec3,
+) -> OrientStatus {
+    guard(|| {
+        need(axis_parent.is_null() || axis_child.is_null())?;
+        let j = &joints_ref(joints)?.joints;
+        let (a, b) = j.axes(index(joint, j.specs().len(), "joint")?);
+        axis_parent.write(vec_to(a));
+        axis_child.write(vec_to(b));
+        Ok(())
+    })
+}
+
+/// Starts every joint's estimate over: no correction, the axes as given. For a rig whose
+/// filters were reset or whose headings were aligned again (orient_rig_align_heading).
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_reset(joints: *mut OrientJoints) -> OrientStatus {
+    guard(|| {
+        joints_mut(joints)?.joints.reset();
+        Ok(())
+    })
+}
+
+/// A hinge's axes from `n` gyroscope readings of its parent and child sensors taken at
+/// the same instants (rad/s; a few seconds of the joint turning while the segments move),
+/// started from the host's guesses `guess_parent`, `guess_child` (sensor frames; the
+/// result is on their side): the pair that best makes the angular rate perpendicular to
+/// the axis the same on both sides (Seel, Schauer, Raisch 2012), with its quality.
+/// Allocates nothing. INVALID_ARGUMENT for n = 0, COUNT_TOO_LARGE for an `n` no array can
+/// hold, NON_FINITE for a NaN or infinite reading or guess, ZERO_VECTOR for a guess too
+/// short to normalise (its squared norm below DBL_MIN).
+#[no_mangle]
+pub unsafe extern "C" fn orient_estimate_hinge_axes(
+    gyro_parent: *const OrientVec3,
+    gyro_child: *const OrientVec3,
+    n: usize,
+    guess_parent: OrientVec3,
+    guess_child: OrientVec3,
+    out: *mut OrientHingeAxes,
+) -> OrientStatus {
+    guard(|| {
+        need(gyro_parent.is_null() || gyro_child.is_null() || out.is_null())?;
+        if n == 0 {
+            return Err(fail(OrientStatus::InvalidArgument, format_args!("no readings (n = 0)")));
+        }
+        let p = items(gyro_parent, n, "readings")?;
+        let c = items(gyro_child, n, "readings")?;
+        if let Some(i) = (0..n).position(|i| !(vec_from(p[i]).is_finite() && vec_from(c[i]).is_finite())) {
+            return Err(fail(OrientStatus::NonFinite, format_args!("reading {i} is NaN or infinite")));
+        }
+        let (gp, gc) = (vec_from(guess_parent), vec_from(guess_child));
+        for g in [gp, gc] {
+            if !g.is_finite() {
+                return Err(fail(OrientStatus::NonFinite, format_args!("a guess is NaN or infinite")));
+            }
+            if !(g.norm_squared() >= f64::MIN_POSITIVE && g.norm_squared().is_finite()) {
+                return Err(fail(
+                    OrientStatus::ZeroVector,
+                    format_args!("a guess is too short to normalise"),
+                ));
+            }
+        }
+        // Every case the estimate refuses was refused above.
+        let h =
+            estimate_hinge_axes_by(n, |i| (vec_from(p[i]), vec_from(c[i])), (gp, gc)).ok_or_else(|| {
+                fail(OrientStatus::InvalidArgument, format_args!("readings the estimate refuses"))
+            })?;
+        out.write(OrientHingeAxes {
+            axis_parent: vec_to(h.axis_parent),
+            axis_child: vec_to(h.axis_child),
+            quality: h.quality,
+        });
+        Ok(())
+    })
+}

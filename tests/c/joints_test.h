@@ -1,0 +1,313 @@
+/*
+ * Issue 42 from C: a rig's joints (orient_joints_*) and the hinge axes' estimate, each
+ * sentence of their header comments. Included by abi_test.c (uses its CHECK macros and
+ * rig_test.h's quat_angle).
+ */
+
+typedef struct {
+    double w, x, y, z;
+} Q;
+
+#define DEGREE 0.017453292519943295
+
+static Q q_of(OrientQuaternion a) {
+    Q r;
+    r.w = a.w, r.x = a.x, r.y = a.y, r.z = a.z;
+    return r;
+}
+
+static OrientQuaternion oq_of(Q a) {
+    OrientQuaternion r;
+    r.w = a.w, r.x = a.x, r.y = a.y, r.z = a.z;
+    return r;
+}
+
+static Q q_mul(Q a, Q b) {
+    Q r;
+    r.w = a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z;
+    r.x = a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y;
+    r.y = a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x;
+    r.z = a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w;
+    return r;
+}
+
+static Q q_conj(Q a) {
+    Q r;
+    r.w = a.w;
+    r.x = -a.x;
+    r.y = -a.y;
+    r.z = -a.z;
+    return r;
+}
+
+static Q q_axis(double x, double y, double z, double angle) {
+    double n = sqrt(x * x + y * y + z * z), s = sin(0.5 * angle);
+    Q r;
+    r.w = cos(0.5 * angle);
+    r.x = x / n * s;
+    r.y = y / n * s;
+    r.z = z / n * s;
+    return r;
+}
+
+/* The parent's motion: turns about every axis, its x axis mostly horizontal. */
+static Q parent_at(double t) {
+    return q_mul(q_mul(q_axis(0, 0, 1, 0.5 * sin(0.3 * t)), q_axis(0, 1, 0, 0.6 * sin(0.7 * t))),
+                 q_axis(1, 0, 0, 0.4 * sin(1.1 * t)));
+}
+
+static double flexion_at(double t) { return 0.5 + 0.8 * sin(1.9 * t); }
+
+/* The child hangs from the parent by a hinge about both sensors' x axis. */
+static Q child_at(double t) { return q_mul(parent_at(t), q_axis(1, 0, 0, flexion_at(t))); }
+
+/* A sensor at the joint centre turning from a to b in dt: body rates and gravity. */
+static OrientSample moving(Q a, Q b, double dt) {
+    OrientSample s;
+    Q d = q_mul(q_conj(a), b), g, up = {0.0, 0.0, 0.0, 9.81};
+    double n = sqrt(d.x * d.x + d.y * d.y + d.z * d.z), k;
+    if (d.w < 0) {
+        d.w = -d.w, d.x = -d.x, d.y = -d.y, d.z = -d.z;
+    }
+    k = n > 1e-15 ? 2.0 * atan2(n, d.w) / n / dt : 0.0;
+    memset(&s, 0, sizeof s);
+    s.dt = dt;
+    s.gyro.x = d.x * k;
+    s.gyro.y = d.y * k;
+    s.gyro.z = d.z * k;
+    g = q_mul(q_mul(q_conj(b), up), b);
+    s.accel.x = g.x;
+    s.accel.y = g.y;
+    s.accel.z = g.z;
+    s.flags = ORIENT_SAMPLE_GYRO | ORIENT_SAMPLE_ACCEL;
+    return s;
+}
+
+static OrientJoint hinge_joint(uint32_t parent, uint32_t child) {
+    OrientJoint j;
+    memset(&j, 0, sizeof j);
+    j.kind = ORIENT_JOINT_HINGE;
+    j.parent = parent;
+    j.child = child;
+    j.axis_parent.x = 1.0;
+    j.axis_child.x = 1.0;
+    return j;
+}
+
+static OrientJoints *sentinel_joints(void) { return (OrientJoints *)(uintptr_t)0x1000; }
+
+static void joints_new_refusals(void) {
+    OrientJoint j[ORIENT_MAX_JOINTS + 1];
+    OrientJoints *out = sentinel_joints();
+    OrientQuaternion m[2] = {{1, 0, 0, 0}, {1, 0, 0, 0}};
+    int i;
+    for (i = 0; i <= ORIENT_MAX_JOINTS; i++) j[i] = hinge_joint(0, 1);
+    CHECK_STATUS(orient_joints_new(j, 1, 2, NULL, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_joints_new(NULL, 1, 2, NULL, &out), ORIENT_STATUS_NULL_POINTER);
+    CHECK(out == NULL); /* "on failure it is set to NULL" */
+    /* INVALID_JOINT: a missing segment, its own parent, a second parent, a cycle, an axis. */
+    j[0] = hinge_joint(0, 2);
+    out = sentinel_joints();
+    CHECK_STATUS(orient_joints_new(j, 1, 2, NULL, &out), ORIENT_STATUS_INVALID_JOINT);
+    CHECK(out == NULL && strstr(orient_last_error(), "joint 0") != NULL);
+    j[0] = hinge_joint(1, 1);
+    CHECK_STATUS(orient_joints_new(j, 1, 2, NULL, &out), ORIENT_STATUS_INVALID_JOINT);
+    j[0] = hinge_joint(0, 1);
+    j[1] = hinge_joint(2, 1);
+    CHECK_STATUS(orient_joints_new(j, 2, 3, NULL, &out), ORIENT_STATUS_INVALID_JOINT);
+    CHECK(strstr(orient_last_error(), "joint 1") != NULL);
+    j[1] = hinge_joint(1, 0);
+    CHECK_STATUS(orient_joints_new(j, 2, 2, NULL, &out), ORIENT_STATUS_INVALID_JOINT);
+    CHECK(strstr(orient_last_error(), "cycle") != NULL);
+    j[1] = hinge_joint(0, 1);
+    j[0].axis_child.x = 0.0;
+    CHECK_STATUS(orient_joints_new(j, 1, 2, NULL, &out), ORIENT_STATUS_INVALID_JOINT);
+    j[0].axis_child.x = NAN;
+    CHECK_STATUS(orient_joints_new(j, 1, 2, NULL, &out), ORIENT_STATUS_INVALID_JOINT);
+    j[0].axis_child.x = INFINITY;
+    CHECK_STATUS(orient_joints_new(j, 1, 2, NULL, &out), ORIENT_STATUS_INVALID_JOINT);
+    j[0] = hinge_joint(0, 1);
+    /* INVALID_ARGUMENT: an unknown kind, a reserved field, no segment. */
+    j[0].kind = 7;
+    CHECK_STATUS(orient_joints_new(j, 1, 2, NULL, &out), ORIENT_STATUS_INVALID_ARGUMENT);
+    j[0] = hinge_joint(0, 1);
+    j[0].reserved = 1;
+    CHECK_STATUS(orient_joints_new(j, 1, 2, NULL, &out), ORIENT_STATUS_INVALID_ARGUMENT);
+    j[0] = hinge_joint(0, 1);
+    CHECK_STATUS(orient_joints_new(j, 0, 0, NULL, &out), ORIENT_STATUS_INVALID_ARGUMENT);
+    /* COUNT_TOO_LARGE: joints and segments beyond the maxima. */
+    CHECK_STATUS(orient_joints_new(j, ORIENT_MAX_JOINTS + 1, 2, NULL, &out), ORIENT_STATUS_COUNT_TOO_LARGE);
+    CHECK_STATUS(orient_joints_new(j, 1, ORIENT_MAX_SEGMENTS + 1, NULL, &out), ORIENT_STATUS_COUNT_TOO_LARGE);
+    /* A mounting as orient_filter_set_quaternion checks it. */
+    m[1].x = NAN;
+    CHECK_STATUS(orient_joints_new(j, 1, 2, m, &out), ORIENT_STATUS_NON_FINITE);
+    m[1].w = 0.0, m[1].x = 0.0;
+    CHECK_STATUS(orient_joints_new(j, 1, 2, m, &out), ORIENT_STATUS_ZERO_VECTOR);
+    m[1].w = 1e200, m[1].x = 1e200;
+    CHECK_STATUS(orient_joints_new(j, 1, 2, m, &out), ORIENT_STATUS_TOO_LARGE);
+    CHECK(out == NULL);
+    /* A forest is a rig: two roots, a segment in no joint, no joint at all. */
+    j[1] = hinge_joint(2, 3);
+    CHECK_STATUS(orient_joints_new(j, 2, 5, NULL, &out), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_free(out), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_new(NULL, 0, 1, NULL, &out), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_free(out), ORIENT_STATUS_OK);
+}
+
+static void joint_calls(void) {
+    OrientJoint j = hinge_joint(0, 1);
+    OrientJoints *joints = NULL, *gone = NULL;
+    OrientFilter *filters[2], *other;
+    OrientSample s[2], bad[2];
+    OrientQuaternion q, before;
+    OrientVec3 a, b, *gp, *gc;
+    OrientHingeAxes h;
+    double angles[2], r, heading, sigma, heading_before, dt = 0.01;
+    int i, n;
+    const int rows = 1500;
+
+    joints_new_refusals();
+    CHECK(strcmp(orient_status_message(ORIENT_STATUS_INVALID_JOINT), "unknown status code") != 0);
+
+    filters[0] = new_filter(ORIENT_KIND_ROBUST);
+    filters[1] = new_filter(ORIENT_KIND_ROBUST);
+    CHECK_STATUS(orient_joints_new(&j, 1, 2, NULL, &joints), ORIENT_STATUS_OK);
+    /* Before the first update: the identity (no mounting), angles 0. */
+    CHECK_STATUS(orient_joints_segment_quaternion(joints, 1, &q), ORIENT_STATUS_OK);
+    CHECK(q.w == 1.0 && q.x == 0.0 && q.y == 0.0 && q.z == 0.0);
+    CHECK_STATUS(orient_joints_angles(joints, 0, angles), ORIENT_STATUS_OK);
+    CHECK(angles[0] == 0.0 && angles[1] == 0.0);
+
+    /* Ten seconds of the hinge turning: each filter takes its sample, then the joints. */
+    for (i = 1; i <= rows; i++) {
+        double t0 = (i - 1) * dt, t1 = i * dt;
+        s[0] = moving(parent_at(t0), parent_at(t1), dt);
+        s[1] = moving(child_at(t0), child_at(t1), dt);
+        CHECK_STATUS(orient_filters_update(filters, s, 2, NULL, NULL), ORIENT_STATUS_OK);
+        if (orient_joints_update(joints, filters, s, 2) != ORIENT_STATUS_OK) {
+            CHECK(0);
+            break;
+        }
+    }
+    /* The hinge's angle is the flexion; a hinge's second angle is NaN. */
+    CHECK_STATUS(orient_joints_angles(joints, 0, angles), ORIENT_STATUS_OK);
+    CHECK(fabs(angles[0] - flexion_at(rows * dt)) < 2.0 * DEGREE);
+    CHECK(isnan(angles[1]));
+    /* The child relative to its parent is the truth's. */
+    {
+        OrientQuaternion p, c;
+        Q rel, truth = q_axis(1, 0, 0, flexion_at(rows * dt));
+        CHECK_STATUS(orient_joints_segment_quaternion(joints, 0, &p), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_segment_quaternion(joints, 1, &c), ORIENT_STATUS_OK);
+        rel = q_mul(q_conj(q_of(p)), q_of(c));
+        CHECK(quat_angle(oq_of(rel), oq_of(truth)) < 2.0 * DEGREE);
+    }
+    CHECK_STATUS(orient_joints_rating(joints, 0, &r), ORIENT_STATUS_OK);
+    CHECK(r >= 0.0 && r <= 1.0 && r > 0.1);
+    CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, &sigma), ORIENT_STATUS_OK);
+    CHECK(isfinite(heading) && sigma >= 0.0 && sigma < 0.1);
+    CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, NULL), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_axes(joints, 0, &a, &b), ORIENT_STATUS_OK);
+    CHECK(fabs(a.x * a.x + a.y * a.y + a.z * a.z - 1.0) < 1e-12 && a.x > 0.99 && b.x > 0.99);
+
+    /* Indices beyond the rig, NULL outputs. */
+    CHECK_STATUS(orient_joints_segment_quaternion(joints, 2, &q), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_joints_angles(joints, 1, angles), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_joints_rating(joints, 1, &r), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_joints_relative_heading(joints, 1, &heading, &sigma), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_joints_axes(joints, 1, &a, &b), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_joints_rating(joints, 0, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_joints_axes(joints, 0, &a, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_joints_relative_heading(joints, 0, NULL, &sigma), ORIENT_STATUS_NULL_POINTER);
+
+    /* A refused row changes nothing. */
+    CHECK_STATUS(orient_joints_segment_quaternion(joints, 1, &before), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading_before, NULL), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_update(joints, filters, s, 1), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_joints_update(joints, NULL, s, 2), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_joints_update(joints, filters, NULL, 2), ORIENT_STATUS_NULL_POINTER);
+    bad[0] = s[0], bad[1] = s[1];
+    bad[1].gyro.y = NAN;
+    CHECK_STATUS(orient_joints_update(joints, filters, bad, 2), ORIENT_STATUS_NON_FINITE);
+    CHECK(strstr(orient_last_error(), "segment 1") != NULL);
+    bad[1] = s[1];
+    bad[1].dt = INFINITY;
+    CHECK_STATUS(orient_joints_update(joints, filters, bad, 2), ORIENT_STATUS_NON_FINITE);
+    bad[1] = s[1];
+    bad[1].flags |= 64;
+    CHECK_STATUS(orient_joints_update(joints, filters, bad, 2), ORIENT_STATUS_INVALID_ARGUMENT);
+    bad[1] = s[1];
+    bad[1].reserved = 3;
+    CHECK_STATUS(orient_joints_update(joints, filters, bad, 2), ORIENT_STATUS_INVALID_ARGUMENT);
+    other = filters[1];
+    filters[1] = NULL;
+    CHECK_STATUS(orient_joints_update(joints, filters, s, 2), ORIENT_STATUS_NULL_POINTER);
+    filters[1] = new_filter(ORIENT_KIND_MADGWICK);
+    CHECK_STATUS(orient_filter_free(filters[1]), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_update(joints, filters, s, 2), ORIENT_STATUS_INVALID_HANDLE);
+    filters[1] = other;
+    CHECK_STATUS(orient_joints_segment_quaternion(joints, 1, &q), ORIENT_STATUS_OK);
+    CHECK(same_quaternion(q, before));
+    CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, NULL), ORIENT_STATUS_OK);
+    CHECK(bits(heading) == bits(heading_before));
+    /* A row without accelerometer readings is accepted and holds the joint. */
+    bad[0] = s[0], bad[1] = s[1];
+    bad[0].flags = ORIENT_SAMPLE_GYRO;
+    CHECK_STATUS(orient_joints_update(joints, filters, bad, 2), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, NULL), ORIENT_STATUS_OK);
+    CHECK(bits(heading) == bits(heading_before));
+
+    /* Reset: no correction. */
+    CHECK_STATUS(orient_joints_reset(joints), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, &sigma), ORIENT_STATUS_OK);
+    CHECK(heading == 0.0);
+
+    /* Handles: a filter is no joints handle, a joints handle no filter, a freed one nothing. */
+    CHECK_STATUS(orient_joints_reset((OrientJoints *)filters[0]), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_reset((OrientFilter *)joints), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_joints_free((OrientJoints *)filters[0]), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_joints_new(&j, 1, 2, NULL, &gone), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_free(gone), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_free(gone), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_joints_update(gone, filters, s, 2), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_joints_angles(gone, 0, angles), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_joints_free(NULL), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_free(joints), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_free(filters[0]), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_free(filters[1]), ORIENT_STATUS_OK);
+
+    /* The hinge's axes from five seconds of motion, started 5 degrees off. */
+    n = 500;
+    gp = (OrientVec3 *)malloc(sizeof *gp * (size_t)n);
+    gc = (OrientVec3 *)malloc(sizeof *gc * (size_t)n);
+    if (gp == NULL || gc == NULL) {
+        CHECK(0);
+        free(gp);
+        free(gc);
+        return;
+    }
+    for (i = 0; i < n; i++) {
+        s[0] = moving(parent_at(i * dt), parent_at((i + 1) * dt), dt);
+        s[1] = moving(child_at(i * dt), child_at((i + 1) * dt), dt);
+        gp[i] = s[0].gyro;
+        gc[i] = s[1].gyro;
+    }
+    a.x = 1.0, a.y = 0.087, a.z = 0.0;
+    b.x = 1.0, b.y = 0.0, b.z = -0.087;
+    CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, (size_t)n, a, b, &h), ORIENT_STATUS_OK);
+    CHECK(h.axis_parent.x > cos(0.2 * DEGREE) && h.axis_child.x > cos(0.2 * DEGREE));
+    CHECK(h.quality >= 0.0 && h.quality < 0.01);
+    CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, 0, a, b, &h), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_estimate_hinge_axes(NULL, gc, (size_t)n, a, b, &h), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, (size_t)n, a, b, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, SIZE_MAX, a, b, &h), ORIENT_STATUS_COUNT_TOO_LARGE);
+    gc[7].z = NAN;
+    CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, (size_t)n, a, b, &h), ORIENT_STATUS_NON_FINITE);
+    gc[7].z = 0.0;
+    b.x = 0.0, b.y = 0.0, b.z = 0.0;
+    CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, (size_t)n, a, b, &h), ORIENT_STATUS_ZERO_VECTOR);
+    b.x = NAN;
+    CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, (size_t)n, a, b, &h), ORIENT_STATUS_NON_FINITE);
+    free(gp);
+    free(gc);
+}
