@@ -420,6 +420,116 @@ OrientStatus align_rig_heading(const Handles& handles, const References& referen
     return orient_rig_align_heading(std::data(handles), std::data(references), std::size(handles));
 }
 
+/// A joint of a rig (orient_joints_new): `parent` and `child` index the rig's filters;
+/// axes in the sensors' frames.
+inline OrientJoint hinge(uint32_t parent, uint32_t child, OrientVec3 axis_parent, OrientVec3 axis_child) noexcept {
+    return OrientJoint{ORIENT_JOINT_HINGE, parent, child, 0, axis_parent, axis_child};
+}
+inline OrientJoint two_dof(uint32_t parent, uint32_t child, OrientVec3 axis_parent, OrientVec3 axis_child) noexcept {
+    return OrientJoint{ORIENT_JOINT_TWO_DOF, parent, child, 0, axis_parent, axis_child};
+}
+
+/// A rig's joints (orient_joints_*): each child segment held to its parent without a
+/// magnetometer. Move-only; freed by its destructor (the filters stay the host's).
+class Joints {
+public:
+    Joints() noexcept = default;
+
+    /// Joints over `segments` segments; `mountings` (sensor to segment, one per segment)
+    /// give the angles' zero, nullptr for the identity.
+    static Result<Joints> create(const OrientJoint* joints, std::size_t n_joints, std::size_t segments,
+                                 const OrientQuaternion* mountings = nullptr) noexcept {
+        Joints j;
+        OrientStatus s = orient_joints_new(joints, n_joints, segments, mountings, &j.h_);
+        if (s != ORIENT_STATUS_OK) return last_error(s);
+        j.segments_ = segments;
+        return j;
+    }
+
+    /// Any contiguous container of OrientJoint.
+    template <class Container>
+    static Result<Joints> create(const Container& joints, std::size_t segments,
+                                 const OrientQuaternion* mountings = nullptr) noexcept {
+        return create(std::data(joints), std::size(joints), segments, mountings);
+    }
+
+#if ORIENT_HPP_EXCEPTIONS
+    /// Throws orient::Exception on failure.
+    template <class Container>
+    Joints(const Container& joints, std::size_t segments, const OrientQuaternion* mountings = nullptr) {
+        OrientStatus s = orient_joints_new(std::data(joints), std::size(joints), segments, mountings, &h_);
+        if (s != ORIENT_STATUS_OK) throw Exception(last_error(s));
+        segments_ = segments;
+    }
+#endif
+
+    ~Joints() { reset_handle(); }
+    Joints(const Joints&) = delete;
+    Joints& operator=(const Joints&) = delete;
+    Joints(Joints&& o) noexcept : h_(std::exchange(o.h_, nullptr)), segments_(std::exchange(o.segments_, 0)) {}
+    Joints& operator=(Joints&& o) noexcept {
+        if (this != &o) {
+            reset_handle();
+            h_ = std::exchange(o.h_, nullptr);
+            segments_ = std::exchange(o.segments_, 0);
+        }
+        return *this;
+    }
+
+    explicit operator bool() const noexcept { return h_ != nullptr; }
+    OrientJoints* native() const noexcept { return h_; }
+    std::size_t segments() const noexcept { return segments_; }
+
+    /// One row, after `handles[s]` took `samples[s]` (orient::update_rig): every joint
+    /// updated; nothing changes on any status but OK. Allocates nothing.
+    OrientStatus update(OrientFilter* const* handles, const OrientSample* samples, std::size_t n) noexcept {
+        return orient_joints_update(h_, handles, samples, n);
+    }
+
+    /// Segment `s`'s orientation, the bone rotation; identity when the call fails.
+    OrientQuaternion segment(std::size_t s) const noexcept {
+        OrientQuaternion q{1.0, 0.0, 0.0, 0.0};
+        orient_joints_segment_quaternion(h_, s, &q);
+        return q;
+    }
+    OrientStatus segment(std::size_t s, OrientQuaternion& q) const noexcept {
+        return orient_joints_segment_quaternion(h_, s, &q);
+    }
+    /// Joint `k`'s angles (rad): a hinge's in [0] ([1] NaN), a 2-DoF joint's in [0], [1].
+    OrientStatus angles(std::size_t k, double (&out)[2]) const noexcept { return orient_joints_angles(h_, k, out); }
+    /// Joint `k`'s rating in [0, 1]; NaN when the call fails.
+    double rating(std::size_t k) const noexcept {
+        double r = std::numeric_limits<double>::quiet_NaN();
+        orient_joints_rating(h_, k, &r);
+        return r;
+    }
+    OrientStatus relative_heading(std::size_t k, double& heading, double* sigma = nullptr) const noexcept {
+        return orient_joints_relative_heading(h_, k, &heading, sigma);
+    }
+    OrientStatus axes(std::size_t k, OrientVec3& parent, OrientVec3& child) const noexcept {
+        return orient_joints_axes(h_, k, &parent, &child);
+    }
+    OrientStatus reset() noexcept { return orient_joints_reset(h_); }
+
+private:
+    void reset_handle() noexcept {
+        if (h_) orient_joints_free(h_);
+        h_ = nullptr;
+    }
+    OrientJoints* h_ = nullptr;
+    std::size_t segments_ = 0;
+};
+
+/// A hinge's axes from gyroscope readings of its two sensors at the same instants
+/// (orient_estimate_hinge_axes), started from the host's guesses.
+template <class Readings>
+OrientStatus estimate_hinge_axes(const Readings& parent, const Readings& child, OrientVec3 guess_parent,
+                                 OrientVec3 guess_child, OrientHingeAxes& out) noexcept {
+    if (std::size(parent) != std::size(child)) return ORIENT_STATUS_INVALID_ARGUMENT;
+    return orient_estimate_hinge_axes(std::data(parent), std::data(child), std::size(parent), guess_parent,
+                                      guess_child, &out);
+}
+
 }  // namespace orient
 
 #endif  // ORIENT_HPP

@@ -874,6 +874,15 @@ namespace Orient
             get { return filters.Length; }
         }
 
+        /// <summary>The filters' native handles into `into` (one per filter).</summary>
+        internal void CopyHandles(IntPtr[] into)
+        {
+            for (int i = 0; i < filters.Length; i++)
+            {
+                into[i] = filters[i].NativeHandle;
+            }
+        }
+
         /// <summary>
         /// Updates filter i with samples[i]; when quaternions is not null it receives each
         /// filter's orientation afterwards. Throws OrientException at the first bad sample
@@ -949,6 +958,202 @@ namespace Orient
             }
             GC.KeepAlive(filters);
             OrientException.Check(s);
+        }
+    }
+
+    /// <summary>Owns one OrientJoints handle; releases it exactly once.</summary>
+    public sealed class JointsHandle : SafeHandle
+    {
+        public JointsHandle() : base(IntPtr.Zero, true) { }
+
+        public override bool IsInvalid
+        {
+            get { return handle == IntPtr.Zero; }
+        }
+
+        internal void Set(IntPtr h)
+        {
+            SetHandle(h);
+        }
+
+        protected override bool ReleaseHandle()
+        {
+            return NativeMethods.orient_joints_free(handle) == Status.Ok;
+        }
+    }
+
+    /// <summary>
+    /// A rig's joints: each child segment held to its parent without a magnetometer (a
+    /// hand's phalanges, a leg's segments). Built over an OrientRig, whose filter i is
+    /// segment i; after each OrientRig.Update, Update gives every joint the same samples,
+    /// then Segment gives the bone rotations and Angles the joint angles. Update allocates
+    /// nothing. Dispose releases the joints (not the filters).
+    /// </summary>
+    public sealed unsafe class OrientJoints : IDisposable
+    {
+        private readonly JointsHandle handle = new JointsHandle();
+        private readonly OrientRig rig;
+        private readonly IntPtr[] handles;
+
+        /// <summary>A hinge: one axis, in the parent's and in the child's sensor frame.</summary>
+        public static Joint Hinge(int parent, int child, Vec3 axisParent, Vec3 axisChild)
+        {
+            return Make(Consts.JointHinge, parent, child, axisParent, axisChild);
+        }
+
+        /// <summary>A 2-DoF joint: the first axis fixed in the parent, the second in the child.</summary>
+        public static Joint TwoDof(int parent, int child, Vec3 axisParent, Vec3 axisChild)
+        {
+            return Make(Consts.JointTwoDof, parent, child, axisParent, axisChild);
+        }
+
+        private static Joint Make(uint kind, int parent, int child, Vec3 a, Vec3 b)
+        {
+            if (parent < 0) throw new ArgumentOutOfRangeException("parent");
+            if (child < 0) throw new ArgumentOutOfRangeException("child");
+            return new Joint { Kind = (int)kind, Parent = (uint)parent, Child = (uint)child, AxisParent = a, AxisChild = b };
+        }
+
+        /// <summary>
+        /// The joints over the rig's filters (segment i is filter i). mountings (sensor to
+        /// segment, one per filter; null for the identity) give the angles' zero, the
+        /// reference pose. Throws OrientException (Status.InvalidJoint names the joint).
+        /// </summary>
+        public OrientJoints(OrientRig rig, Joint[] joints, Native.Quaternion[] mountings = null)
+        {
+            if (rig == null) throw new ArgumentNullException("rig");
+            if (joints == null) throw new ArgumentNullException("joints");
+            if (mountings != null && mountings.Length != rig.Count)
+                throw new ArgumentException("one mounting per filter", "mountings");
+            IntPtr h;
+            Status s;
+            fixed (Joint* pj = joints)
+            fixed (Native.Quaternion* pm = mountings)
+            {
+                s = NativeMethods.orient_joints_new(pj, (UIntPtr)joints.Length, (UIntPtr)rig.Count, pm, &h);
+            }
+            OrientException.Check(s);
+            handle.Set(h);
+            this.rig = rig;
+            handles = new IntPtr[rig.Count];
+            JointCount = joints.Length;
+        }
+
+        public int JointCount { get; private set; }
+
+        private IntPtr H
+        {
+            get
+            {
+                if (handle.IsClosed || handle.IsInvalid) throw new ObjectDisposedException("OrientJoints");
+                return handle.DangerousGetHandle();
+            }
+        }
+
+        public void Dispose()
+        {
+            handle.Dispose();
+        }
+
+        /// <summary>
+        /// One row, after rig.Update(samples, ...): every joint from the filters'
+        /// orientations and the same samples. Throws OrientException and changes nothing on
+        /// a bad sample (NaN, unknown flags).
+        /// </summary>
+        public void Update(Sample[] samples)
+        {
+            if (samples == null) throw new ArgumentNullException("samples");
+            if (samples.Length != rig.Count) throw new ArgumentException("one sample per filter", "samples");
+            rig.CopyHandles(handles);
+            Status s;
+            fixed (IntPtr* ph = handles)
+            fixed (Sample* ps = samples)
+            {
+                s = NativeMethods.orient_joints_update(H, ph, ps, (UIntPtr)samples.Length);
+            }
+            GC.KeepAlive(rig);
+            OrientException.Check(s);
+        }
+
+        /// <summary>Segment i's orientation (segment to earth): the bone rotation.</summary>
+        public Native.Quaternion Segment(int segment)
+        {
+            Native.Quaternion q;
+            OrientException.Check(NativeMethods.orient_joints_segment_quaternion(H, (UIntPtr)Index(segment), &q));
+            return q;
+        }
+
+        /// <summary>
+        /// Joint k's angles (radians), zero in the reference pose, right-handed about its
+        /// axes: a hinge's in first (second NaN), a 2-DoF joint's about its first and then
+        /// its second axis.
+        /// </summary>
+        public void Angles(int joint, out double first, out double second)
+        {
+            double* a = stackalloc double[2];
+            OrientException.Check(NativeMethods.orient_joints_angles(H, (UIntPtr)Index(joint), a));
+            first = a[0];
+            second = a[1];
+        }
+
+        /// <summary>Joint k's observability rating in [0, 1] (0 at rest or with a vertical hinge).</summary>
+        public double Rating(int joint)
+        {
+            double r;
+            OrientException.Check(NativeMethods.orient_joints_rating(H, (UIntPtr)Index(joint), &r));
+            return r;
+        }
+
+        /// <summary>Joint k's correction of the child's heading relative to its parent (radians).</summary>
+        public double RelativeHeading(int joint, out double sigma)
+        {
+            double h, s;
+            OrientException.Check(NativeMethods.orient_joints_relative_heading(H, (UIntPtr)Index(joint), &h, &s));
+            sigma = s;
+            return h;
+        }
+
+        /// <summary>Joint k's axes as refined from motion (unit, sensor frames).</summary>
+        public void Axes(int joint, out Vec3 axisParent, out Vec3 axisChild)
+        {
+            Vec3 a, b;
+            OrientException.Check(NativeMethods.orient_joints_axes(H, (UIntPtr)Index(joint), &a, &b));
+            axisParent = a;
+            axisChild = b;
+        }
+
+        /// <summary>Starts every joint over (after the filters' headings were aligned again).</summary>
+        public void Reset()
+        {
+            OrientException.Check(NativeMethods.orient_joints_reset(H));
+        }
+
+        /// <summary>
+        /// A hinge's axes from gyroscope readings of its two sensors at the same instants
+        /// (a few seconds of the joint turning), started from guesses; quality below 0.1
+        /// means the axes can be trusted.
+        /// </summary>
+        public static HingeAxes EstimateHingeAxes(Vec3[] gyroParent, Vec3[] gyroChild, Vec3 guessParent, Vec3 guessChild)
+        {
+            if (gyroParent == null) throw new ArgumentNullException("gyroParent");
+            if (gyroChild == null) throw new ArgumentNullException("gyroChild");
+            if (gyroParent.Length != gyroChild.Length)
+                throw new ArgumentException("as many child readings as parent readings", "gyroChild");
+            HingeAxes h;
+            Status s;
+            fixed (Vec3* pp = gyroParent)
+            fixed (Vec3* pc = gyroChild)
+            {
+                s = NativeMethods.orient_estimate_hinge_axes(pp, pc, (UIntPtr)gyroParent.Length, guessParent, guessChild, &h);
+            }
+            OrientException.Check(s);
+            return h;
+        }
+
+        private static int Index(int i)
+        {
+            if (i < 0) throw new ArgumentOutOfRangeException("index");
+            return i;
         }
     }
 }

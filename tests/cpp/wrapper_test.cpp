@@ -410,6 +410,94 @@ static void kinds() {
     CHECK(accepted > 0); // the loop checked something
 }
 
+// orient::Joints: a hand and a finger on a hinge about both sensors' x axis, each sensor's
+// filter robust; RAII, moves, the statuses of the C calls, the axes' estimate.
+static void joints() {
+    const double dt = 0.01;
+    auto rot = [](double x, double y, double z, double a) {
+        double n = std::sqrt(x * x + y * y + z * z), s = std::sin(0.5 * a);
+        return OrientQuaternion{std::cos(0.5 * a), x / n * s, y / n * s, z / n * s};
+    };
+    auto mul = [](OrientQuaternion a, OrientQuaternion b) {
+        return OrientQuaternion{a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
+                                a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+                                a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+                                a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+    };
+    auto conj = [](OrientQuaternion a) { return OrientQuaternion{a.w, -a.x, -a.y, -a.z}; };
+    auto parent = [&](double t) {
+        return mul(mul(rot(0, 0, 1, 0.5 * std::sin(0.3 * t)), rot(0, 1, 0, 0.6 * std::sin(0.7 * t))),
+                   rot(1, 0, 0, 0.4 * std::sin(1.1 * t)));
+    };
+    auto flexion = [](double t) { return 0.5 + 0.8 * std::sin(1.9 * t); };
+    auto child = [&](double t) { return mul(parent(t), rot(1, 0, 0, flexion(t))); };
+    auto sample = [&](OrientQuaternion a, OrientQuaternion b) {
+        OrientQuaternion d = mul(conj(a), b);
+        if (d.w < 0) d = OrientQuaternion{-d.w, -d.x, -d.y, -d.z};
+        double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+        double k = n > 1e-15 ? 2.0 * std::atan2(n, d.w) / n / dt : 0.0;
+        OrientQuaternion g = mul(mul(conj(b), OrientQuaternion{0, 0, 0, 9.81}), b);
+        return orient::sample(dt, orient::vec3(d.x * k, d.y * k, d.z * k), orient::vec3(g.x, g.y, g.z));
+    };
+
+    std::array<OrientJoint, 1> spec{orient::hinge(0, 1, orient::vec3(1, 0, 0), orient::vec3(1, 0, 0))};
+    auto made = orient::Joints::create(spec, 2);
+    CHECK(made.ok());
+    orient::Joints joints = std::move(made).value();
+    CHECK(static_cast<bool>(joints) && joints.segments() == 2);
+    std::vector<orient::Filter> filters;
+    for (int k = 0; k < 2; k++) filters.push_back(orient::Filter::create(orient::Config::defaults(orient::Kind::Robust).value()).value());
+    std::array<OrientFilter*, 2> handles{filters[0].native(), filters[1].native()};
+    std::array<OrientSample, 2> row{};
+    std::vector<OrientVec3> wp, wc;
+    for (int i = 1; i <= 1000; i++) {
+        double t0 = (i - 1) * dt, t1 = i * dt;
+        row[0] = sample(parent(t0), parent(t1));
+        row[1] = sample(child(t0), child(t1));
+        CHECK(orient::update_rig(handles.data(), row.data(), 2) == ORIENT_STATUS_OK);
+        CHECK(joints.update(handles.data(), row.data(), 2) == ORIENT_STATUS_OK);
+        wp.push_back(row[0].gyro);
+        wc.push_back(row[1].gyro);
+    }
+    double angles[2];
+    CHECK(joints.angles(0, angles) == ORIENT_STATUS_OK);
+    CHECK(std::fabs(angles[0] - flexion(10.0)) < 0.035 && std::isnan(angles[1]));
+    CHECK(joints.rating(0) > 0.1 && joints.rating(0) <= 1.0);
+    CHECK(std::isnan(joints.rating(1)));
+    OrientQuaternion p = joints.segment(0), c = joints.segment(1), rel = mul(conj(p), c), truth = rot(1, 0, 0, flexion(10.0));
+    CHECK(std::fabs(std::fabs(rel.w * truth.w + rel.x * truth.x + rel.y * truth.y + rel.z * truth.z) - 1.0) < 2e-4);
+    double heading = 0.0, sigma = 0.0;
+    CHECK(joints.relative_heading(0, heading, &sigma) == ORIENT_STATUS_OK && sigma >= 0.0);
+    OrientVec3 a{}, b{};
+    CHECK(joints.axes(0, a, b) == ORIENT_STATUS_OK && a.x > 0.99 && b.x > 0.99);
+    CHECK(joints.update(handles.data(), row.data(), 1) == ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK(joints.reset() == ORIENT_STATUS_OK);
+    CHECK(joints.relative_heading(0, heading) == ORIENT_STATUS_OK && heading == 0.0);
+
+    // Moves leave one owner; a bad rig is an Error naming the joint.
+    orient::Joints moved = std::move(joints);
+    CHECK(!joints && static_cast<bool>(moved));
+    CHECK(joints.update(handles.data(), row.data(), 2) == ORIENT_STATUS_NULL_POINTER);
+    std::array<OrientJoint, 2> cycle{orient::hinge(0, 1, orient::vec3(1, 0, 0), orient::vec3(1, 0, 0)),
+                                     orient::hinge(1, 0, orient::vec3(1, 0, 0), orient::vec3(1, 0, 0))};
+    auto bad = orient::Joints::create(cycle, 2);
+    CHECK(!bad.ok() && bad.error().status == ORIENT_STATUS_INVALID_JOINT);
+    CHECK(bad.error().message.find("joint 1") != std::string::npos);
+
+    OrientHingeAxes h{};
+    CHECK(orient::estimate_hinge_axes(wp, wc, orient::vec3(1, 0.08, 0), orient::vec3(1, 0, -0.08), h) == ORIENT_STATUS_OK);
+    CHECK(h.axis_parent.x > 0.9999 && h.axis_child.x > 0.9999 && h.quality < 0.01);
+#if ORIENT_HPP_EXCEPTIONS
+    bool thrown = false;
+    try {
+        orient::Joints j(cycle, 2);
+    } catch (const orient::Exception& e) {
+        thrown = e.status() == ORIENT_STATUS_INVALID_JOINT;
+    }
+    CHECK(thrown);
+#endif
+}
+
 int main(int argc, char** argv) {
     if (argc != 2) {
         std::fprintf(stderr, "usage: %s GOLDEN_FILE\n", argv[0]);
@@ -422,6 +510,7 @@ int main(int argc, char** argv) {
     mounting_and_heading();
     calibration();
     uncertainty();
+    joints();
 #if ORIENT_HPP_EXCEPTIONS
     exceptions();
 #endif

@@ -425,6 +425,120 @@ public static class OrientTests
         Check(fit.Trustworthy == 1 && fit.Samples == 288, "trustworthy fit");
     }
 
+    static Orient.Native.Quaternion QMul(Orient.Native.Quaternion a, Orient.Native.Quaternion b)
+    {
+        return new Orient.Native.Quaternion
+        {
+            W = a.W * b.W - a.X * b.X - a.Y * b.Y - a.Z * b.Z,
+            X = a.W * b.X + a.X * b.W + a.Y * b.Z - a.Z * b.Y,
+            Y = a.W * b.Y - a.X * b.Z + a.Y * b.W + a.Z * b.X,
+            Z = a.W * b.Z + a.X * b.Y - a.Y * b.X + a.Z * b.W,
+        };
+    }
+
+    static Orient.Native.Quaternion QConj(Orient.Native.Quaternion a)
+    {
+        return new Orient.Native.Quaternion { W = a.W, X = -a.X, Y = -a.Y, Z = -a.Z };
+    }
+
+    static Orient.Native.Quaternion QAxis(double x, double y, double z, double angle)
+    {
+        double n = Math.Sqrt(x * x + y * y + z * z), s = Math.Sin(0.5 * angle);
+        return new Orient.Native.Quaternion { W = Math.Cos(0.5 * angle), X = x / n * s, Y = y / n * s, Z = z / n * s };
+    }
+
+    static Orient.Native.Quaternion HandAt(double t)
+    {
+        return QMul(QMul(QAxis(0, 0, 1, 0.5 * Math.Sin(0.3 * t)), QAxis(0, 1, 0, 0.6 * Math.Sin(0.7 * t))),
+            QAxis(1, 0, 0, 0.4 * Math.Sin(1.1 * t)));
+    }
+
+    static double FlexionAt(double t)
+    {
+        return 0.5 + 0.8 * Math.Sin(1.9 * t);
+    }
+
+    static Orient.Native.Quaternion FingerAt(double t)
+    {
+        return QMul(HandAt(t), QAxis(1, 0, 0, FlexionAt(t)));
+    }
+
+    /// A sensor at the joint centre turning from a to b in dt: body rates and gravity.
+    static Sample Moving(Orient.Native.Quaternion a, Orient.Native.Quaternion b, double dt)
+    {
+        var d = QMul(QConj(a), b);
+        if (d.W < 0) d = new Orient.Native.Quaternion { W = -d.W, X = -d.X, Y = -d.Y, Z = -d.Z };
+        double n = Math.Sqrt(d.X * d.X + d.Y * d.Y + d.Z * d.Z);
+        double k = n > 1e-15 ? 2.0 * Math.Atan2(n, d.W) / n / dt : 0.0;
+        var g = QMul(QMul(QConj(b), new Orient.Native.Quaternion { W = 0, X = 0, Y = 0, Z = 9.81 }), b);
+        return OrientFilter.Imu(dt, new Vec3 { X = d.X * k, Y = d.Y * k, Z = d.Z * k }, new Vec3 { X = g.X, Y = g.Y, Z = g.Z });
+    }
+
+    /// OrientJoints over an OrientRig: a hand and a finger on a hinge about both sensors'
+    /// x axis, each sensor's filter robust 6D.
+    static void Joints()
+    {
+        const double dt = 0.01;
+        using (var hand = new OrientFilter(Kind.Robust))
+        using (var finger = new OrientFilter(Kind.Robust))
+        {
+            var rig = new OrientRig(hand, finger);
+            var x = new Vec3 { X = 1, Y = 0, Z = 0 };
+            var joints = new OrientJoints(rig, new[] { OrientJoints.Hinge(0, 1, x, x) });
+            var samples = new Sample[2];
+            var gp = new Vec3[500];
+            var gc = new Vec3[500];
+            for (int i = 1; i <= 1000; i++)
+            {
+                double t0 = (i - 1) * dt, t1 = i * dt;
+                samples[0] = Moving(HandAt(t0), HandAt(t1), dt);
+                samples[1] = Moving(FingerAt(t0), FingerAt(t1), dt);
+                rig.Update(samples, null);
+                joints.Update(samples);
+                if (i <= 500)
+                {
+                    gp[i - 1] = samples[0].Gyro;
+                    gc[i - 1] = samples[1].Gyro;
+                }
+            }
+            double first, second;
+            joints.Angles(0, out first, out second);
+            Check(Math.Abs(first - FlexionAt(10.0)) < 0.035 && double.IsNaN(second), "OrientJoints: the hinge angle " + first);
+            var rel = QMul(QConj(joints.Segment(0)), joints.Segment(1));
+            var truth = QAxis(1, 0, 0, FlexionAt(10.0));
+            double dot = Math.Abs(rel.W * truth.W + rel.X * truth.X + rel.Y * truth.Y + rel.Z * truth.Z);
+            Check(dot > 1.0 - 2e-4, "OrientJoints: the finger relative to the hand");
+            double r = joints.Rating(0);
+            Check(r > 0.1 && r <= 1.0, "OrientJoints: rating " + r);
+            double sigma;
+            joints.RelativeHeading(0, out sigma);
+            Check(sigma >= 0.0, "OrientJoints: sigma");
+            Vec3 ap, ac;
+            joints.Axes(0, out ap, out ac);
+            Check(ap.X > 0.99 && ac.X > 0.99, "OrientJoints: axes");
+            Throws(Status.InvalidArgument, () => joints.Rating(1), "OrientJoints: a joint beyond the rig");
+            var bad = (Sample[])samples.Clone();
+            bad[1].Gyro.Y = double.NaN;
+            Throws(Status.NonFinite, () => joints.Update(bad), "OrientJoints: NaN", "segment 1");
+            joints.Reset();
+            Check(joints.RelativeHeading(0, out sigma) == 0.0, "OrientJoints: reset");
+            Throws(Status.InvalidJoint, () => new OrientJoints(rig, new[] { OrientJoints.Hinge(0, 1, x, x), OrientJoints.Hinge(1, 0, x, x) }),
+                "OrientJoints: a cycle", "joint 1");
+            Throws(Status.InvalidJoint, () => new OrientJoints(rig, new[] { OrientJoints.Hinge(0, 1, new Vec3(), x) }),
+                "OrientJoints: a zero axis", "joint 0");
+            var axes = OrientJoints.EstimateHingeAxes(gp, gc, new Vec3 { X = 1, Y = 0.08, Z = 0 }, new Vec3 { X = 1, Y = 0, Z = -0.08 });
+            Check(axes.AxisParent.X > 0.9999 && axes.AxisChild.X > 0.9999 && axes.Quality < 0.01, "OrientJoints: hinge axes");
+            joints.Dispose();
+            Check(IsDisposedThrows(() => joints.Rating(0)), "OrientJoints: disposed");
+        }
+    }
+
+    static bool IsDisposedThrows(Action a)
+    {
+        try { a(); return false; }
+        catch (ObjectDisposedException) { return true; }
+    }
+
     public static int Main(string[] args)
     {
         if (args.Length != 1)
@@ -438,6 +552,7 @@ public static class OrientTests
         Offline();
         MountingAndHeading();
         Calibration();
+        Joints();
         Golden(args[0]);
         Console.WriteLine(passed + " passed, " + failed + " failed");
         return failed == 0 ? 0 : 1;

@@ -36,6 +36,7 @@ from ._filter import (
     status_message,
     version,
 )
+from ._joints import SAMPLE_DTYPE, HingeAxes, Joint, Joints, estimate_hinge_axes, run_rig
 from ._native import (
     FLAG_ACCEL_REJECTED,
     FLAG_ACCEL_USED,
@@ -58,6 +59,12 @@ __version__ = version()
 
 __all__ = [
     "align_rig_heading",
+    "estimate_hinge_axes",
+    "HingeAxes",
+    "Joint",
+    "Joints",
+    "run_rig",
+    "SAMPLE_DTYPE",
     "calibrate_rig",
     "gyro_offset",
     "MagCalibrator",

@@ -1,0 +1,229 @@
+"""A rig's joints (``orient_joints_*``): each child segment held to its parent without a
+magnetometer, and a whole rig recording in one call."""
+
+from __future__ import annotations
+
+from ctypes import byref, c_double, c_void_p
+from dataclasses import dataclass
+from typing import Any, Dict, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _native as n
+from ._filter import ArrayLike, Filter, _check, _ptr, _record_dtype, _vec3
+from ._native import lib
+
+_KINDS = {"hinge": n.JOINT_HINGE, "2dof": n.JOINT_TWO_DOF}
+
+#: OrientSample as a NumPy record: run_rig builds every row's samples in one array.
+SAMPLE_DTYPE = _record_dtype(n.OrientSample)
+
+
+@dataclass
+class Joint:
+    """One joint: ``kind`` ``"hinge"`` (one axis, ``axis_parent`` in the parent sensor's
+    frame and ``axis_child`` in the child's) or ``"2dof"`` (the first axis fixed in the
+    parent, the second in the child); ``parent`` and ``child`` index the rig's filters."""
+
+    kind: str
+    parent: int
+    child: int
+    axis_parent: Sequence[float]
+    axis_child: Sequence[float]
+
+    def _native(self) -> n.OrientJoint:
+        if self.kind not in _KINDS:
+            raise ValueError(f"joint kind must be 'hinge' or '2dof', got {self.kind!r}")
+        return n.OrientJoint(
+            _KINDS[self.kind],
+            int(self.parent),
+            int(self.child),
+            0,
+            _vec3(self.axis_parent, "axis_parent"),
+            _vec3(self.axis_child, "axis_child"),
+        )
+
+
+class Joints:
+    """A rig's joints over ``segments`` segments (segment i is the rig's filter i).
+    ``mountings`` ((segments, 4) w, x, y, z, sensor to segment; None for the identity)
+    give the angles' zero: the reference pose, every segment's frame the same. Raises
+    OrientError (``Status.INVALID_JOINT`` names the joint) for a rig that is not a forest
+    or an axis that is zero or not finite."""
+
+    def __init__(self, joints: Sequence[Union[Joint, Tuple[Any, ...]]], segments: int,
+                 mountings: Optional[ArrayLike] = None) -> None:
+        self._h: Optional[int] = None
+        js = [j if isinstance(j, Joint) else Joint(*j) for j in joints]
+        arr = (n.OrientJoint * max(1, len(js)))(*[j._native() for j in js])
+        m = None
+        if mountings is not None:
+            a = np.ascontiguousarray(mountings, dtype=np.float64)
+            if a.shape != (segments, 4):
+                raise ValueError(f"mountings must have shape ({segments}, 4), got {a.shape}")
+            m = _ptr(a, n.OrientQuaternion)
+        h = c_void_p()
+        _check(lib.orient_joints_new(arr, len(js), int(segments), m, byref(h)))
+        self._h = h.value
+        self.segments = int(segments)
+        self.joints = js
+
+    def close(self) -> None:
+        if self._h is not None:
+            lib.orient_joints_free(self._h)
+            self._h = None
+
+    def __del__(self) -> None:
+        self.close()
+
+    def __enter__(self) -> "Joints":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+    def _handle(self) -> int:
+        if self._h is None:
+            raise ValueError("the joints were closed")
+        return self._h
+
+    def update(self, filters: Sequence[Filter], samples: Any) -> None:
+        """One row, after ``filters[s]`` took ``samples[s]``: every joint updated. ``samples``
+        is an array of ``SAMPLE_DTYPE`` (one per filter) or a ctypes array of OrientSample."""
+        handles = (c_void_p * len(filters))(*[f._h for f in filters])
+        if isinstance(samples, np.ndarray):
+            if samples.dtype != SAMPLE_DTYPE or not samples.flags.c_contiguous:
+                raise ValueError("samples must be a C-contiguous array of SAMPLE_DTYPE")
+            ptr = _ptr(samples, n.OrientSample)
+        else:
+            ptr = samples
+        _check(lib.orient_joints_update(self._handle(), handles, ptr, len(filters)))
+
+    def segment(self, s: int) -> np.ndarray:
+        """Segment ``s``'s orientation (w, x, y, z), segment to earth: the bone rotation."""
+        q = n.OrientQuaternion()
+        _check(lib.orient_joints_segment_quaternion(self._handle(), s, byref(q)))
+        return np.array([q.w, q.x, q.y, q.z])
+
+    def angles(self, k: int) -> np.ndarray:
+        """Joint ``k``'s angles (rad): a hinge's ``[theta, nan]``, a 2-DoF joint's two turns
+        about its first and then its second axis; zero in the reference pose."""
+        a = (c_double * 2)()
+        _check(lib.orient_joints_angles(self._handle(), k, a))
+        return np.array(a[:])
+
+    def rating(self, k: int) -> float:
+        """Joint ``k``'s observability rating in [0, 1] (0 at rest or with a vertical hinge)."""
+        r = c_double()
+        _check(lib.orient_joints_rating(self._handle(), k, byref(r)))
+        return r.value
+
+    def relative_heading(self, k: int) -> Tuple[float, float]:
+        """Joint ``k``'s correction of the child's heading relative to its parent (rad) and
+        its standard deviation."""
+        h, s = c_double(), c_double()
+        _check(lib.orient_joints_relative_heading(self._handle(), k, byref(h), byref(s)))
+        return h.value, s.value
+
+    def axes(self, k: int) -> Tuple[np.ndarray, np.ndarray]:
+        """Joint ``k``'s axes as refined from motion (unit, parent's and child's frame)."""
+        a, b = n.OrientVec3(), n.OrientVec3()
+        _check(lib.orient_joints_axes(self._handle(), k, byref(a), byref(b)))
+        return np.array([a.x, a.y, a.z]), np.array([b.x, b.y, b.z])
+
+    def reset(self) -> None:
+        """Starts every joint over (after the filters' headings were aligned again)."""
+        _check(lib.orient_joints_reset(self._handle()))
+
+
+@dataclass
+class HingeAxes:
+    """What :func:`estimate_hinge_axes` found; ``quality`` below 0.1 can be trusted."""
+
+    axis_parent: np.ndarray
+    axis_child: np.ndarray
+    quality: float
+
+
+def estimate_hinge_axes(gyr_parent: ArrayLike, gyr_child: ArrayLike, guess_parent: ArrayLike,
+                        guess_child: ArrayLike) -> HingeAxes:
+    """A hinge's axes from (N, 3) gyroscope readings (rad/s) of its two sensors at the same
+    instants, started from the guesses (sensor frames)."""
+    p = np.ascontiguousarray(gyr_parent, dtype=np.float64)
+    c = np.ascontiguousarray(gyr_child, dtype=np.float64)
+    if p.ndim != 2 or p.shape[1] != 3 or p.shape != c.shape:
+        raise ValueError(f"readings must both have shape (N, 3), got {p.shape} and {c.shape}")
+    out = n.OrientHingeAxes()
+    _check(lib.orient_estimate_hinge_axes(_ptr(p, n.OrientVec3), _ptr(c, n.OrientVec3), len(p),
+                                          _vec3(guess_parent, "guess_parent"), _vec3(guess_child, "guess_child"),
+                                          byref(out)))
+    a, b = out.axis_parent, out.axis_child
+    return HingeAxes(np.array([a.x, a.y, a.z]), np.array([b.x, b.y, b.z]), out.quality)
+
+
+def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike, acc: ArrayLike,
+            mag: Optional[ArrayLike] = None, *, dt: ArrayLike, start: int = 0) -> Dict[str, np.ndarray]:
+    """A whole rig recording in one call: ``gyr``, ``acc`` (and ``mag``) of shape
+    (S, N, 3), sensor s's N readings for the rig's S ``filters``; ``dt`` one value or (N,).
+    Every row updates every filter (``orient_filters_update``), then from row ``start`` on
+    the joints (the row after the headings were aligned, if you align them; None: no
+    joints). Returns ``segments`` (S, N, 4): each segment's orientation after each row
+    (the joints' when given, else each filter's own), and with joints ``angles`` (J, N, 2)
+    and ``rating`` (J, N). A refused sample raises OrientError naming its row."""
+    g = np.ascontiguousarray(gyr, dtype=np.float64)
+    a = np.ascontiguousarray(acc, dtype=np.float64)
+    S = len(filters)
+    if g.ndim != 3 or g.shape[0] != S or g.shape[2] != 3 or a.shape != g.shape:
+        raise ValueError(f"gyr and acc must have shape ({S}, N, 3), got {g.shape} and {a.shape}")
+    N = g.shape[1]
+    m = None if mag is None else np.ascontiguousarray(mag, dtype=np.float64)
+    if m is not None and m.shape != g.shape:
+        raise ValueError(f"mag must have shape {g.shape}, got {m.shape}")
+    d = np.broadcast_to(np.asarray(dt, dtype=np.float64), (N,))
+    if joints is not None and joints.segments != S:
+        raise ValueError(f"the joints have {joints.segments} segments, the rig {S} filters")
+    # Row-major samples: row i's S samples are contiguous, one pointer per call.
+    samples = np.zeros((N, S), dtype=SAMPLE_DTYPE)
+    samples["dt"] = d[:, None]
+    samples["gyro"] = g.transpose(1, 0, 2)
+    samples["accel"] = a.transpose(1, 0, 2)
+    samples["flags"] = n.SAMPLE_GYRO | n.SAMPLE_ACCEL
+    if m is not None:
+        samples["mag"] = m.transpose(1, 0, 2)
+        samples["flags"] |= n.SAMPLE_MAG
+    handles = (c_void_p * S)(*[f._h for f in filters])
+    J = 0 if joints is None else len(joints.joints)
+    segments = np.empty((S, N, 4))
+    angles = np.full((J, N, 2), np.nan)
+    rating = np.full((J, N), np.nan)
+    quats = (n.OrientQuaternion * S)()
+    q = n.OrientQuaternion()
+    two = (c_double * 2)()
+    r = c_double()
+    jh = None if joints is None else joints._handle()
+    for i in range(N):
+        row = _ptr(samples, n.OrientSample, i)
+        st = lib.orient_filters_update(handles, row, S, quats, None)
+        if st != 0:
+            _check(st, i)
+        if jh is not None and i >= start:
+            _check(lib.orient_joints_update(jh, handles, row, S), i)
+            for s in range(S):
+                lib.orient_joints_segment_quaternion(jh, s, byref(q))
+                segments[s, i] = (q.w, q.x, q.y, q.z)
+            for k in range(J):
+                lib.orient_joints_angles(jh, k, two)
+                angles[k, i] = two[0], two[1]
+                lib.orient_joints_rating(jh, k, byref(r))
+                rating[k, i] = r.value
+        else:
+            for s in range(S):
+                segments[s, i] = (quats[s].w, quats[s].x, quats[s].y, quats[s].z)
+    out = {"segments": segments}
+    if joints is not None:
+        out["angles"] = angles
+        out["rating"] = rating
+    return out
+
+
+__all__ = ["Joint", "Joints", "HingeAxes", "estimate_hinge_axes", "run_rig", "SAMPLE_DTYPE"]

@@ -1,0 +1,110 @@
+"""Issue 42 from Python: a rig's joints, a whole rig recording in one call."""
+
+import math
+
+import numpy as np
+import orient
+import pytest
+from orient import OrientError, Status
+
+
+def qmul(a, b):
+    w1, x1, y1, z1 = a
+    w2, x2, y2, z2 = b
+    return np.array([w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
+                     w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2])
+
+
+def conj(q):
+    return np.array([q[0], -q[1], -q[2], -q[3]])
+
+
+def axis(x, y, z, angle):
+    v = np.array([x, y, z], dtype=float)
+    v /= np.linalg.norm(v)
+    return np.concatenate([[math.cos(angle / 2)], v * math.sin(angle / 2)])
+
+
+def hand_at(t):
+    return qmul(qmul(axis(0, 0, 1, 0.5 * math.sin(0.3 * t)), axis(0, 1, 0, 0.6 * math.sin(0.7 * t))),
+                axis(1, 0, 0, 0.4 * math.sin(1.1 * t)))
+
+
+def flexion_at(t):
+    return 0.5 + 0.8 * math.sin(1.9 * t)
+
+
+def finger_at(t):
+    return qmul(hand_at(t), axis(1, 0, 0, flexion_at(t)))
+
+
+def readings(at, n, dt):
+    """Body rates and gravity of a sensor at the joint centre, rows 1..n."""
+    gyr, acc = np.empty((n, 3)), np.empty((n, 3))
+    for i in range(n):
+        a, b = at(i * dt), at((i + 1) * dt)
+        d = qmul(conj(a), b)
+        d = -d if d[0] < 0 else d
+        s = np.linalg.norm(d[1:])
+        gyr[i] = d[1:] * (2 * math.atan2(s, d[0]) / s / dt) if s > 1e-15 else 0.0
+        acc[i] = qmul(qmul(conj(b), [0, 0, 0, 9.81]), b)[1:]
+    return gyr, acc
+
+
+def test_a_hinged_finger_in_one_call():
+    dt, n = 0.01, 1000
+    gh, ah = readings(hand_at, n, dt)
+    gf, af = readings(finger_at, n, dt)
+    filters = [orient.Robust(), orient.Robust()]
+    x = [1.0, 0.0, 0.0]
+    with orient.Joints([("hinge", 0, 1, x, x)], 2) as joints:
+        out = orient.run_rig(filters, joints, np.stack([gh, gf]), np.stack([ah, af]), dt=dt)
+        assert out["segments"].shape == (2, n, 4)
+        assert out["angles"].shape == (1, n, 2) and out["rating"].shape == (1, n)
+        # The hinge's angle is the flexion over the last seconds; its second angle NaN.
+        t = (np.arange(n) + 1) * dt
+        late = t > 5
+        err = np.abs(out["angles"][0, late, 0] - (0.5 + 0.8 * np.sin(1.9 * t[late])))
+        assert err.max() < math.radians(2.0)
+        assert np.isnan(out["angles"][0, :, 1]).all()
+        assert ((out["rating"] >= 0) & (out["rating"] <= 1)).all()
+        np.testing.assert_allclose(joints.angles(0)[0], out["angles"][0, -1, 0])
+        heading, sigma = joints.relative_heading(0)
+        assert math.isfinite(heading) and sigma >= 0
+        a, b = joints.axes(0)
+        assert a[0] > 0.99 and b[0] > 0.99
+        with pytest.raises(OrientError) as e:
+            joints.rating(1)
+        assert e.value.status == Status.INVALID_ARGUMENT
+        joints.reset()
+        assert joints.relative_heading(0)[0] == 0.0
+    # Without joints: each filter's own orientation.
+    alone = orient.run_rig([orient.Robust(), orient.Robust()], None, np.stack([gh, gf]), np.stack([ah, af]), dt=dt)
+    assert set(alone) == {"segments"}
+    # The hinge axes from the same motion, started 5 degrees off.
+    h = orient.estimate_hinge_axes(gh[:500], gf[:500], [1, 0.08, 0], [1, 0, -0.08])
+    assert h.axis_parent[0] > 0.9999 and h.axis_child[0] > 0.9999 and h.quality < 0.01
+
+
+def test_bad_rigs_and_rows_are_refused():
+    x = [1.0, 0.0, 0.0]
+    for joints, status, detail in [
+        ([("hinge", 0, 1, x, x), ("hinge", 1, 0, x, x)], Status.INVALID_JOINT, "joint 1"),
+        ([("hinge", 0, 2, x, x)], Status.INVALID_JOINT, "joint 0"),
+        ([("2dof", 0, 1, [0, 0, 0], x)], Status.INVALID_JOINT, "joint 0"),
+    ]:
+        with pytest.raises(OrientError) as e:
+            orient.Joints(joints, 2)
+        assert e.value.status == status and detail in str(e.value)
+    with pytest.raises(ValueError):
+        orient.Joints([("ball", 0, 1, x, x)], 2)
+    with pytest.raises(ValueError):
+        orient.Joints([("hinge", 0, 1, x, x)], 2, mountings=np.eye(4)[:1])
+    filters = [orient.Robust(), orient.Robust()]
+    gyr = np.zeros((2, 10, 3))
+    acc = np.tile([0.0, 0.0, 9.81], (2, 10, 1))
+    gyr[1, 4, 2] = np.nan
+    with orient.Joints([("hinge", 0, 1, x, x)], 2) as joints:
+        with pytest.raises(OrientError) as e:
+            orient.run_rig(filters, joints, gyr, acc, dt=0.01)
+        assert e.value.status == Status.NON_FINITE and e.value.index == 4
