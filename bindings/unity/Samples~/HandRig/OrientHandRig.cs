@@ -12,6 +12,15 @@
 // Mounting fields below are then no longer needed. Call CalibrateFlatHand() from a key
 // or a button to calibrate again (e.g. after a sensor slipped).
 //
+// Joints (orient_joints_*): with Use Joints, the calibration also binds the bones through
+// the hand's joints, each finger's proximal bone to the hand by a 2-DoF joint (MCP:
+// abduction about the hand's Abduction Axis, then flexion about the bone's Flexion Axis)
+// and each further bone to the one before by a hinge (PIP, DIP: about Flexion Axis).
+// Each bone is then drawn as its joints hold it to its parent: without a magnetometer
+// every sensor's heading drifts on its own and the fingers twist apart after minutes;
+// through the joints they stay on the hand. The axes are given in each bone's local
+// frame (most humanoid hands flex about local X) and refined from motion.
+//
 // Setup: put this on any GameObject. Either assign a Humanoid Animator (the wrist and the
 // three joints of each finger, 16 bones, are filled in) or fill Bones by hand. Give each
 // bone a TextAsset recording in orient's CSV layout (header with t, gyr_x..z, acc_x..z
@@ -63,6 +72,15 @@ public class OrientHandRig : MonoBehaviour
     [Tooltip("Seconds into the recording at which the hand lies flat in the avatar's rest pose; negative: never")]
     public float calibrateAt = 0.5f;
 
+    [Tooltip("Hold each finger bone to its parent through the hand's joints (bones from the avatar)")]
+    public bool useJoints = true;
+
+    [Tooltip("The axis each finger bone flexes about, in the bone's local frame")]
+    public Vector3 flexionAxis = new Vector3(1, 0, 0);
+
+    [Tooltip("The axis the fingers spread about (MCP abduction), in the hand bone's local frame")]
+    public Vector3 abductionAxis = new Vector3(0, 1, 0);
+
     public OrientRigBone[] bones = new OrientRigBone[0];
 
     // Each bone's rotation at Start, as an ENU orientation: the flat-hand reference posture.
@@ -72,6 +90,7 @@ public class OrientHandRig : MonoBehaviour
     private OrientFilter[] filters = new OrientFilter[0];
     private OrientRigBone[] driven = new OrientRigBone[0];
     private OrientRig rig;
+    private OrientJoints joints;
     private Sample[][] streams = new Sample[0][];
     private double[] times = new double[0];
     private Sample[] step = new Sample[0];
@@ -141,11 +160,46 @@ public class OrientHandRig : MonoBehaviour
         {
             rig.Calibrate(flatPose);
             calibrated = true;
+            if (useJoints) BindJoints();
         }
         catch (OrientException e)
         {
             Debug.LogWarning("orient: flat-hand calibration: " + e.Message);
         }
+    }
+
+    /// <summary>The hand's joints from the bones' names (the avatar's: "...Hand",
+    /// "...IndexProximal", "...IndexIntermediate", ...), with the axes in each sensor's
+    /// frame through the mountings the calibration set.</summary>
+    private void BindJoints()
+    {
+        var list = new List<Joint>();
+        var mountings = new Orient.Native.Quaternion[driven.Length];
+        for (int i = 0; i < driven.Length; i++) mountings[i] = filters[i].Mounting;
+        for (int c = 0; c < driven.Length; c++)
+        {
+            string name = driven[c].name;
+            string parentName = name.EndsWith("Proximal") ? "Hand"
+                : name.Replace("Intermediate", "Proximal").Replace("Distal", "Intermediate");
+            if (parentName == name) continue;
+            int p = Array.FindIndex(driven, b => name.EndsWith("Proximal") ? b.name.EndsWith("Hand") : b.name == parentName);
+            if (p < 0) continue;
+            Vec3 flexion = flexionAxis.ToOrient();
+            if (name.EndsWith("Proximal"))
+                list.Add(OrientJoints.TwoDof(p, c, InSensor(mountings[p], abductionAxis.ToOrient()), InSensor(mountings[c], flexion)));
+            else
+                list.Add(OrientJoints.Hinge(p, c, InSensor(mountings[p], flexion), InSensor(mountings[c], flexion)));
+        }
+        if (joints != null) joints.Dispose();
+        joints = list.Count > 0 ? new OrientJoints(rig, list.ToArray(), mountings) : null;
+    }
+
+    /// <summary>A segment-frame axis in the sensor's frame: m^-1 v m (v_segment = m v_sensor).</summary>
+    private static Vec3 InSensor(Orient.Native.Quaternion m, Vec3 v)
+    {
+        var conj = new Orient.Native.Quaternion { W = m.W, X = -m.X, Y = -m.Y, Z = -m.Z };
+        var r = UnityConvert.Mul(UnityConvert.Mul(conj, new Orient.Native.Quaternion { W = 0, X = v.X, Y = v.Y, Z = v.Z }), m);
+        return new Vec3(r.X, r.Y, r.Z);
     }
 
     /// <summary>The wrist and finger joints of a Humanoid avatar that the avatar maps.</summary>
@@ -212,6 +266,7 @@ public class OrientHandRig : MonoBehaviour
             try
             {
                 rig.Update(step, orientations);
+                if (joints != null) joints.Update(step);
             }
             catch (OrientException e)
             {
@@ -224,14 +279,17 @@ public class OrientHandRig : MonoBehaviour
         if (!moved) return;
         for (int i = 0; i < driven.Length; i++)
         {
-            // After calibration the mounting is inside the filter; before, the manual one.
-            UnityEngine.Quaternion q = worldAlignment * orientations[i].ToUnity(filters[i].Frame);
+            // After calibration the mounting is inside the filter (and the joints); before,
+            // the manual one.
+            Orient.Native.Quaternion o = joints != null ? joints.Segment(i) : orientations[i];
+            UnityEngine.Quaternion q = worldAlignment * o.ToUnity(filters[i].Frame);
             driven[i].bone.rotation = calibrated ? q : q * driven[i].mounting;
         }
     }
 
     void OnDestroy()
     {
+        if (joints != null) joints.Dispose();
         foreach (var f in filters)
         {
             if (f != null) f.Dispose();
