@@ -1759,6 +1759,33 @@ OrientStatus orient_joints_axes(const struct OrientJoints *joints,
 OrientStatus orient_joints_reset(struct OrientJoints *joints);
 
 /**
+ * Size in bytes of this rig's joint state blob (orient_joints_save); constant for a rig.
+ */
+OrientStatus orient_joints_state_size(const struct OrientJoints *joints, size_t *size);
+
+/**
+ * Saves the joints' estimates, with the rig's description (joints, axes as given,
+ * mountings), as a versioned, checksummed blob into `buffer` (`capacity` bytes);
+ * `*written` receives its length. ORIENT_STATUS_BUFFER_TOO_SMALL when `capacity` is
+ * below orient_joints_state_size(), COUNT_TOO_LARGE for a `capacity` no buffer can have.
+ * Joints loaded with the blob continue bit for bit as these would, given the same
+ * filters' states (orient_filter_save each).
+ */
+OrientStatus orient_joints_save(const struct OrientJoints *joints,
+                                uint8_t *buffer,
+                                size_t capacity,
+                                size_t *written);
+
+/**
+ * Restores a blob from orient_joints_save into joints made for the same rig (the same
+ * joints, axes as given and mountings). ORIENT_STATUS_INVALID_STATE, with the joints
+ * unchanged, for a blob that is truncated, corrupted, of another format version, a
+ * filter's, another rig's, or holding a state no joint could hold; COUNT_TOO_LARGE for a
+ * `size` no buffer can have.
+ */
+OrientStatus orient_joints_load(struct OrientJoints *joints, const uint8_t *buffer, size_t size);
+
+/**
  * A hinge's axes from `n` gyroscope readings of its parent and child sensors taken at
  * the same instants (rad/s; a few seconds of the joint turning while the segments move),
  * started from the host's guesses `guess_parent`, `guess_child` (sensor frames; the

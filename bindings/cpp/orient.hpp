@@ -511,6 +511,20 @@ public:
     }
     OrientStatus reset() noexcept { return orient_joints_reset(h_); }
 
+    /// Size of save()'s snapshot (constant for a rig).
+    std::size_t state_size() const noexcept {
+        std::size_t n = 0;
+        orient_joints_state_size(h_, &n);
+        return n;
+    }
+    /// The joints' estimates with the rig's description; save each filter too.
+    OrientStatus save(uint8_t* buffer, std::size_t capacity, std::size_t* written) const noexcept {
+        return orient_joints_save(h_, buffer, capacity, written);
+    }
+    /// Restores save()'s snapshot into joints of the same rig; ORIENT_STATUS_INVALID_STATE
+    /// (nothing changed) for another rig's, a filter's or a damaged blob.
+    OrientStatus load(const uint8_t* buffer, std::size_t size) noexcept { return orient_joints_load(h_, buffer, size); }
+
 private:
     void reset_handle() noexcept {
         if (h_) orient_joints_free(h_);

@@ -1769,6 +1769,33 @@ namespace Orient.Native
         public static extern Status orient_joints_reset(IntPtr joints);
 
         /// <summary>
+        /// Size in bytes of this rig's joint state blob (orient_joints_save); constant for a rig.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_state_size(IntPtr joints, UIntPtr* size);
+
+        /// <summary>
+        /// Saves the joints' estimates, with the rig's description (joints, axes as given,
+        /// mountings), as a versioned, checksummed blob into `buffer` (`capacity` bytes);
+        /// `*written` receives its length. ORIENT_STATUS_BUFFER_TOO_SMALL when `capacity` is
+        /// below orient_joints_state_size(), COUNT_TOO_LARGE for a `capacity` no buffer can have.
+        /// Joints loaded with the blob continue bit for bit as these would, given the same
+        /// filters' states (orient_filter_save each).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_save(IntPtr joints, byte* buffer, UIntPtr capacity, UIntPtr* written);
+
+        /// <summary>
+        /// Restores a blob from orient_joints_save into joints made for the same rig (the same
+        /// joints, axes as given and mountings). ORIENT_STATUS_INVALID_STATE, with the joints
+        /// unchanged, for a blob that is truncated, corrupted, of another format version, a
+        /// filter's, another rig's, or holding a state no joint could hold; COUNT_TOO_LARGE for a
+        /// `size` no buffer can have.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_load(IntPtr joints, byte* buffer, UIntPtr size);
+
+        /// <summary>
         /// A hinge's axes from `n` gyroscope readings of its parent and child sensors taken at
         /// the same instants (rad/s; a few seconds of the joint turning while the segments move),
         /// started from the host's guesses `guess_parent`, `guess_child` (sensor frames; the

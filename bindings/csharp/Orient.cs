@@ -1128,6 +1128,35 @@ namespace Orient
             OrientException.Check(NativeMethods.orient_joints_reset(H));
         }
 
+        /// <summary>A snapshot of the joints' estimates with the rig's description; save
+        /// each filter too (SaveState), and both continue bit for bit.</summary>
+        public byte[] SaveState()
+        {
+            UIntPtr size;
+            OrientException.Check(NativeMethods.orient_joints_state_size(H, &size));
+            byte[] blob = new byte[(int)size];
+            UIntPtr written;
+            fixed (byte* p = blob)
+            {
+                OrientException.Check(NativeMethods.orient_joints_save(H, p, size, &written));
+            }
+            return blob;
+        }
+
+        /// <summary>Restores SaveState's snapshot into joints of the same rig; throws
+        /// OrientException (InvalidState) for another rig's, a filter's or a damaged blob,
+        /// changing nothing.</summary>
+        public void LoadState(byte[] blob)
+        {
+            if (blob == null) throw new ArgumentNullException("blob");
+            byte empty = 0;
+            fixed (byte* p = blob)
+            {
+                byte* data = blob.Length == 0 ? &empty : p;
+                OrientException.Check(NativeMethods.orient_joints_load(H, data, (UIntPtr)blob.Length));
+            }
+        }
+
         /// <summary>
         /// A hinge's axes from gyroscope readings of its two sensors at the same instants
         /// (a few seconds of the joint turning), started from guesses; quality below 0.1

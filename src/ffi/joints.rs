@@ -391,6 +391,55 @@ pub unsafe extern "C" fn orient_joints_reset(joints: *mut OrientJoints) -> Orien
     })
 }
 
+/// Size in bytes of this rig's joint state blob (orient_joints_save); constant for a rig.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_state_size(
+    joints: *const OrientJoints,
+    size: *mut usize,
+) -> OrientStatus {
+    guard(|| put(size, || Ok(joints_ref(joints)?.joints.state_size())))
+}
+
+/// Saves the joints' estimates, with the rig's description (joints, axes as given,
+/// mountings), as a versioned, checksummed blob into `buffer` (`capacity` bytes);
+/// `*written` receives its length. ORIENT_STATUS_BUFFER_TOO_SMALL when `capacity` is
+/// below orient_joints_state_size(), COUNT_TOO_LARGE for a `capacity` no buffer can have.
+/// Joints loaded with the blob continue bit for bit as these would, given the same
+/// filters' states (orient_filter_save each).
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_save(
+    joints: *const OrientJoints,
+    buffer: *mut u8,
+    capacity: usize,
+    written: *mut usize,
+) -> OrientStatus {
+    guard(|| {
+        need(buffer.is_null() || written.is_null())?;
+        let j = joints_ref(joints)?;
+        let n = j.joints.save(blob_out(buffer, capacity)?).map_err(from_state)?;
+        written.write(n);
+        Ok(())
+    })
+}
+
+/// Restores a blob from orient_joints_save into joints made for the same rig (the same
+/// joints, axes as given and mountings). ORIENT_STATUS_INVALID_STATE, with the joints
+/// unchanged, for a blob that is truncated, corrupted, of another format version, a
+/// filter's, another rig's, or holding a state no joint could hold; COUNT_TOO_LARGE for a
+/// `size` no buffer can have.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_load(
+    joints: *mut OrientJoints,
+    buffer: *const u8,
+    size: usize,
+) -> OrientStatus {
+    guard(|| {
+        need(buffer.is_null())?;
+        let j = joints_mut(joints)?;
+        j.joints.load(blob_in(buffer, size)?).map_err(from_state)
+    })
+}
+
 /// A hinge's axes from `n` gyroscope readings of its parent and child sensors taken at
 /// the same instants (rad/s; a few seconds of the joint turning while the segments move),
 /// started from the host's guesses `guess_parent`, `guess_child` (sensor frames; the

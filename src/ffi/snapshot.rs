@@ -25,17 +25,29 @@ pub unsafe extern "C" fn orient_filter_save(
     guard(|| {
         need(buffer.is_null() || written.is_null())?;
         let h = handle(filter)?;
-        if capacity > isize::MAX as usize {
-            return Err(fail(
-                OrientStatus::CountTooLarge,
-                format_args!("capacity {capacity} cannot be a buffer"),
-            ));
-        }
-        let out = core::slice::from_raw_parts_mut(buffer, capacity);
-        let n = h.filter.save(out).map_err(from_state)?;
+        let n = h.filter.save(blob_out(buffer, capacity)?).map_err(from_state)?;
         written.write(n);
         Ok(())
     })
+}
+
+/// A save's output buffer: COUNT_TOO_LARGE for a `capacity` no buffer can have.
+pub(crate) unsafe fn blob_out<'a>(buffer: *mut u8, capacity: usize) -> Result<&'a mut [u8], OrientStatus> {
+    if capacity > isize::MAX as usize {
+        return Err(fail(
+            OrientStatus::CountTooLarge,
+            format_args!("capacity {capacity} cannot be a buffer"),
+        ));
+    }
+    Ok(core::slice::from_raw_parts_mut(buffer, capacity))
+}
+
+/// A load's blob: COUNT_TOO_LARGE for a `size` no buffer can have.
+pub(crate) unsafe fn blob_in<'a>(buffer: *const u8, size: usize) -> Result<&'a [u8], OrientStatus> {
+    if size > isize::MAX as usize {
+        return Err(fail(OrientStatus::CountTooLarge, format_args!("size {size} cannot be a buffer")));
+    }
+    Ok(core::slice::from_raw_parts(buffer, size))
 }
 
 /// Restores a blob from orient_filter_save into a filter of the same kind (configuration
@@ -50,10 +62,7 @@ pub unsafe extern "C" fn orient_filter_load(
     guard(|| {
         need(buffer.is_null())?;
         let h = handle_mut(filter)?;
-        if size > isize::MAX as usize {
-            return Err(fail(OrientStatus::CountTooLarge, format_args!("size {size} cannot be a buffer")));
-        }
-        h.filter.load(core::slice::from_raw_parts(buffer, size)).map_err(from_state)
+        h.filter.load(blob_in(buffer, size)?).map_err(from_state)
     })
 }
 

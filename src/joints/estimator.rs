@@ -477,3 +477,55 @@ impl JointEstimator {
         }
     }
 }
+
+impl JointEstimator {
+    /// The estimate's state, both directions ([`crate::filters::state::Codec`]); the kind
+    /// and the tuning are the rig's (checked by [`super::Joints::load`]).
+    pub(crate) fn codec(&mut self, c: &mut dyn crate::filters::state::Codec) {
+        for axis in [&mut self.p_axis, &mut self.c_axis] {
+            c.vec3(&mut axis.j);
+            c.vec3(&mut axis.b1);
+            c.vec3(&mut axis.b2);
+        }
+        for v in self.x.iter_mut().chain(self.p.iter_mut().flatten()) {
+            c.f64(v);
+        }
+        c.f64(&mut self.still);
+        c.vec3(&mut self.g[0]);
+        c.vec3(&mut self.g[1]);
+        let mut moving = self.prev_gyro.is_some();
+        c.bool(&mut moving);
+        let (mut a, mut b) = self.prev_gyro.unwrap_or((Vec3::ZERO, Vec3::ZERO));
+        c.vec3(&mut a);
+        c.vec3(&mut b);
+        self.prev_gyro = moving.then_some((a, b));
+        c.f64(&mut self.rating);
+        c.f64(&mut self.info_scale);
+    }
+
+    #[cfg(test)]
+    pub(crate) fn corrupt_for_test(&mut self) {
+        self.p[3][3] = -1.0;
+    }
+
+    /// A state this estimator could hold: unit, orthogonal axes with their bases, a
+    /// covariance with a non-negative diagonal that bounds every entry (|P_ik|² ≤ P_ii
+    /// P_kk, with 1 % for rounding: a covariance that breaks it could make an innovation's
+    /// variance negative and the joint skip every update), a rating in [0, 1], a rest time
+    /// not negative, a positive information scale.
+    pub(crate) fn holds(&self) -> bool {
+        let unit = |v: Vec3| (v.norm_squared() - 1.0).abs() < 1e-9;
+        let axes = [self.p_axis, self.c_axis].iter().all(|a| {
+            unit(a.j) && unit(a.b1) && unit(a.b2) && a.j.dot(a.b1).abs() < 1e-9 && a.j.dot(a.b2).abs() < 1e-9
+        });
+        let p = &self.p;
+        let cov = (0..N).all(|i| {
+            p[i][i] >= 0.0 && (0..N).all(|k| p[i][k] * p[i][k] <= p[i][i] * p[k][k] * 1.01 + 1e-300)
+        });
+        axes && cov
+            && (0.0..=1.0).contains(&self.rating)
+            && self.still >= 0.0
+            && self.info_scale > 0.0
+            && self.is_finite()
+    }
+}

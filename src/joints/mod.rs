@@ -50,6 +50,7 @@ pub mod estimator;
 pub use axes::{estimate_hinge_axes, estimate_hinge_axes_by, HingeAxes};
 pub use estimator::JointParams;
 
+use crate::filters::state::{self as snapshot, Codec, Reader, StateError, Writer};
 use crate::filters::{Filter, Sample};
 use crate::math::{Quat, Vec3};
 use estimator::JointEstimator;
@@ -392,6 +393,110 @@ impl Joints {
         self.estimators[k].axes()
     }
 
+    /// The size in bytes of this rig's joint state blob ([`Joints::save`]).
+    pub fn state_size(&self) -> usize {
+        let mut w = Writer { buf: None, pos: 0 };
+        self.clone().codec(&mut w);
+        snapshot::HEADER + w.pos + snapshot::TRAILER
+    }
+
+    /// Saves the joints' estimates as a versioned, checksummed blob (the filters' snapshot
+    /// format, its own kind byte) with the rig's description, so that only the same rig
+    /// loads it: joints, axes as given, mountings and tuning. Returns its length;
+    /// `BufferTooSmall` below [`Joints::state_size`].
+    pub fn save(&self, out: &mut [u8]) -> Result<usize, StateError> {
+        let mut w = Writer { buf: None, pos: 0 };
+        let mut copy = self.clone();
+        copy.codec(&mut w);
+        snapshot::seal(out, STATE_KIND, w.pos, |w| copy.codec(w))
+    }
+
+    /// Restores a blob from [`Joints::save`] of the same rig: the estimates continue bit
+    /// for bit. Refused, with nothing changed, when truncated, corrupted, of another
+    /// format version, of a filter, of another rig, or holding a state no estimate could
+    /// hold.
+    pub fn load(&mut self, blob: &[u8]) -> Result<(), StateError> {
+        let size = self.state_size() - snapshot::HEADER - snapshot::TRAILER;
+        let payload = snapshot::open(blob, STATE_KIND, size)?;
+        let mut fresh = self.clone();
+        let mut r = Reader { buf: payload, pos: 0, ok: true };
+        fresh.codec(&mut r);
+        let same_rig = fresh.specs == self.specs
+            && fresh.mountings.iter().zip(&self.mountings).all(|(a, b)| same_bits(*a, *b))
+            && fresh.params == self.params;
+        if !(r.ok && r.pos == payload.len() && same_rig && fresh.estimators.iter().all(JointEstimator::holds))
+        {
+            return Err(StateError::Corrupt);
+        }
+        if !fresh.sensors.iter().all(|q| (q.norm_squared() - 1.0).abs() < 1e-9) {
+            return Err(StateError::Corrupt);
+        }
+        // What the update derives: the corrections down the tree, the angles.
+        for &k in &fresh.order {
+            let j = fresh.specs[k];
+            fresh.corrections[j.child] =
+                (fresh.corrections[j.parent] * fresh.estimators[k].correction()).normalized();
+        }
+        for k in 0..fresh.specs.len() {
+            fresh.angles[k] = fresh.joint_angles(k);
+        }
+        *self = fresh;
+        Ok(())
+    }
+
+    /// Both directions of the blob's payload: the rig's description (compared on load),
+    /// each estimate, each segment's corrected sensor orientation.
+    fn codec(&mut self, c: &mut dyn Codec) {
+        let mut n = (self.mountings.len(), self.specs.len());
+        c.usize(&mut n.0);
+        c.usize(&mut n.1);
+        if n != (self.mountings.len(), self.specs.len()) {
+            c.fail();
+            return;
+        }
+        for j in &mut self.specs {
+            let mut kind = j.kind as u32;
+            c.u32(&mut kind);
+            j.kind = if kind == JointKind::TwoDof as u32 { JointKind::TwoDof } else { JointKind::Hinge };
+            c.usize(&mut j.parent);
+            c.usize(&mut j.child);
+            c.vec3(&mut j.axis_parent);
+            c.vec3(&mut j.axis_child);
+        }
+        for m in &mut self.mountings {
+            c.quat(m);
+        }
+        let p = &mut self.params;
+        for v in [
+            &mut p.r_hinge,
+            &mut p.r_2dof,
+            &mut p.q_heading,
+            &mut p.q_rate,
+            &mut p.q_axis,
+            &mut p.heading_std0,
+            &mut p.rate_std0,
+            &mut p.axis_std0,
+            &mut p.max_rate,
+            &mut p.rest_gyro,
+            &mut p.rest_time,
+            &mut p.r_acc,
+            &mut p.lever_std0,
+            &mut p.q_lever,
+            &mut p.tilt_std0,
+            &mut p.q_tilt,
+            &mut p.gate,
+            &mut p.rating_tau,
+        ] {
+            c.f64(v);
+        }
+        for e in &mut self.estimators {
+            e.codec(c);
+        }
+        for q in &mut self.sensors {
+            c.quat(q);
+        }
+    }
+
     fn joint_angles(&self, k: usize) -> [f64; 2] {
         let j = &self.specs[k];
         let (a, b) = self.axes(k);
@@ -405,6 +510,13 @@ impl Joints {
             self.sensors[j.child],
         )
     }
+}
+
+/// The snapshot kind byte of a rig's joints (the filters' are 1 to 6).
+const STATE_KIND: u8 = 0x4a;
+
+fn same_bits(a: Quat, b: Quat) -> bool {
+    [a.w, a.x, a.y, a.z].map(f64::to_bits) == [b.w, b.x, b.y, b.z].map(f64::to_bits)
 }
 
 /// The twist of `q` about the unit axis `n`: the angle (rad, in (-π, π]) of the rotation

@@ -304,3 +304,66 @@ fn the_hinge_axes_come_from_motion() {
     nan[3] = Vec3::new(f64::NAN, 0.0, 0.0);
     assert!(estimate_hinge_axes(&nan, &wc, (jp, jc)).is_none());
 }
+
+#[test]
+fn a_snapshot_continues_bit_for_bit_and_bad_blobs_change_nothing() {
+    let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 30.0);
+    let mut blob = vec![0u8; joints.state_size()];
+    assert_eq!(joints.save(&mut blob[..10]), Err(StateError::BufferTooSmall(blob.len())));
+    assert_eq!(joints.save(&mut blob), Ok(blob.len()));
+    let mut twin = Joints::new(2, &[hinge(0, 1, X)], &[], JointParams::default()).unwrap();
+    twin.load(&blob).unwrap();
+    assert_eq!(format!("{twin:?}"), format!("{joints:?}"));
+    // Both go on alike.
+    let dt = 0.01;
+    for i in 1..=300 {
+        let (t0, t1) = (30.0 + (i - 1) as f64 * dt, 30.0 + i as f64 * dt);
+        let (p0, p1) = (parent_at(t0), parent_at(t1));
+        let (c0, c1) = (parent_at(t0) * rot(X, flexion_at(t0)), parent_at(t1) * rot(X, flexion_at(t1)));
+        let row = [sample(p0, p1, dt), sample(c0, c1, dt)];
+        let sensors = [p1, rot(Z, 0.01 * t1) * c1];
+        joints.update(&sensors, &row).unwrap();
+        twin.update(&sensors, &row).unwrap();
+    }
+    assert_eq!(format!("{twin:?}"), format!("{joints:?}"));
+
+    let before = format!("{twin:?}");
+    let mut refused = |b: &[u8], e: StateError| {
+        assert_eq!(twin.load(b), Err(e));
+        assert_eq!(format!("{twin:?}"), before);
+    };
+    refused(&blob[..blob.len() - 1], StateError::Truncated);
+    refused(&blob[..5], StateError::Truncated);
+    let mut flipped = blob.clone();
+    flipped[40] ^= 1;
+    refused(&flipped, StateError::Checksum);
+    // Another rig's blob: a 2-DoF joint, other axes, other mountings.
+    let other = Joints::new(
+        2,
+        &[JointSpec { kind: JointKind::TwoDof, ..hinge(0, 1, X) }],
+        &[],
+        JointParams::default(),
+    )
+    .unwrap();
+    let mut b2 = vec![0u8; other.state_size()];
+    other.save(&mut b2).unwrap();
+    refused(&b2, StateError::Corrupt);
+    let other = Joints::new(2, &[hinge(0, 1, Y)], &[], JointParams::default()).unwrap();
+    other.save(&mut b2).unwrap();
+    refused(&b2, StateError::Corrupt);
+    let m = [Quat::IDENTITY, rot(X, 0.1)];
+    let other = Joints::new(2, &[hinge(0, 1, X)], &m, JointParams::default()).unwrap();
+    other.save(&mut b2).unwrap();
+    refused(&b2, StateError::Corrupt);
+    // A filter's blob.
+    let f = Filter::new(&crate::filters::Config::new(crate::filters::Kind::Madgwick).unwrap()).unwrap();
+    let mut fb = vec![0u8; f.state_size()];
+    f.save(&mut fb).unwrap();
+    refused(&fb, StateError::Kind(1));
+    // A state no estimate could hold, sealed with a good checksum: a negative variance.
+    let mut bad = joints.clone();
+    bad.estimators[0].corrupt_for_test();
+    let mut b3 = vec![0u8; bad.state_size()];
+    bad.save(&mut b3).unwrap();
+    refused(&b3, StateError::Corrupt);
+}

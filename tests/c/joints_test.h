@@ -257,6 +257,65 @@ static void joint_calls(void) {
     CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, NULL), ORIENT_STATUS_OK);
     CHECK(bits(heading) == bits(heading_before));
 
+    /* Snapshots: the joints and the filters saved together continue bit for bit. */
+    {
+        size_t size = 0, written = 0, fsize = 0;
+        unsigned char *blob, *fblob[2];
+        OrientJoints *twin = NULL;
+        OrientFilter *twins[2];
+        OrientQuaternion a1, a2;
+        int k, ok = 1;
+        CHECK_STATUS(orient_joints_state_size(joints, &size), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_state_size(filters[0], &fsize), ORIENT_STATUS_OK);
+        blob = (unsigned char *)malloc(size);
+        fblob[0] = (unsigned char *)malloc(fsize);
+        fblob[1] = (unsigned char *)malloc(fsize);
+        if (blob != NULL && fblob[0] != NULL && fblob[1] != NULL) {
+            CHECK_STATUS(orient_joints_save(joints, blob, size - 1, &written), ORIENT_STATUS_BUFFER_TOO_SMALL);
+            CHECK_STATUS(orient_joints_save(joints, blob, size, &written), ORIENT_STATUS_OK);
+            CHECK(written == size);
+            CHECK_STATUS(orient_joints_save(joints, NULL, size, &written), ORIENT_STATUS_NULL_POINTER);
+            CHECK_STATUS(orient_joints_new(&j, 1, 2, NULL, &twin), ORIENT_STATUS_OK);
+            for (k = 0; k < 2; k++) {
+                twins[k] = new_filter(ORIENT_KIND_ROBUST);
+                CHECK_STATUS(orient_filter_save(filters[k], fblob[k], fsize, &written), ORIENT_STATUS_OK);
+                CHECK_STATUS(orient_filter_load(twins[k], fblob[k], written), ORIENT_STATUS_OK);
+            }
+            /* Refused blobs change nothing: truncated, flipped, a filter's. */
+            CHECK_STATUS(orient_joints_load(twin, blob, size - 1), ORIENT_STATUS_INVALID_STATE);
+            blob[size / 2] ^= 4;
+            CHECK_STATUS(orient_joints_load(twin, blob, size), ORIENT_STATUS_INVALID_STATE);
+            blob[size / 2] ^= 4;
+            CHECK_STATUS(orient_joints_load(twin, fblob[0], fsize), ORIENT_STATUS_INVALID_STATE);
+            CHECK_STATUS(orient_joints_relative_heading(twin, 0, &heading, NULL), ORIENT_STATUS_OK);
+            CHECK(heading == 0.0);
+            CHECK_STATUS(orient_joints_load(twin, blob, size), ORIENT_STATUS_OK);
+            for (i = 1; i <= 200; i++) {
+                double t0 = 20.0 + (i - 1) * dt, t1 = 20.0 + i * dt;
+                s[0] = moving(parent_at(t0), parent_at(t1), dt);
+                s[1] = moving(child_at(t0), child_at(t1), dt);
+                CHECK_STATUS(orient_filters_update(filters, s, 2, NULL, NULL), ORIENT_STATUS_OK);
+                CHECK_STATUS(orient_filters_update(twins, s, 2, NULL, NULL), ORIENT_STATUS_OK);
+                CHECK_STATUS(orient_joints_update(joints, filters, s, 2), ORIENT_STATUS_OK);
+                CHECK_STATUS(orient_joints_update(twin, twins, s, 2), ORIENT_STATUS_OK);
+                orient_joints_segment_quaternion(joints, 1, &a1);
+                orient_joints_segment_quaternion(twin, 1, &a2);
+                ok = ok && same_quaternion(a1, a2);
+            }
+            CHECK(ok);
+            CHECK_STATUS(orient_joints_load(NULL, blob, size), ORIENT_STATUS_NULL_POINTER);
+            CHECK_STATUS(orient_joints_load(twin, NULL, size), ORIENT_STATUS_NULL_POINTER);
+            orient_joints_free(twin);
+            orient_filter_free(twins[0]);
+            orient_filter_free(twins[1]);
+        } else {
+            CHECK(0);
+        }
+        free(blob);
+        free(fblob[0]);
+        free(fblob[1]);
+    }
+
     /* Reset: no correction. */
     CHECK_STATUS(orient_joints_reset(joints), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, &sigma), ORIENT_STATUS_OK);

@@ -471,6 +471,14 @@ static void joints() {
     OrientVec3 a{}, b{};
     CHECK(joints.axes(0, a, b) == ORIENT_STATUS_OK && a.x > 0.99 && b.x > 0.99);
     CHECK(joints.update(handles.data(), row.data(), 1) == ORIENT_STATUS_INVALID_ARGUMENT);
+    std::vector<uint8_t> blob(joints.state_size());
+    std::size_t written = 0;
+    CHECK(joints.save(blob.data(), blob.size(), &written) == ORIENT_STATUS_OK && written == blob.size());
+    orient::Joints twin = orient::Joints::create(spec, 2).value();
+    CHECK(twin.load(blob.data(), blob.size()) == ORIENT_STATUS_OK);
+    OrientQuaternion s1 = joints.segment(1), s2 = twin.segment(1);
+    CHECK(std::memcmp(&s1, &s2, sizeof s1) == 0);
+    CHECK(twin.load(blob.data(), blob.size() - 1) == ORIENT_STATUS_INVALID_STATE);
     CHECK(joints.reset() == ORIENT_STATUS_OK);
     CHECK(joints.relative_heading(0, heading) == ORIENT_STATUS_OK && heading == 0.0);
 

@@ -520,6 +520,13 @@ public static class OrientTests
             var bad = (Sample[])samples.Clone();
             bad[1].Gyro.Y = double.NaN;
             Throws(Status.NonFinite, () => joints.Update(bad), "OrientJoints: NaN", "segment 1");
+            byte[] blob = joints.SaveState();
+            using (var twin = new OrientJoints(rig, new[] { OrientJoints.Hinge(0, 1, x, x) }))
+            {
+                twin.LoadState(blob);
+                Check(Same(twin.Segment(1), joints.Segment(1)), "OrientJoints: a snapshot restores the segments");
+                Throws(Status.InvalidState, () => twin.LoadState(hand.SaveState()), "OrientJoints: a filter's blob");
+            }
             joints.Reset();
             Check(joints.RelativeHeading(0, out sigma) == 0.0, "OrientJoints: reset");
             Throws(Status.InvalidJoint, () => new OrientJoints(rig, new[] { OrientJoints.Hinge(0, 1, x, x), OrientJoints.Hinge(1, 0, x, x) }),

@@ -76,6 +76,13 @@ def test_a_hinged_finger_in_one_call():
         with pytest.raises(OrientError) as e:
             joints.rating(1)
         assert e.value.status == Status.INVALID_ARGUMENT
+        blob = joints.save()
+        with orient.Joints([("hinge", 0, 1, x, x)], 2) as twin:
+            twin.load(blob)
+            assert np.array_equal(twin.segment(1), joints.segment(1))
+            with pytest.raises(OrientError) as e:
+                twin.load(blob[:-1])
+            assert e.value.status == Status.INVALID_STATE
         joints.reset()
         assert joints.relative_heading(0)[0] == 0.0
     # Without joints: each filter's own orientation.

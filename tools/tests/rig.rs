@@ -396,6 +396,12 @@ fn joints_hold_a_6d_glove_together() {
         };
         let (a, j) = (score(&alone), score(&joints));
         assert!(j.all < bound && j.all < 0.5 * a.all, "{case} seed {seed}: joints {j:?}, alone {a:?}");
+        // Two minutes of real estimates save and load into a fresh rig.
+        let mut blob = vec![0u8; stage.joints.state_size()];
+        stage.joints.save(&mut blob).unwrap();
+        let mut fresh = Joints::new(&rec.spec, start, JointParams::default());
+        fresh.joints.load(&blob).unwrap();
+        assert_eq!(format!("{:?}", fresh.joints), format!("{:?}", stage.joints));
         // Every rating in [0, 1], every angle of a hinge finite.
         for (k, spec) in rec.spec.joints.iter().enumerate() {
             let r = stage.joints.rating(k);

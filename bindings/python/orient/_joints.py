@@ -3,7 +3,7 @@ magnetometer, and a whole rig recording in one call."""
 
 from __future__ import annotations
 
-from ctypes import byref, c_double, c_void_p
+from ctypes import byref, c_double, c_size_t, c_uint8, c_void_p
 from dataclasses import dataclass
 from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
@@ -134,6 +134,23 @@ class Joints:
     def reset(self) -> None:
         """Starts every joint over (after the filters' headings were aligned again)."""
         _check(lib.orient_joints_reset(self._handle()))
+
+    def save(self) -> bytes:
+        """The joints' estimates with the rig's description as a versioned, checksummed
+        blob; save each filter too, and both continue bit for bit."""
+        size = c_size_t()
+        _check(lib.orient_joints_state_size(self._handle(), byref(size)))
+        buf = (c_uint8 * size.value)()
+        written = c_size_t()
+        _check(lib.orient_joints_save(self._handle(), buf, size.value, byref(written)))
+        return bytes(buf[: written.value])
+
+    def load(self, blob: bytes) -> None:
+        """Restores :meth:`save`'s blob into joints of the same rig; OrientError
+        (INVALID_STATE) for another rig's, a filter's or a damaged blob, changing nothing."""
+        data = bytes(blob)
+        buf = (c_uint8 * max(len(data), 1)).from_buffer_copy(data or b"\0")
+        _check(lib.orient_joints_load(self._handle(), buf, len(data)))
 
 
 @dataclass

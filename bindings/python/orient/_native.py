@@ -1078,6 +1078,9 @@ PROTOTYPES = {
     ),
     "orient_joints_axes": (c_int32, [c_void_p, c_size_t, POINTER(OrientVec3), POINTER(OrientVec3)]),
     "orient_joints_reset": (c_int32, [c_void_p]),
+    "orient_joints_state_size": (c_int32, [c_void_p, POINTER(c_size_t)]),
+    "orient_joints_save": (c_int32, [c_void_p, POINTER(c_uint8), c_size_t, POINTER(c_size_t)]),
+    "orient_joints_load": (c_int32, [c_void_p, POINTER(c_uint8), c_size_t]),
     "orient_estimate_hinge_axes": (
         c_int32,
         [
