@@ -56,3 +56,20 @@ if [ -z "$via" ]; then
     printf '%-14s %-5s %12.1f   (20-sensor frame, per frame)\n' "frame-$how" marg "$(echo "($b - $a) / 1000" | bc -l)"
   done
 fi
+# A joint beside its two filters (orient::joints, Rust API): two robust IMU filters per
+# row, with and without one joint updated after them and its child segment read
+# (bench --count-joints), per row.
+if [ -z "$via" ]; then
+  joints() {
+    ORIENT_ISA=baseline valgrind --tool=callgrind --callgrind-out-file=/dev/null "$bin" --count-joints "$1" "$2" 2>&1 \
+      | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
+  }
+  per_row() { echo "($(joints "$1" 1200) - $(joints "$1" 200)) / 1000" | bc -l; }
+  two=$(per_row filters)
+  printf '%-14s %-5s %12.1f   (two robust filters, per row)\n' "rig-2-filters" imu "$two"
+  for how in hinge 2dof; do
+    j=$(per_row "$how")
+    printf '%-14s %-5s %12.1f   (one joint beside them, per row; %.2f x one filter)\n' "joint-$how" imu \
+      "$(echo "$j - $two" | bc -l)" "$(echo "($j - $two) * 2 / $two" | bc -l)"
+  done
+fi

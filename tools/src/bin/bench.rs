@@ -261,6 +261,10 @@ fn main() {
         count_frame(&args[i + 1], args[i + 2].parse().expect("frames"), &marg_rec);
         return;
     }
+    if let Some(i) = args.iter().position(|a| a == "--count-joints") {
+        count_joints(&args[i + 1], args[i + 2].parse().expect("rows"));
+        return;
+    }
     if args.iter().any(|a| a == "--check") {
         floor::check_all(&marg_rec.samples()[..2000]);
         println!("the floors compute the cores' numbers");
@@ -464,6 +468,57 @@ fn count_frame(how: &str, frames: usize, rec: &Recording) {
         _ => panic!("--count-frame multi|single|rust FRAMES"),
     }
     black_box(out);
+}
+
+/// Instruction counts of a joint beside its two filters (`--count-joints filters|hinge|2dof
+/// ROWS`; callgrind, as `scripts/callgrind-counts.sh` runs it): two robust IMU filters on
+/// a hand and a finger in motion the whole time (the joint tests' motion: the hand turning
+/// about every axis, the finger flexing about a hinge; 1,300 rows made beforehand, so that
+/// up to that many rows are one continuous motion) and, unless `filters`, one joint of that kind updated after them each row and
+/// its child segment read (`orient::joints`, Rust API).
+fn count_joints(how: &str, rows: usize) {
+    use orient::joints::{JointKind, JointParams, JointSpec, Joints};
+    let rot = |x: f64, y: f64, z: f64, a: f64| Quat::from_axis_angle(Vec3::new(x, y, z), a);
+    let hand = |t: f64| rot(0.0, 0.0, 1.0, 0.5 * (0.3 * t).sin()) * rot(0.0, 1.0, 0.0, 0.6 * (0.7 * t).sin()) * rot(1.0, 0.0, 0.0, 0.4 * (1.1 * t).sin());
+    let finger = |t: f64| hand(t) * rot(1.0, 0.0, 0.0, 0.5 + 0.8 * (1.9 * t).sin());
+    let dt = 0.01;
+    let sample = |a: Quat, b: Quat| {
+        let d = (a.conj() * b).normalized();
+        let d = if d.w < 0.0 { d.scale(-1.0) } else { d };
+        let s = d.vector().norm();
+        let gyro = if s > 1e-15 { d.vector() * (2.0 * s.atan2(d.w) / s / dt) } else { Vec3::ZERO };
+        Sample { dt, gyro: Some(gyro), accel: Some(b.rotate_inverse(Vec3::new(0.0, 0.0, 9.81))), mag: None }
+    };
+    const MADE: usize = 1300;
+    let made: Vec<[Sample; 2]> = (1..=MADE)
+        .map(|i| {
+            let (t0, t1) = ((i - 1) as f64 * dt, i as f64 * dt);
+            [sample(hand(t0), hand(t1)), sample(finger(t0), finger(t1))]
+        })
+        .collect();
+    let mut filters: Vec<Filter> =
+        (0..2).map(|_| Filter::new(&Config::new(Kind::Robust).unwrap()).unwrap()).collect();
+    let kind = match how {
+        "filters" => None,
+        "hinge" => Some(JointKind::Hinge),
+        "2dof" => Some(JointKind::TwoDof),
+        _ => panic!("--count-joints filters|hinge|2dof ROWS"),
+    };
+    let (z, x) = (Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, 0.0));
+    let (axis_parent, axis_child) = if kind == Some(JointKind::TwoDof) { (z, x) } else { (x, x) };
+    let spec = JointSpec { kind: kind.unwrap_or(JointKind::Hinge), parent: 0, child: 1, axis_parent, axis_child };
+    let mut joints = Joints::new(2, &[spec], &[], JointParams::default()).unwrap();
+    for r in 0..rows {
+        let row = &made[r % MADE];
+        for (f, s) in filters.iter_mut().zip(row) {
+            let _ = black_box(f.update(s));
+        }
+        if kind.is_some() {
+            let refs = [&filters[0], &filters[1]];
+            let _ = black_box(joints.update_from(&refs, row));
+            black_box(joints.segment_quaternion(1));
+        }
+    }
 }
 
 /// One frame of RIG Madgwick MARG filters: one multi-sensor call against one C call
