@@ -207,3 +207,37 @@ fn a_version_2_snapshot_is_refused_as_another_version() {
         assert_eq!(f, before);
     }
 }
+
+/// The configured ranges are the raw sensor's full scale: a raw reading at or beyond one
+/// is refused (or clipped), a calibrated one past it is not, so that a model whose offset
+/// moves a still sensor's reading past a small range leaves the filter usable.
+#[test]
+fn a_range_applies_to_the_raw_reading_not_the_calibrated_one() {
+    for recover in [0.0, 1.0] {
+        let mut c = Config::new(Kind::Madgwick).unwrap();
+        c.set("gyro_range", 0.25).unwrap().unwrap();
+        c.set("saturation_recovery", recover).unwrap().unwrap();
+        let mut f = Filter::new(&c).unwrap();
+        let offset = orient::Model {
+            matrix: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            offset: Vec3::new(0.0, 0.0, -0.254),
+        };
+        f.set_sensor_model(Sensor::Gyro, Some(offset)).unwrap();
+        let still =
+            Sample { dt: 0.01, gyro: Some(Vec3::ZERO), accel: Some(Vec3::new(0.0, 0.0, 9.81)), mag: None };
+        for _ in 0..100 {
+            f.update(&still).unwrap();
+        }
+        assert_eq!(f.flags() & orient::flags::SATURATED, 0);
+        // The calibrated reading, 0.254 rad/s about z, turned the estimate.
+        assert!(f.quaternion().z.abs() > 0.05, "{:?}", f.quaternion());
+        // A raw reading at the range is the sensor's saturation.
+        let at_range = Sample { gyro: Some(Vec3::new(0.0, 0.25, 0.0)), ..still };
+        if recover == 0.0 {
+            assert_eq!(f.update(&at_range), Err(orient::Error::Saturated(orient::Field::Gyro)));
+        } else {
+            f.update(&at_range).unwrap();
+            assert_ne!(f.flags() & orient::flags::SATURATED, 0);
+        }
+    }
+}

@@ -1472,7 +1472,9 @@ namespace Orient.Native
         /// Sets the model applied to one sensor's readings (ORIENT_SENSOR_*) before every
         /// update, in every kind; NULL clears it (the readings are used as they come). The raw
         /// reading is checked first (finite, within its range and physical bound), then the
-        /// calibrated one. Kept by orient_filter_reset and saved in snapshots.
+        /// calibrated one (finite, within its physical bound: ORIENT_PARAM_GYRO_RANGE and
+        /// ORIENT_PARAM_ACCEL_RANGE are the raw sensor's full scale). Kept by orient_filter_reset
+        /// and saved in snapshots.
         /// A model must map the sensor's plausible readings to readings every update accepts:
         /// for the gyroscope every reading of at most 1 rad/s (0 among them), for the
         /// accelerometer standard gravity (9.80665) in any direction, for the magnetometer (any

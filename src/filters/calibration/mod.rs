@@ -219,7 +219,8 @@ pub enum Sensor {
 impl Filter {
     /// Sets (or with `None` clears) the model applied to one sensor's readings before
     /// every update, in every kind. The raw reading is checked first (finite, within its
-    /// range and physical bound), then the calibrated one. A model must map the sensor's
+    /// range and physical bound), then the calibrated one (finite, within its physical
+    /// bound: a range is the raw sensor's full scale). A model must map the sensor's
     /// plausible readings to usable ones (`Model::check`): NonFinite for a NaN or
     /// infinite entry, ZeroVector for a singular matrix or one that sends a plausible
     /// reading to zero, TooLarge for an offset beyond the physical bound or one that

@@ -76,6 +76,11 @@ impl Common {
         (common, set)
     }
 
+    /// These settings with no range set: the limits are the physical bounds.
+    pub(crate) fn without_ranges(self) -> Common {
+        Common { gyro_limit2: MAX_GYRO * MAX_GYRO, accel_limit2: MAX_ACCEL * MAX_ACCEL, ..self }
+    }
+
     /// The gyroscope's limit (rad/s): the root of its square is the limit itself, as in
     /// binary floating point `√(x²)` rounds back to `x` when `x²` neither overflows nor
     /// underflows (the ranges are 0.1 to 1e4 and 1 to 1e5; `from_slots` checks it in

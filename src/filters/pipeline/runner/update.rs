@@ -595,19 +595,30 @@ impl<E: Estimator> Runner<E> {
         }
     }
 
-    /// The update with the sensor models applied: the raw sample is checked, then the
-    /// calibrated one goes through the usual update (which checks it again).
+    /// The update with the sensor models applied: the raw sample is checked (its ranges
+    /// and physical bounds), then the calibrated one goes through the usual update, which
+    /// checks it against the physical bounds only. The configured ranges are the raw
+    /// sensor's full scale: a calibrated reading past one is no saturation, and a model
+    /// whose offset moves a still sensor's reading past a small range would otherwise
+    /// have every sample refused (the fuzz target found one: a gyroscope range of 0.25
+    /// rad/s and an offset of 0.254).
     #[inline(never)]
     pub(crate) fn update_calibrated<S: SampleView>(&mut self, s: &S) -> Result<(), Error> {
         self.check_view(s)?;
         let models = self.models();
         let calibrated = models.apply(s);
-        // The calibrated sample takes the plain path (the models are not applied twice).
+        // The calibrated sample takes the plain path (the models are not applied twice)
+        // without the ranges.
         if let Some(x) = &mut self.extras.0 {
             x.models = Models::default();
         }
         self.refresh_models();
+        let (common, ranges) = (self.common, self.bits & (Common::GYRO_SET | Common::ACCEL_SET));
+        self.common = self.common.without_ranges();
+        self.bits &= !ranges;
         let result = self.update_inline(&calibrated);
+        self.common = common;
+        self.bits |= ranges;
         if let Some(x) = &mut self.extras.0 {
             x.models = models;
         }
