@@ -630,6 +630,97 @@ fn arrays(b: &mut Bytes, n: usize, dt_count: usize) -> Arrays {
     }
 }
 
+/// The joints' blob (orient_joints_save): their whole state, for "refused changes nothing".
+unsafe fn joints_blob(j: *const OrientJoints) -> Vec<u8> {
+    let mut size = 0;
+    assert_eq!(orient_joints_state_size(j, &mut size), OrientStatus::Ok);
+    let mut out = vec![0u8; size];
+    let mut written = 0;
+    assert_eq!(orient_joints_save(j, out.as_mut_ptr(), size, &mut written), OrientStatus::Ok);
+    out
+}
+
+/// After an input's calls, with what bytes remain: joints over the live filters (a
+/// forest or not, axes plausible, zero, NaN or huge), then rows of fuzzed samples. Each
+/// status is one the header lists; a refused row or blob changes nothing; after an
+/// accepted row every segment is a unit quaternion and the state saves and loads. The
+/// filters are only read, so the rest of the input's checks see them as the calls left
+/// them.
+unsafe fn joints_pass(b: &mut Bytes, live: &[*mut OrientFilter]) {
+    if live.len() < 2 || b.empty() {
+        return;
+    }
+    let n = live.len();
+    let count = b.pick(n + 1);
+    let axis = |b: &mut Bytes| match b.u8() % 8 {
+        0 => OrientVec3 { x: b.f64(), y: b.f64(), z: b.f64() },
+        1 => OrientVec3::default(),
+        k => {
+            let v = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+            let i = 3 * (k as usize % 3);
+            OrientVec3 { x: v[i], y: v[i + 1], z: v[i + 2] }
+        }
+    };
+    let specs: Vec<OrientJoint> = (0..count)
+        .map(|k| {
+            // Mostly a chain over the filters; now and then any indices (cycles, a second
+            // parent, a missing segment, a child its own parent), an unknown kind.
+            let (parent, child) = if b.u8() % 4 == 0 { (b.pick(n + 1) as u32, b.pick(n + 1) as u32) } else { (k as u32, k as u32 + 1) };
+            OrientJoint {
+                kind: if b.u8() % 16 == 0 { 2 } else { (b.u8() % 2) as i32 },
+                parent,
+                child,
+                reserved: u32::from(b.u8() % 32 == 0),
+                axis_parent: axis(b),
+                axis_child: axis(b),
+            }
+        })
+        .collect();
+    let mut j = std::ptr::null_mut();
+    let what = format!("joints_new over {n} filters: {specs:?}");
+    let s = check("orient_joints_new", orient_joints_new(specs.as_ptr(), count, n, std::ptr::null(), &mut j), &what);
+    if s != OrientStatus::Ok {
+        assert!(j.is_null(), "{what}: refused with {s:?} and made a handle");
+        return;
+    }
+    for row in 0..6 {
+        if b.empty() {
+            break;
+        }
+        let samples: Vec<OrientSample> = (0..n).map(|_| b.sample()).collect();
+        let before = joints_blob(j);
+        let what = format!("{what}; row {row}: {samples:?}");
+        let s = check("orient_joints_update", orient_joints_update(j, live.as_ptr(), samples.as_ptr(), n), &what);
+        if s != OrientStatus::Ok {
+            assert!(joints_blob(j) == before, "{what}: refused with {s:?} and changed the joints");
+            continue;
+        }
+        for seg in 0..n {
+            let mut q = OrientQuaternion::default();
+            assert_eq!(orient_joints_segment_quaternion(j, seg, &mut q), OrientStatus::Ok);
+            assert!(unit(q), "{what}: segment {seg} {q:?}");
+        }
+        // The state saves and loads into joints of the same rig.
+        let blob = joints_blob(j);
+        let mut twin = std::ptr::null_mut();
+        assert_eq!(orient_joints_new(specs.as_ptr(), count, n, std::ptr::null(), &mut twin), OrientStatus::Ok);
+        assert_eq!(orient_joints_load(twin, blob.as_ptr(), blob.len()), OrientStatus::Ok, "{what}");
+        assert!(joints_blob(twin) == blob, "{what}: a loaded blob saves differently");
+        assert_eq!(orient_joints_free(twin), OrientStatus::Ok);
+    }
+    // A damaged blob changes nothing.
+    let mut blob = joints_blob(j);
+    if !b.empty() && !blob.is_empty() {
+        let at = b.pick(blob.len());
+        blob[at] ^= b.u8() | 1;
+        let before = joints_blob(j);
+        let s = check("orient_joints_load", orient_joints_load(j, blob.as_ptr(), blob.len()), "a damaged joints blob");
+        assert_ne!(s, OrientStatus::Ok, "a damaged joints blob loaded");
+        assert!(joints_blob(j) == before, "a refused joints blob changed the joints");
+    }
+    assert_eq!(orient_joints_free(j), OrientStatus::Ok);
+}
+
 fn ptr_or_null(v: &Option<Vec<f64>>) -> *const f64 {
     v.as_ref().map_or(std::ptr::null(), |v| v.as_ptr())
 }
@@ -1166,6 +1257,7 @@ fuzz_target!(|data: &[u8]| {
             }
         }
     }
+    unsafe { joints_pass(&mut b, &hs.live) };
     // The calibrator still takes plausible readings into a fit.
     let mut copy = cal;
     let n = 300.max(4 * copy.count as usize);

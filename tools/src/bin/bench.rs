@@ -479,7 +479,11 @@ fn count_frame(how: &str, frames: usize, rec: &Recording) {
 fn count_joints(how: &str, rows: usize) {
     use orient::joints::{JointKind, JointParams, JointSpec, Joints};
     let rot = |x: f64, y: f64, z: f64, a: f64| Quat::from_axis_angle(Vec3::new(x, y, z), a);
-    let hand = |t: f64| rot(0.0, 0.0, 1.0, 0.5 * (0.3 * t).sin()) * rot(0.0, 1.0, 0.0, 0.6 * (0.7 * t).sin()) * rot(1.0, 0.0, 0.0, 0.4 * (1.1 * t).sin());
+    let hand = |t: f64| {
+        rot(0.0, 0.0, 1.0, 0.5 * (0.3 * t).sin())
+            * rot(0.0, 1.0, 0.0, 0.6 * (0.7 * t).sin())
+            * rot(1.0, 0.0, 0.0, 0.4 * (1.1 * t).sin())
+    };
     let finger = |t: f64| hand(t) * rot(1.0, 0.0, 0.0, 0.5 + 0.8 * (1.9 * t).sin());
     let dt = 0.01;
     let sample = |a: Quat, b: Quat| {
@@ -506,7 +510,8 @@ fn count_joints(how: &str, rows: usize) {
     };
     let (z, x) = (Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, 0.0));
     let (axis_parent, axis_child) = if kind == Some(JointKind::TwoDof) { (z, x) } else { (x, x) };
-    let spec = JointSpec { kind: kind.unwrap_or(JointKind::Hinge), parent: 0, child: 1, axis_parent, axis_child };
+    let spec =
+        JointSpec { kind: kind.unwrap_or(JointKind::Hinge), parent: 0, child: 1, axis_parent, axis_child };
     let mut joints = Joints::new(2, &[spec], &[], JointParams::default()).unwrap();
     for r in 0..rows {
         let row = &made[r % MADE];
