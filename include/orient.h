@@ -90,6 +90,18 @@ typedef struct OrientFilter OrientFilter;
 #define ORIENT_JOINT_TWO_DOF 1
 
 /**
+ * OrientJoint.axes_frame: the axes are given in the sensors' frames.
+ */
+#define ORIENT_JOINT_AXES_SENSOR 0
+
+/**
+ * OrientJoint.axes_frame: the axes are given in the segments' frames (a segment's
+ * anatomical axes: a finger's flexion axis in its bone's frame), and turned into the
+ * sensors' through the mountings (v_sensor = conj(m) v_segment m).
+ */
+#define ORIENT_JOINT_AXES_SEGMENT 1
+
+/**
  * The most joints one OrientJoints holds (two hands have 30, a suit 19).
  */
 #define ORIENT_MAX_JOINTS 64
@@ -1326,13 +1338,18 @@ typedef struct OrientJoint {
    * The child segment.
    */
   uint32_t child;
-  uint32_t reserved;
   /**
-   * The (first) axis in the parent sensor's frame.
+   * ORIENT_JOINT_AXES_SENSOR (0): the axes below are in the sensors' frames;
+   * ORIENT_JOINT_AXES_SEGMENT: in the segments' frames (anatomical axes), turned into
+   * the sensors' through orient_joints_new's mountings.
+   */
+  uint32_t axes_frame;
+  /**
+   * The (first) axis in the parent's frame.
    */
   struct OrientVec3 axis_parent;
   /**
-   * The hinge's axis, or the second axis of a 2-DoF joint, in the child sensor's frame.
+   * The hinge's axis, or the second axis of a 2-DoF joint, in the child's frame.
    */
   struct OrientVec3 axis_child;
 } OrientJoint;
@@ -1665,7 +1682,9 @@ double orient_madgwick_beta(double gyro_error);
  * is not NULL). INVALID_JOINT for a joint that names a segment at or beyond
  * `n_segments`, whose child is its parent, whose child is already another joint's
  * child, that closes a cycle, or whose axis is zero, NaN or infinite; the detail names
- * the joint. INVALID_ARGUMENT for an unknown kind, a non-zero reserved field or
+ * the joint. Axes given in the segments' frames (`axes_frame` ORIENT_JOINT_AXES_SEGMENT)
+ * are turned into the sensors' through the mountings first. INVALID_ARGUMENT for an
+ * unknown kind or axes_frame, or
  * `n_segments` 0; COUNT_TOO_LARGE for more than ORIENT_MAX_JOINTS joints or
  * ORIENT_MAX_SEGMENTS segments, or when the most handles the library holds are live; a
  * mounting is checked as orient_filter_set_quaternion checks its quaternion:

@@ -421,12 +421,14 @@ OrientStatus align_rig_heading(const Handles& handles, const References& referen
 }
 
 /// A joint of a rig (orient_joints_new): `parent` and `child` index the rig's filters;
-/// axes in the sensors' frames.
-inline OrientJoint hinge(uint32_t parent, uint32_t child, OrientVec3 axis_parent, OrientVec3 axis_child) noexcept {
-    return OrientJoint{ORIENT_JOINT_HINGE, parent, child, 0, axis_parent, axis_child};
+/// axes in the sensors' frames, or with ORIENT_JOINT_AXES_SEGMENT in the segments'.
+inline OrientJoint hinge(uint32_t parent, uint32_t child, OrientVec3 axis_parent, OrientVec3 axis_child,
+                         uint32_t axes_frame = ORIENT_JOINT_AXES_SENSOR) noexcept {
+    return OrientJoint{ORIENT_JOINT_HINGE, parent, child, axes_frame, axis_parent, axis_child};
 }
-inline OrientJoint two_dof(uint32_t parent, uint32_t child, OrientVec3 axis_parent, OrientVec3 axis_child) noexcept {
-    return OrientJoint{ORIENT_JOINT_TWO_DOF, parent, child, 0, axis_parent, axis_child};
+inline OrientJoint two_dof(uint32_t parent, uint32_t child, OrientVec3 axis_parent, OrientVec3 axis_child,
+                           uint32_t axes_frame = ORIENT_JOINT_AXES_SENSOR) noexcept {
+    return OrientJoint{ORIENT_JOINT_TWO_DOF, parent, child, axes_frame, axis_parent, axis_child};
 }
 
 /// A rig's joints (orient_joints_*): each child segment held to its parent without a

@@ -995,23 +995,29 @@ namespace Orient
         private readonly OrientRig rig;
         private readonly IntPtr[] handles;
 
-        /// <summary>A hinge: one axis, in the parent's and in the child's sensor frame.</summary>
-        public static Joint Hinge(int parent, int child, Vec3 axisParent, Vec3 axisChild)
+        /// <summary>A hinge: one axis, in the parent's and in the child's sensor frame (or,
+        /// with inSegmentFrames, in the segments' frames, turned into the sensors' through
+        /// the mountings).</summary>
+        public static Joint Hinge(int parent, int child, Vec3 axisParent, Vec3 axisChild, bool inSegmentFrames = false)
         {
-            return Make(Consts.JointHinge, parent, child, axisParent, axisChild);
+            return Make(Consts.JointHinge, parent, child, axisParent, axisChild, inSegmentFrames);
         }
 
         /// <summary>A 2-DoF joint: the first axis fixed in the parent, the second in the child.</summary>
-        public static Joint TwoDof(int parent, int child, Vec3 axisParent, Vec3 axisChild)
+        public static Joint TwoDof(int parent, int child, Vec3 axisParent, Vec3 axisChild, bool inSegmentFrames = false)
         {
-            return Make(Consts.JointTwoDof, parent, child, axisParent, axisChild);
+            return Make(Consts.JointTwoDof, parent, child, axisParent, axisChild, inSegmentFrames);
         }
 
-        private static Joint Make(uint kind, int parent, int child, Vec3 a, Vec3 b)
+        private static Joint Make(uint kind, int parent, int child, Vec3 a, Vec3 b, bool inSegmentFrames)
         {
             if (parent < 0) throw new ArgumentOutOfRangeException("parent");
             if (child < 0) throw new ArgumentOutOfRangeException("child");
-            return new Joint { Kind = (int)kind, Parent = (uint)parent, Child = (uint)child, AxisParent = a, AxisChild = b };
+            return new Joint
+            {
+                Kind = (int)kind, Parent = (uint)parent, Child = (uint)child, AxisParent = a, AxisChild = b,
+                AxesFrame = inSegmentFrames ? Consts.JointAxesSegment : Consts.JointAxesSensor,
+            };
         }
 
         /// <summary>

@@ -664,13 +664,14 @@ unsafe fn joints_pass(b: &mut Bytes, live: &[*mut OrientFilter]) {
     let specs: Vec<OrientJoint> = (0..count)
         .map(|k| {
             // Mostly a chain over the filters; now and then any indices (cycles, a second
-            // parent, a missing segment, a child its own parent), an unknown kind.
+            // parent, a missing segment, a child its own parent), an unknown kind, axes in
+            // the segments' frames or an unknown axes frame.
             let (parent, child) = if b.u8() % 4 == 0 { (b.pick(n + 1) as u32, b.pick(n + 1) as u32) } else { (k as u32, k as u32 + 1) };
             OrientJoint {
                 kind: if b.u8() % 16 == 0 { 2 } else { (b.u8() % 2) as i32 },
                 parent,
                 child,
-                reserved: u32::from(b.u8() % 32 == 0),
+                axes_frame: u32::from(b.u8() % 16 == 0) + u32::from(b.u8() % 32 == 0),
                 axis_parent: axis(b),
                 axis_child: axis(b),
             }

@@ -13,6 +13,12 @@ pub const ORIENT_JOINT_HINGE: i32 = 0;
 /// in the parent), then about `axis_child` (fixed in the child), the two perpendicular (a
 /// wrist, a finger's MCP joint, an ankle).
 pub const ORIENT_JOINT_TWO_DOF: i32 = 1;
+/// OrientJoint.axes_frame: the axes are given in the sensors' frames.
+pub const ORIENT_JOINT_AXES_SENSOR: u32 = 0;
+/// OrientJoint.axes_frame: the axes are given in the segments' frames (a segment's
+/// anatomical axes: a finger's flexion axis in its bone's frame), and turned into the
+/// sensors' through the mountings (v_sensor = conj(m) v_segment m).
+pub const ORIENT_JOINT_AXES_SEGMENT: u32 = 1;
 /// The most joints one OrientJoints holds (two hands have 30, a suit 19).
 pub const ORIENT_MAX_JOINTS: usize = 64;
 const _: () = assert!(ORIENT_MAX_JOINTS == crate::joints::MAX_JOINTS);
@@ -31,10 +37,13 @@ pub struct OrientJoint {
     pub parent: u32,
     /// The child segment.
     pub child: u32,
-    pub reserved: u32,
-    /// The (first) axis in the parent sensor's frame.
+    /// ORIENT_JOINT_AXES_SENSOR (0): the axes below are in the sensors' frames;
+    /// ORIENT_JOINT_AXES_SEGMENT: in the segments' frames (anatomical axes), turned into
+    /// the sensors' through orient_joints_new's mountings.
+    pub axes_frame: u32,
+    /// The (first) axis in the parent's frame.
     pub axis_parent: OrientVec3,
-    /// The hinge's axis, or the second axis of a 2-DoF joint, in the child sensor's frame.
+    /// The hinge's axis, or the second axis of a 2-DoF joint, in the child's frame.
     pub axis_child: OrientVec3,
 }
 
@@ -114,7 +123,9 @@ fn index(i: usize, n: usize, what: &str) -> Result<usize, OrientStatus> {
 /// is not NULL). INVALID_JOINT for a joint that names a segment at or beyond
 /// `n_segments`, whose child is its parent, whose child is already another joint's
 /// child, that closes a cycle, or whose axis is zero, NaN or infinite; the detail names
-/// the joint. INVALID_ARGUMENT for an unknown kind, a non-zero reserved field or
+/// the joint. Axes given in the segments' frames (`axes_frame` ORIENT_JOINT_AXES_SEGMENT)
+/// are turned into the sensors' through the mountings first. INVALID_ARGUMENT for an
+/// unknown kind or axes_frame, or
 /// `n_segments` 0; COUNT_TOO_LARGE for more than ORIENT_MAX_JOINTS joints or
 /// ORIENT_MAX_SEGMENTS segments, or when the most handles the library holds are live; a
 /// mounting is checked as orient_filter_set_quaternion checks its quaternion:
@@ -165,10 +176,10 @@ pub unsafe extern "C" fn orient_joints_new(
                     ))
                 }
             };
-            if j.reserved != 0 {
+            if j.axes_frame > ORIENT_JOINT_AXES_SEGMENT {
                 return Err(fail(
                     OrientStatus::InvalidArgument,
-                    format_args!("joint {k}: reserved field not 0"),
+                    format_args!("joint {k}: unknown axes_frame {}", j.axes_frame),
                 ));
             }
             *spec = JointSpec {
@@ -190,6 +201,16 @@ pub unsafe extern "C" fn orient_joints_new(
                     fail(status, format_args!("mounting {s}: {e}"))
                 })?;
                 *into = q;
+            }
+        }
+        // Axes given in the segments' frames, into the sensors' (a segment index the rig
+        // does not have is left for Joints::new to name).
+        for (j, spec) in given.iter().zip(specs.iter_mut()) {
+            if j.axes_frame == ORIENT_JOINT_AXES_SEGMENT
+                && spec.parent < n_segments
+                && spec.child < n_segments
+            {
+                *spec = spec.in_sensor_frames(m[spec.parent], m[spec.child]);
             }
         }
         let j = Joints::new(n_segments, &specs[..n_joints], &m[..n_segments], JointParams::default())

@@ -85,6 +85,21 @@ pub struct JointSpec {
     pub axis_child: Vec3,
 }
 
+impl JointSpec {
+    /// This joint with its axes given in the segments' frames (anatomical axes: a
+    /// finger's flexion axis in its bone's frame) turned into the sensors' frames through
+    /// the mountings `m_parent`, `m_child` (sensor to segment, `v_segment = m v_sensor`,
+    /// so `v_sensor = m⁻¹ v_segment`): for mountings from a rig calibration at the
+    /// reference pose, or known from how the sensors are strapped on.
+    pub fn in_sensor_frames(self, m_parent: Quat, m_child: Quat) -> JointSpec {
+        JointSpec {
+            axis_parent: m_parent.normalized().rotate_inverse(self.axis_parent),
+            axis_child: m_child.normalized().rotate_inverse(self.axis_child),
+            ..self
+        }
+    }
+}
+
 /// Why a rig's joints or a row of its samples were refused. Nothing changes on an error.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum JointError {

@@ -367,3 +367,15 @@ fn a_snapshot_continues_bit_for_bit_and_bad_blobs_change_nothing() {
     bad.save(&mut b3).unwrap();
     refused(&b3, StateError::Corrupt);
 }
+
+#[test]
+fn segment_axes_go_into_the_sensor_frames_through_the_mountings() {
+    // The child's sensor sits a quarter turn about z on its segment: the segment's x is
+    // the sensor's -y; the parent's sensor is the segment.
+    let m = rot(Z, core::f64::consts::FRAC_PI_2);
+    let j = hinge(0, 1, X).in_sensor_frames(Quat::IDENTITY, m);
+    assert!((j.axis_parent - X).norm() < 1e-15);
+    assert!((j.axis_child - Vec3::new(0.0, -1.0, 0.0)).norm() < 1e-15, "{:?}", j.axis_child);
+    // Back through the mounting: the segment's axis.
+    assert!((m.rotate(j.axis_child) - X).norm() < 1e-15);
+}

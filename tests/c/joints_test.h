@@ -131,7 +131,7 @@ static void joints_new_refusals(void) {
     j[0].kind = 7;
     CHECK_STATUS(orient_joints_new(j, 1, 2, NULL, &out), ORIENT_STATUS_INVALID_ARGUMENT);
     j[0] = hinge_joint(0, 1);
-    j[0].reserved = 1;
+    j[0].axes_frame = 2;
     CHECK_STATUS(orient_joints_new(j, 1, 2, NULL, &out), ORIENT_STATUS_INVALID_ARGUMENT);
     j[0] = hinge_joint(0, 1);
     CHECK_STATUS(orient_joints_new(j, 0, 0, NULL, &out), ORIENT_STATUS_INVALID_ARGUMENT);
@@ -146,6 +146,28 @@ static void joints_new_refusals(void) {
     m[1].w = 1e200, m[1].x = 1e200;
     CHECK_STATUS(orient_joints_new(j, 1, 2, m, &out), ORIENT_STATUS_TOO_LARGE);
     CHECK(out == NULL);
+    /* Axes in the segments' frames go through the mountings: the child's sensor sits
+       turned a quarter turn about z on its segment, so the segment's x axis is the
+       sensor's -y. */
+    {
+        OrientQuaternion mounts[2] = {{1, 0, 0, 0}, {0.7071067811865476, 0, 0, 0.7071067811865476}};
+        OrientVec3 pa, ca;
+        j[0] = hinge_joint(0, 1);
+        j[0].axes_frame = ORIENT_JOINT_AXES_SEGMENT;
+        CHECK_STATUS(orient_joints_new(j, 1, 2, mounts, &out), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_axes(out, 0, &pa, &ca), ORIENT_STATUS_OK);
+        CHECK(fabs(pa.x - 1.0) < 1e-12 && fabs(ca.y + 1.0) < 1e-12 && fabs(ca.x) < 1e-12);
+        CHECK_STATUS(orient_joints_free(out), ORIENT_STATUS_OK);
+        j[0].axes_frame = ORIENT_JOINT_AXES_SENSOR;
+        CHECK_STATUS(orient_joints_new(j, 1, 2, mounts, &out), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_axes(out, 0, &pa, &ca), ORIENT_STATUS_OK);
+        CHECK(fabs(ca.x - 1.0) < 1e-12);
+        CHECK_STATUS(orient_joints_free(out), ORIENT_STATUS_OK);
+        j[0].axes_frame = ORIENT_JOINT_AXES_SEGMENT;
+        j[0].child = 9; /* a missing segment is still named, not read */
+        CHECK_STATUS(orient_joints_new(j, 1, 2, mounts, &out), ORIENT_STATUS_INVALID_JOINT);
+        j[0] = hinge_joint(0, 1);
+    }
     /* A forest is a rig: two roots, a segment in no joint, no joint at all. */
     j[1] = hinge_joint(2, 3);
     CHECK_STATUS(orient_joints_new(j, 2, 5, NULL, &out), ORIENT_STATUS_OK);

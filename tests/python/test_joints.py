@@ -115,3 +115,15 @@ def test_bad_rigs_and_rows_are_refused():
         with pytest.raises(OrientError) as e:
             orient.run_rig(filters, joints, gyr, acc, dt=0.01)
         assert e.value.status == Status.NON_FINITE and e.value.index == 4
+
+
+def test_axes_in_the_segment_frames_go_through_the_mountings():
+    x = [1.0, 0.0, 0.0]
+    quarter = [math.cos(math.pi / 4), 0.0, 0.0, math.sin(math.pi / 4)]  # about z
+    mountings = np.array([[1.0, 0.0, 0.0, 0.0], quarter])
+    with orient.Joints([orient.Joint("hinge", 0, 1, x, x, axes="segment")], 2, mountings=mountings) as j:
+        a, b = j.axes(0)
+        np.testing.assert_allclose(a, x, atol=1e-12)
+        np.testing.assert_allclose(b, [0.0, -1.0, 0.0], atol=1e-12)
+    with pytest.raises(ValueError):
+        orient.Joints([orient.Joint("hinge", 0, 1, x, x, axes="world")], 2)

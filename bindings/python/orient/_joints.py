@@ -21,24 +21,29 @@ SAMPLE_DTYPE = _record_dtype(n.OrientSample)
 
 @dataclass
 class Joint:
-    """One joint: ``kind`` ``"hinge"`` (one axis, ``axis_parent`` in the parent sensor's
-    frame and ``axis_child`` in the child's) or ``"2dof"`` (the first axis fixed in the
-    parent, the second in the child); ``parent`` and ``child`` index the rig's filters."""
+    """One joint: ``kind`` ``"hinge"`` (one axis, ``axis_parent`` in the parent's frame
+    and ``axis_child`` in the child's) or ``"2dof"`` (the first axis fixed in the parent,
+    the second in the child); ``parent`` and ``child`` index the rig's filters. ``axes``:
+    ``"sensor"`` (default), the axes are in the sensors' frames; ``"segment"``, in the
+    segments' (anatomical) frames, turned into the sensors' through the mountings."""
 
     kind: str
     parent: int
     child: int
     axis_parent: Sequence[float]
     axis_child: Sequence[float]
+    axes: str = "sensor"
 
     def _native(self) -> n.OrientJoint:
         if self.kind not in _KINDS:
             raise ValueError(f"joint kind must be 'hinge' or '2dof', got {self.kind!r}")
+        if self.axes not in ("sensor", "segment"):
+            raise ValueError(f"joint axes must be 'sensor' or 'segment', got {self.axes!r}")
         return n.OrientJoint(
             _KINDS[self.kind],
             int(self.parent),
             int(self.child),
-            0,
+            n.JOINT_AXES_SEGMENT if self.axes == "segment" else n.JOINT_AXES_SENSOR,
             _vec3(self.axis_parent, "axis_parent"),
             _vec3(self.axis_child, "axis_child"),
         )

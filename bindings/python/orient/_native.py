@@ -36,6 +36,14 @@ JOINT_HINGE = 0
 #: wrist, a finger's MCP joint, an ankle).
 JOINT_TWO_DOF = 1
 
+#: OrientJoint.axes_frame: the axes are given in the sensors' frames.
+JOINT_AXES_SENSOR = 0
+
+#: OrientJoint.axes_frame: the axes are given in the segments' frames (a segment's
+#: anatomical axes: a finger's flexion axis in its bone's frame), and turned into the
+#: sensors' through the mountings (v_sensor = conj(m) v_segment m).
+JOINT_AXES_SEGMENT = 1
+
 #: The most joints one OrientJoints holds (two hands have 30, a suit 19).
 MAX_JOINTS = 64
 
@@ -919,10 +927,13 @@ class OrientJoint(Structure):
         ("parent", c_uint32),
         # The child segment.
         ("child", c_uint32),
-        ("reserved", c_uint32),
-        # The (first) axis in the parent sensor's frame.
+        # ORIENT_JOINT_AXES_SENSOR (0): the axes below are in the sensors' frames;
+        # ORIENT_JOINT_AXES_SEGMENT: in the segments' frames (anatomical axes), turned into
+        # the sensors' through orient_joints_new's mountings.
+        ("axes_frame", c_uint32),
+        # The (first) axis in the parent's frame.
         ("axis_parent", OrientVec3),
-        # The hinge's axis, or the second axis of a 2-DoF joint, in the child sensor's frame.
+        # The hinge's axis, or the second axis of a 2-DoF joint, in the child's frame.
         ("axis_child", OrientVec3),
     ]
 

@@ -169,8 +169,8 @@ public class OrientHandRig : MonoBehaviour
     }
 
     /// <summary>The hand's joints from the bones' names (the avatar's: "...Hand",
-    /// "...IndexProximal", "...IndexIntermediate", ...), with the axes in each sensor's
-    /// frame through the mountings the calibration set.</summary>
+    /// "...IndexProximal", "...IndexIntermediate", ...), their axes in the bones' frames,
+    /// with the mountings the calibration set.</summary>
     private void BindJoints()
     {
         var list = new List<Joint>();
@@ -184,22 +184,16 @@ public class OrientHandRig : MonoBehaviour
             if (parentName == name) continue;
             int p = Array.FindIndex(driven, b => name.EndsWith("Proximal") ? b.name.EndsWith("Hand") : b.name == parentName);
             if (p < 0) continue;
+            // Axes in the bones' frames; the library turns them into the sensors' through
+            // the mountings.
             Vec3 flexion = flexionAxis.ToOrient();
             if (name.EndsWith("Proximal"))
-                list.Add(OrientJoints.TwoDof(p, c, InSensor(mountings[p], abductionAxis.ToOrient()), InSensor(mountings[c], flexion)));
+                list.Add(OrientJoints.TwoDof(p, c, abductionAxis.ToOrient(), flexion, true));
             else
-                list.Add(OrientJoints.Hinge(p, c, InSensor(mountings[p], flexion), InSensor(mountings[c], flexion)));
+                list.Add(OrientJoints.Hinge(p, c, flexion, flexion, true));
         }
         if (joints != null) joints.Dispose();
         joints = list.Count > 0 ? new OrientJoints(rig, list.ToArray(), mountings) : null;
-    }
-
-    /// <summary>A segment-frame axis in the sensor's frame: m^-1 v m (v_segment = m v_sensor).</summary>
-    private static Vec3 InSensor(Orient.Native.Quaternion m, Vec3 v)
-    {
-        var conj = new Orient.Native.Quaternion { W = m.W, X = -m.X, Y = -m.Y, Z = -m.Z };
-        var r = UnityConvert.Mul(UnityConvert.Mul(conj, new Orient.Native.Quaternion { W = 0, X = v.X, Y = v.Y, Z = v.Z }), m);
-        return new Vec3(r.X, r.Y, r.Z);
     }
 
     /// <summary>The wrist and finger joints of a Humanoid avatar that the avatar maps.</summary>
