@@ -988,7 +988,8 @@ enum OrientStatus
   /**
    * A joint of orient_joints_new names a segment the rig does not have, is its own
    * child's parent, gives its child a second parent, closes a cycle, or has an axis
-   * that is zero, NaN or infinite; orient_last_error names the joint.
+   * that is NaN, infinite, or too short or too long to normalise; orient_last_error
+   * names the joint.
    */
   ORIENT_STATUS_INVALID_JOINT = 22,
 };
@@ -1323,7 +1324,7 @@ typedef struct OrientParamInfo {
 /**
  * One joint of a rig: segment indices (a segment is one sensor with its filter, by its
  * index in the filters array of orient_joints_update) and axes in the sensors' frames
- * (any length but zero; normalised).
+ * (normalised: any length whose square is a normal finite double).
  */
 typedef struct OrientJoint {
   /**
@@ -1681,14 +1682,16 @@ double orient_madgwick_beta(double gyro_error);
  * filter's. On success `*out` is a new handle; on failure it is set to NULL (when `out`
  * is not NULL). INVALID_JOINT for a joint that names a segment at or beyond
  * `n_segments`, whose child is its parent, whose child is already another joint's
- * child, that closes a cycle, or whose axis is zero, NaN or infinite; the detail names
- * the joint. Axes given in the segments' frames (`axes_frame` ORIENT_JOINT_AXES_SEGMENT)
+ * child, that closes a cycle, or whose axis is NaN or infinite or has a squared norm
+ * that is not a normal finite double (zero, too small or too large to normalise); the
+ * detail names the joint. Axes given in the segments' frames (`axes_frame` ORIENT_JOINT_AXES_SEGMENT)
  * are turned into the sensors' through the mountings first. INVALID_ARGUMENT for an
  * unknown kind or axes_frame, or
  * `n_segments` 0; COUNT_TOO_LARGE for more than ORIENT_MAX_JOINTS joints or
  * ORIENT_MAX_SEGMENTS segments, or when the most handles the library holds are live; a
  * mounting is checked as orient_filter_set_quaternion checks its quaternion:
- * NON_FINITE, ZERO_VECTOR or TOO_LARGE.
+ * NON_FINITE, ZERO_VECTOR or TOO_LARGE. OUT_OF_MEMORY when the joints' memory (about 3.4
+ * KiB a joint) cannot be allocated.
  */
 OrientStatus orient_joints_new(const struct OrientJoint *joints,
                                size_t n_joints,
@@ -1774,8 +1777,9 @@ OrientStatus orient_joints_axes(const struct OrientJoints *joints,
                                 struct OrientVec3 *axis_child);
 
 /**
- * Starts every joint's estimate over: no correction, the axes as given. For a rig whose
- * filters were reset or whose headings were aligned again (orient_rig_align_heading).
+ * Starts every joint's estimate over: no correction, the axes as given; the outputs are
+ * then the last update's filter orientations, uncorrected. For a rig whose filters were
+ * reset or whose headings were aligned again (orient_rig_align_heading).
  */
 OrientStatus orient_joints_reset(struct OrientJoints *joints);
 
@@ -1814,7 +1818,8 @@ OrientStatus orient_joints_load(struct OrientJoints *joints, const uint8_t *buff
  * the axis the same on both sides (Seel, Schauer, Raisch 2012), with its quality.
  * Allocates nothing. INVALID_ARGUMENT for n = 0, COUNT_TOO_LARGE for an `n` no array can
  * hold, NON_FINITE for a NaN or infinite reading or guess, ZERO_VECTOR for a guess too
- * short to normalise (its squared norm below DBL_MIN).
+ * short to normalise (its squared norm below DBL_MIN), TOO_LARGE for one whose squared
+ * norm overflows.
  */
 OrientStatus orient_estimate_hinge_axes(const struct OrientVec3 *gyro_parent,
                                         const struct OrientVec3 *gyro_child,

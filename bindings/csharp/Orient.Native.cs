@@ -134,7 +134,8 @@ namespace Orient.Native
         /// <summary>
         /// A joint of orient_joints_new names a segment the rig does not have, is its own
         /// child's parent, gives its child a second parent, closes a cycle, or has an axis
-        /// that is zero, NaN or infinite; orient_last_error names the joint.
+        /// that is NaN, infinite, or too short or too long to normalise; orient_last_error
+        /// names the joint.
         /// </summary>
         InvalidJoint = 22,
     }
@@ -1296,7 +1297,7 @@ namespace Orient.Native
     /// <summary>
     /// One joint of a rig: segment indices (a segment is one sensor with its filter, by its
     /// index in the filters array of orient_joints_update) and axes in the sensors' frames
-    /// (any length but zero; normalised).
+    /// (normalised: any length whose square is a normal finite double).
     /// </summary>
     [StructLayout(LayoutKind.Sequential)]
     public partial struct Joint
@@ -1699,14 +1700,16 @@ namespace Orient.Native
         /// filter's. On success `*out` is a new handle; on failure it is set to NULL (when `out`
         /// is not NULL). INVALID_JOINT for a joint that names a segment at or beyond
         /// `n_segments`, whose child is its parent, whose child is already another joint's
-        /// child, that closes a cycle, or whose axis is zero, NaN or infinite; the detail names
-        /// the joint. Axes given in the segments' frames (`axes_frame` ORIENT_JOINT_AXES_SEGMENT)
+        /// child, that closes a cycle, or whose axis is NaN or infinite or has a squared norm
+        /// that is not a normal finite double (zero, too small or too large to normalise); the
+        /// detail names the joint. Axes given in the segments' frames (`axes_frame` ORIENT_JOINT_AXES_SEGMENT)
         /// are turned into the sensors' through the mountings first. INVALID_ARGUMENT for an
         /// unknown kind or axes_frame, or
         /// `n_segments` 0; COUNT_TOO_LARGE for more than ORIENT_MAX_JOINTS joints or
         /// ORIENT_MAX_SEGMENTS segments, or when the most handles the library holds are live; a
         /// mounting is checked as orient_filter_set_quaternion checks its quaternion:
-        /// NON_FINITE, ZERO_VECTOR or TOO_LARGE.
+        /// NON_FINITE, ZERO_VECTOR or TOO_LARGE. OUT_OF_MEMORY when the joints' memory (about 3.4
+        /// KiB a joint) cannot be allocated.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_joints_new(Joint* joints, UIntPtr nJoints, UIntPtr nSegments, Quaternion* mountings, IntPtr* @out);
@@ -1783,8 +1786,9 @@ namespace Orient.Native
         public static extern Status orient_joints_axes(IntPtr joints, UIntPtr joint, Vec3* axisParent, Vec3* axisChild);
 
         /// <summary>
-        /// Starts every joint's estimate over: no correction, the axes as given. For a rig whose
-        /// filters were reset or whose headings were aligned again (orient_rig_align_heading).
+        /// Starts every joint's estimate over: no correction, the axes as given; the outputs are
+        /// then the last update's filter orientations, uncorrected. For a rig whose filters were
+        /// reset or whose headings were aligned again (orient_rig_align_heading).
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_joints_reset(IntPtr joints);
@@ -1824,7 +1828,8 @@ namespace Orient.Native
         /// the axis the same on both sides (Seel, Schauer, Raisch 2012), with its quality.
         /// Allocates nothing. INVALID_ARGUMENT for n = 0, COUNT_TOO_LARGE for an `n` no array can
         /// hold, NON_FINITE for a NaN or infinite reading or guess, ZERO_VECTOR for a guess too
-        /// short to normalise (its squared norm below DBL_MIN).
+        /// short to normalise (its squared norm below DBL_MIN), TOO_LARGE for one whose squared
+        /// norm overflows.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_estimate_hinge_axes(Vec3* gyroParent, Vec3* gyroChild, UIntPtr n, Vec3 guessParent, Vec3 guessChild, HingeAxes* @out);

@@ -1078,6 +1078,7 @@ namespace Orient
                 s = NativeMethods.orient_joints_update(H, ph, ps, (UIntPtr)samples.Length);
             }
             GC.KeepAlive(rig);
+            GC.KeepAlive(this);
             OrientException.Check(s);
         }
 
@@ -1086,6 +1087,7 @@ namespace Orient
         {
             Native.Quaternion q;
             OrientException.Check(NativeMethods.orient_joints_segment_quaternion(H, (UIntPtr)Index(segment), &q));
+            GC.KeepAlive(this);
             return q;
         }
 
@@ -1098,6 +1100,7 @@ namespace Orient
         {
             double* a = stackalloc double[2];
             OrientException.Check(NativeMethods.orient_joints_angles(H, (UIntPtr)Index(joint), a));
+            GC.KeepAlive(this);
             first = a[0];
             second = a[1];
         }
@@ -1107,6 +1110,7 @@ namespace Orient
         {
             double r;
             OrientException.Check(NativeMethods.orient_joints_rating(H, (UIntPtr)Index(joint), &r));
+            GC.KeepAlive(this);
             return r;
         }
 
@@ -1115,6 +1119,7 @@ namespace Orient
         {
             double h, s;
             OrientException.Check(NativeMethods.orient_joints_relative_heading(H, (UIntPtr)Index(joint), &h, &s));
+            GC.KeepAlive(this);
             sigma = s;
             return h;
         }
@@ -1124,6 +1129,7 @@ namespace Orient
         {
             Vec3 a, b;
             OrientException.Check(NativeMethods.orient_joints_axes(H, (UIntPtr)Index(joint), &a, &b));
+            GC.KeepAlive(this);
             axisParent = a;
             axisChild = b;
         }
@@ -1132,6 +1138,7 @@ namespace Orient
         public void Reset()
         {
             OrientException.Check(NativeMethods.orient_joints_reset(H));
+            GC.KeepAlive(this);
         }
 
         /// <summary>A snapshot of the joints' estimates with the rig's description; save
@@ -1146,6 +1153,7 @@ namespace Orient
             {
                 OrientException.Check(NativeMethods.orient_joints_save(H, p, size, &written));
             }
+            GC.KeepAlive(this);
             return blob;
         }
 
@@ -1161,6 +1169,7 @@ namespace Orient
                 byte* data = blob.Length == 0 ? &empty : p;
                 OrientException.Check(NativeMethods.orient_joints_load(H, data, (UIntPtr)blob.Length));
             }
+            GC.KeepAlive(this);
         }
 
         /// <summary>
@@ -1176,10 +1185,15 @@ namespace Orient
                 throw new ArgumentException("as many child readings as parent readings", "gyroChild");
             HingeAxes h;
             Status s;
+            Vec3 empty = new Vec3();
             fixed (Vec3* pp = gyroParent)
             fixed (Vec3* pc = gyroChild)
             {
-                s = NativeMethods.orient_estimate_hinge_axes(pp, pc, (UIntPtr)gyroParent.Length, guessParent, guessChild, &h);
+                // Empty arrays pin as NULL; the library wants pointers even for n = 0 (and
+                // says INVALID_ARGUMENT for it).
+                Vec3* a = gyroParent.Length == 0 ? &empty : pp;
+                Vec3* b = gyroChild.Length == 0 ? &empty : pc;
+                s = NativeMethods.orient_estimate_hinge_axes(a, b, (UIntPtr)gyroParent.Length, guessParent, guessChild, &h);
             }
             OrientException.Check(s);
             return h;

@@ -25,7 +25,9 @@ pub(crate) unsafe fn handle<'a>(h: *const OrientFilter) -> Result<&'a OrientFilt
     if h.is_null() {
         return Err(null());
     }
-    if !registry::HANDLES.contains(h as usize) {
+    // A handle is an 8-byte aligned box: a pointer that is not (a joints handle's key,
+    // bit 1 set, among them) is refused before the lookup.
+    if h as usize & 7 != 0 || !registry::HANDLES.contains(h as usize) {
         return Err(invalid_handle(h));
     }
     Ok(&*h)
@@ -102,7 +104,7 @@ pub unsafe extern "C" fn orient_filter_free(filter: *mut OrientFilter) -> Orient
         }
         // Taken out of the registry first: of two frees of one handle, even from two
         // threads, exactly one gets here.
-        if !registry::HANDLES.remove(filter as usize) {
+        if filter as usize & 7 != 0 || !registry::HANDLES.remove(filter as usize) {
             return Err(invalid_handle(filter));
         }
         drop(Box::from_raw(filter));

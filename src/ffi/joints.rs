@@ -27,7 +27,7 @@ pub const ORIENT_MAX_SEGMENTS: usize = 256;
 
 /// One joint of a rig: segment indices (a segment is one sensor with its filter, by its
 /// index in the filters array of orient_joints_update) and axes in the sensors' frames
-/// (any length but zero; normalised).
+/// (normalised: any length whose square is a normal finite double).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct OrientJoint {
@@ -70,16 +70,17 @@ pub struct OrientJoints {
 
 /// The registry entry of a joints handle: its address with bit 1 set, which no filter's
 /// address has (both are 8-byte aligned boxes), so neither kind of handle passes for the
-/// other.
-fn key(h: *const OrientJoints) -> usize {
-    h as usize | 2
+/// other. A pointer that is not 8-byte aligned is no handle of either kind (its key would
+/// be some handle's): refused before the lookup, here and in `handle`.
+fn key(h: *const OrientJoints) -> Option<usize> {
+    (h as usize & 7 == 0).then_some(h as usize | 2)
 }
 
 unsafe fn joints_ref<'a>(h: *const OrientJoints) -> Result<&'a OrientJoints, OrientStatus> {
     if h.is_null() {
         return Err(null());
     }
-    if !registry::HANDLES.contains(key(h)) {
+    if !key(h).is_some_and(|k| registry::HANDLES.contains(k)) {
         return Err(fail(OrientStatus::InvalidHandle, format_args!("not a live OrientJoints handle: {h:p}")));
     }
     Ok(&*h)
@@ -92,7 +93,8 @@ unsafe fn joints_mut<'a>(h: *mut OrientJoints) -> Result<&'a mut OrientJoints, O
 
 fn joint_error(e: JointError) -> OrientStatus {
     let status = match e {
-        JointError::TooMany(_) => OrientStatus::CountTooLarge,
+        JointError::TooMany(_) | JointError::TooManySegments(_) => OrientStatus::CountTooLarge,
+        JointError::OutOfMemory => OrientStatus::OutOfMemory,
         JointError::NoSuchSegment(_)
         | JointError::OwnParent(_)
         | JointError::TwoParents(_)
@@ -122,14 +124,16 @@ fn index(i: usize, n: usize, what: &str) -> Result<usize, OrientStatus> {
 /// filter's. On success `*out` is a new handle; on failure it is set to NULL (when `out`
 /// is not NULL). INVALID_JOINT for a joint that names a segment at or beyond
 /// `n_segments`, whose child is its parent, whose child is already another joint's
-/// child, that closes a cycle, or whose axis is zero, NaN or infinite; the detail names
-/// the joint. Axes given in the segments' frames (`axes_frame` ORIENT_JOINT_AXES_SEGMENT)
+/// child, that closes a cycle, or whose axis is NaN or infinite or has a squared norm
+/// that is not a normal finite double (zero, too small or too large to normalise); the
+/// detail names the joint. Axes given in the segments' frames (`axes_frame` ORIENT_JOINT_AXES_SEGMENT)
 /// are turned into the sensors' through the mountings first. INVALID_ARGUMENT for an
 /// unknown kind or axes_frame, or
 /// `n_segments` 0; COUNT_TOO_LARGE for more than ORIENT_MAX_JOINTS joints or
 /// ORIENT_MAX_SEGMENTS segments, or when the most handles the library holds are live; a
 /// mounting is checked as orient_filter_set_quaternion checks its quaternion:
-/// NON_FINITE, ZERO_VECTOR or TOO_LARGE.
+/// NON_FINITE, ZERO_VECTOR or TOO_LARGE. OUT_OF_MEMORY when the joints' memory (about 3.4
+/// KiB a joint) cannot be allocated.
 #[no_mangle]
 pub unsafe extern "C" fn orient_joints_new(
     joints: *const OrientJoint,
@@ -216,7 +220,7 @@ pub unsafe extern "C" fn orient_joints_new(
         let j = Joints::new(n_segments, &specs[..n_joints], &m[..n_segments], JointParams::default())
             .map_err(joint_error)?;
         let h = Box::into_raw(Box::new(OrientJoints { joints: j }));
-        if !registry::HANDLES.insert(key(h)) {
+        if !key(h).is_some_and(|k| registry::HANDLES.insert(k)) {
             drop(Box::from_raw(h));
             return Err(fail(
                 OrientStatus::CountTooLarge,
@@ -238,7 +242,7 @@ pub unsafe extern "C" fn orient_joints_free(joints: *mut OrientJoints) -> Orient
         if joints.is_null() {
             return Ok(());
         }
-        if !registry::HANDLES.remove(key(joints)) {
+        if !key(joints).is_some_and(|k| registry::HANDLES.remove(k)) {
             return Err(fail(
                 OrientStatus::InvalidHandle,
                 format_args!("not a live OrientJoints handle: {joints:p}"),
@@ -402,8 +406,9 @@ pub unsafe extern "C" fn orient_joints_axes(
     })
 }
 
-/// Starts every joint's estimate over: no correction, the axes as given. For a rig whose
-/// filters were reset or whose headings were aligned again (orient_rig_align_heading).
+/// Starts every joint's estimate over: no correction, the axes as given; the outputs are
+/// then the last update's filter orientations, uncorrected. For a rig whose filters were
+/// reset or whose headings were aligned again (orient_rig_align_heading).
 #[no_mangle]
 pub unsafe extern "C" fn orient_joints_reset(joints: *mut OrientJoints) -> OrientStatus {
     guard(|| {
@@ -468,7 +473,8 @@ pub unsafe extern "C" fn orient_joints_load(
 /// the axis the same on both sides (Seel, Schauer, Raisch 2012), with its quality.
 /// Allocates nothing. INVALID_ARGUMENT for n = 0, COUNT_TOO_LARGE for an `n` no array can
 /// hold, NON_FINITE for a NaN or infinite reading or guess, ZERO_VECTOR for a guess too
-/// short to normalise (its squared norm below DBL_MIN).
+/// short to normalise (its squared norm below DBL_MIN), TOO_LARGE for one whose squared
+/// norm overflows.
 #[no_mangle]
 pub unsafe extern "C" fn orient_estimate_hinge_axes(
     gyro_parent: *const OrientVec3,
@@ -493,7 +499,10 @@ pub unsafe extern "C" fn orient_estimate_hinge_axes(
             if !g.is_finite() {
                 return Err(fail(OrientStatus::NonFinite, format_args!("a guess is NaN or infinite")));
             }
-            if !(g.norm_squared() >= f64::MIN_POSITIVE && g.norm_squared().is_finite()) {
+            if !g.norm_squared().is_finite() {
+                return Err(fail(OrientStatus::TooLarge, format_args!("a guess's squared norm overflows")));
+            }
+            if g.norm_squared() < f64::MIN_POSITIVE {
                 return Err(fail(
                     OrientStatus::ZeroVector,
                     format_args!("a guess is too short to normalise"),

@@ -95,7 +95,8 @@ pub enum OrientStatus {
     OutOfMemory = 21,
     /// A joint of orient_joints_new names a segment the rig does not have, is its own
     /// child's parent, gives its child a second parent, closes a cycle, or has an axis
-    /// that is zero, NaN or infinite; orient_last_error names the joint.
+    /// that is NaN, infinite, or too short or too long to normalise; orient_last_error
+    /// names the joint.
     InvalidJoint = 22,
 }
 

@@ -503,29 +503,78 @@ impl JointEstimator {
         c.f64(&mut self.info_scale);
     }
 
+    /// For tests: states no estimate could hold, each finite (so that only `holds`
+    /// refuses them): a negative variance, a tilt beyond its bound, an indefinite
+    /// covariance (a correlation of 1.004), an asymmetric one.
     #[cfg(test)]
-    pub(crate) fn corrupt_for_test(&mut self) {
-        self.p[3][3] = -1.0;
+    pub(crate) fn corrupt_for_test(&mut self, how: usize) {
+        match how {
+            0 => self.p[3][3] = -1.0,
+            1 => self.x[TX] = 1e200,
+            2 => {
+                let c = 1.004 * (self.p[UP_][UP_] * self.p[UP_ + 1][UP_ + 1]).sqrt();
+                self.p[UP_][UP_ + 1] = c;
+                self.p[UP_ + 1][UP_] = c;
+            }
+            _ => self.p[0][5] += 1e-9,
+        }
     }
 
-    /// A state this estimator could hold: unit, orthogonal axes with their bases, a
-    /// covariance with a non-negative diagonal that bounds every entry (|P_ik|² ≤ P_ii
-    /// P_kk, with 1 % for rounding: a covariance that breaks it could make an innovation's
-    /// variance negative and the joint skip every update), a rating in [0, 1], a rest time
-    /// not negative, a positive information scale.
+    /// A state this estimator could hold (a loaded blob's): unit, orthogonal axes with
+    /// their bases; states within their physical bounds (relative heading 1e4 rad, each
+    /// residual bias 1 rad/s, lever arms 10 m, tilt 1 rad; the axis corrections, folded
+    /// into the axes after each update, 1 rad); an exactly symmetric covariance (every
+    /// update keeps it so) that is positive semi-definite to rounding (a Cholesky
+    /// factorisation of P + 1e-9 max(P_ii) I), with variances up to 1e6: anything else
+    /// could make an innovation's variance negative, and the joint skip every update; a
+    /// rating in [0, 1], a rest time not negative, a positive information scale, and a
+    /// finite correction.
     pub(crate) fn holds(&self) -> bool {
         let unit = |v: Vec3| (v.norm_squared() - 1.0).abs() < 1e-9;
         let axes = [self.p_axis, self.c_axis].iter().all(|a| {
             unit(a.j) && unit(a.b1) && unit(a.b2) && a.j.dot(a.b1).abs() < 1e-9 && a.j.dot(a.b2).abs() < 1e-9
         });
-        let p = &self.p;
-        let cov = (0..N).all(|i| {
-            p[i][i] >= 0.0 && (0..N).all(|k| p[i][k] * p[i][k] <= p[i][i] * p[k][k] * 1.01 + 1e-300)
-        });
-        axes && cov
+        let within =
+            |range: core::ops::Range<usize>, bound: f64| self.x[range].iter().all(|v| v.abs() <= bound);
+        let states = within(0..1, 1e4)
+            && within(BP..UP_, 1.0)
+            && within(UP_..OP, 1.0)
+            && within(OP..TX, 10.0)
+            && within(TX..N, 1.0);
+        self.is_finite()
+            && axes
+            && states
+            && self.covariance_holds()
             && (0.0..=1.0).contains(&self.rating)
             && self.still >= 0.0
             && self.info_scale > 0.0
-            && self.is_finite()
+            && self.correction().is_finite()
+    }
+
+    /// P symmetric bit for bit, its diagonal in [0, 1e6], and P + 1e-9 max(P_ii) I
+    /// positive definite (Cholesky).
+    fn covariance_holds(&self) -> bool {
+        let p = &self.p;
+        let symmetric = (0..N).all(|i| (0..i).all(|k| p[i][k].to_bits() == p[k][i].to_bits()));
+        if !symmetric || !(0..N).all(|i| (0.0..=1e6).contains(&p[i][i])) {
+            return false;
+        }
+        let jitter = 1e-9 * (0..N).map(|i| p[i][i]).fold(1e-300, f64::max);
+        let mut l = [[0.0; N]; N];
+        for i in 0..N {
+            for k in 0..=i {
+                let sum: f64 = (0..k).map(|m| l[i][m] * l[k][m]).sum();
+                if i == k {
+                    let d = p[i][i] + jitter - sum;
+                    if d.is_nan() || d <= 0.0 {
+                        return false;
+                    }
+                    l[i][i] = d.sqrt();
+                } else {
+                    l[i][k] = (p[i][k] - sum) / l[k][k];
+                }
+            }
+        }
+        true
     }
 }

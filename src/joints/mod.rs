@@ -57,6 +57,16 @@ use estimator::JointEstimator;
 
 /// The most joints one [`Joints`] holds: a suit of 20 segments has 19, two hands 30.
 pub const MAX_JOINTS: usize = 64;
+/// The most segments one [`Joints`] holds.
+pub const MAX_SEGMENTS: usize = 256;
+
+/// `n` copies of `v`, or OutOfMemory.
+fn filled<T: Clone>(n: usize, v: T) -> Result<Vec<T>, JointError> {
+    let mut x = Vec::new();
+    x.try_reserve_exact(n).map_err(|_| JointError::OutOfMemory)?;
+    x.resize(n, v);
+    Ok(x)
+}
 
 /// What a joint allows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -113,7 +123,8 @@ pub enum JointError {
     TwoParents(usize),
     /// Joint `k` closes a cycle.
     Cycle(usize),
-    /// Joint `k` has an axis that is zero, not finite or too small to normalise.
+    /// Joint `k` has an axis that is NaN or infinite, or whose squared norm is not a normal
+    /// finite number (zero, too small or too large to normalise).
     BadAxis(usize),
     /// Mounting `s` is not a usable quaternion (zero or not finite).
     BadMounting(usize),
@@ -123,6 +134,10 @@ pub enum JointError {
     WrongLength(usize),
     /// Segment `s`'s orientation or sample has a value that is not finite.
     NonFinite(usize),
+    /// More than [`MAX_SEGMENTS`] segments (the count).
+    TooManySegments(usize),
+    /// The joints' memory could not be allocated.
+    OutOfMemory,
 }
 
 impl core::fmt::Display for JointError {
@@ -138,6 +153,8 @@ impl core::fmt::Display for JointError {
             JointError::BadParams => write!(f, "a joint parameter is not finite or out of range"),
             JointError::WrongLength(n) => write!(f, "{n} entries: one per segment expected"),
             JointError::NonFinite(s) => write!(f, "segment {s}: a value is not finite"),
+            JointError::TooManySegments(n) => write!(f, "{n} segments: at most {MAX_SEGMENTS}"),
+            JointError::OutOfMemory => write!(f, "the joints' memory could not be allocated"),
         }
     }
 }
@@ -155,9 +172,13 @@ pub struct Joints {
     order: Vec<usize>,
     /// Per segment: the mounting (sensor to segment, `v_segment = m v_sensor`).
     mountings: Vec<Quat>,
-    /// Per segment: the correction (earth frame) and the corrected sensor orientation.
+    /// Per segment: the correction (earth frame), the last sensor orientation given (from
+    /// the filter), and the corrected one.
     corrections: Vec<Quat>,
+    raw: Vec<Quat>,
     sensors: Vec<Quat>,
+    /// An update has been taken (the angles are the last update's; before, zero).
+    updated: bool,
     /// Per joint: the angles at the last update.
     angles: Vec<[f64; 2]>,
     /// Per segment: [`Joints::update_each`]'s buffers.
@@ -181,23 +202,27 @@ impl Joints {
         if joints.len() > MAX_JOINTS {
             return Err(JointError::TooMany(joints.len()));
         }
+        if segments > MAX_SEGMENTS {
+            return Err(JointError::TooManySegments(segments));
+        }
         if !params.is_valid() {
             return Err(JointError::BadParams);
         }
-        let mountings: Vec<Quat> = match mountings.len() {
-            0 => vec![Quat::IDENTITY; segments],
-            n if n == segments => mountings.to_vec(),
-            n => return Err(JointError::WrongLength(n)),
-        };
-        for (s, m) in mountings.iter().enumerate() {
-            let n2 = m.norm_squared();
-            if !(m.is_finite() && n2.is_finite() && n2 >= f64::MIN_POSITIVE) {
+        if !(mountings.is_empty() || mountings.len() == segments) {
+            return Err(JointError::WrongLength(mountings.len()));
+        }
+        let mut m = filled(segments, Quat::IDENTITY)?;
+        for (s, (into, q)) in m.iter_mut().zip(mountings).enumerate() {
+            let n2 = q.norm_squared();
+            if !(q.is_finite() && n2.is_finite() && n2 >= f64::MIN_POSITIVE) {
                 return Err(JointError::BadMounting(s));
             }
+            *into = q.normalized();
         }
-        let mountings: Vec<Quat> = mountings.iter().map(|m| m.normalized()).collect();
-        let mut parent: Vec<Option<usize>> = vec![None; segments];
-        let mut specs = Vec::with_capacity(joints.len());
+        let mountings = m;
+        let mut parent: Vec<Option<usize>> = filled(segments, None)?;
+        let mut specs = filled(0, hinge_placeholder())?;
+        specs.try_reserve_exact(joints.len()).map_err(|_| JointError::OutOfMemory)?;
         for (k, j) in joints.iter().enumerate() {
             if j.parent >= segments || j.child >= segments {
                 return Err(JointError::NoSuchSegment(k));
@@ -205,7 +230,9 @@ impl Joints {
             if j.parent == j.child {
                 return Err(JointError::OwnParent(k));
             }
-            let usable = |a: Vec3| a.is_finite() && a.norm_squared().is_finite() && a.norm() > 1e-12;
+            let usable = |a: Vec3| {
+                a.is_finite() && a.norm_squared().is_finite() && a.norm_squared() >= f64::MIN_POSITIVE
+            };
             if !(usable(j.axis_parent) && usable(j.axis_child)) {
                 return Err(JointError::BadAxis(k));
             }
@@ -238,20 +265,28 @@ impl Joints {
             }
             d
         };
-        let mut order: Vec<usize> = (0..specs.len()).collect();
+        let mut order = filled(specs.len(), 0)?;
+        for (k, o) in order.iter_mut().enumerate() {
+            *o = k;
+        }
         order.sort_by_key(|&k| depth(specs[k].child));
-        let estimators =
-            specs.iter().map(|j| JointEstimator::new(j.kind, j.axis_parent, j.axis_child, params)).collect();
+        let mut estimators = filled(0, JointEstimator::new(JointKind::Hinge, UNIT_X, UNIT_X, params))?;
+        estimators.try_reserve_exact(specs.len()).map_err(|_| JointError::OutOfMemory)?;
+        for j in &specs {
+            estimators.push(JointEstimator::new(j.kind, j.axis_parent, j.axis_child, params));
+        }
         Ok(Joints {
-            angles: vec![[0.0, 0.0]; specs.len()],
+            angles: filled(specs.len(), [0.0, 0.0])?,
             specs,
             estimators,
             order,
             mountings,
-            corrections: vec![Quat::IDENTITY; segments],
-            sensors: vec![Quat::IDENTITY; segments],
-            scratch: vec![Quat::IDENTITY; segments],
-            scratch_samples: vec![Sample::default(); segments],
+            corrections: filled(segments, Quat::IDENTITY)?,
+            raw: filled(segments, Quat::IDENTITY)?,
+            sensors: filled(segments, Quat::IDENTITY)?,
+            updated: false,
+            scratch: filled(segments, Quat::IDENTITY)?,
+            scratch_samples: filled(segments, Sample::default())?,
             params,
         })
     }
@@ -266,13 +301,30 @@ impl Joints {
         &self.specs
     }
 
-    /// Starts every estimate over: no correction, the given axes.
+    /// Starts every estimate over: no correction (the outputs are the last orientations
+    /// given, uncorrected), the given axes.
     pub fn reset(&mut self) {
         for (e, j) in self.estimators.iter_mut().zip(&self.specs) {
             *e = JointEstimator::new(j.kind, j.axis_parent, j.axis_child, self.params);
         }
         self.corrections.fill(Quat::IDENTITY);
-        self.angles.fill([0.0, 0.0]);
+        self.derive_outputs();
+    }
+
+    /// The corrected orientations and the angles from the corrections and the last
+    /// orientations given, as the update makes them.
+    fn derive_outputs(&mut self) {
+        for s in 0..self.raw.len() {
+            self.sensors[s] = (self.corrections[s] * self.raw[s]).normalized();
+        }
+        self.derive_angles();
+    }
+
+    /// The angles from the corrected orientations (zero before the first update).
+    fn derive_angles(&mut self) {
+        for k in 0..self.specs.len() {
+            self.angles[k] = if self.updated { self.joint_angles(k) } else { [0.0, 0.0] };
+        }
     }
 
     /// One row: each segment's sensor orientation (sensor to earth, from its filter after
@@ -307,7 +359,7 @@ impl Joints {
             if let (Some(gp), Some(gc), Some(ap), Some(ac)) = (sp.gyro, sc.gyro, sp.accel, sc.accel) {
                 let (qp, qc) = (sensors[j.parent].normalized(), sensors[j.child].normalized());
                 est.update(qp, qc, gp, gc, ap, ac, sc.dt);
-                if !est.is_finite() {
+                if !(est.is_finite() && est.correction().is_finite()) {
                     // Finite inputs keep the state finite; should rounding ever not, the
                     // joint starts over rather than stay stuck.
                     *est = JointEstimator::new(j.kind, j.axis_parent, j.axis_child, self.params);
@@ -318,11 +370,10 @@ impl Joints {
             self.corrections[j.child] = (self.corrections[j.parent] * est.correction()).normalized();
         }
         for (s, q) in sensors.iter().enumerate() {
-            self.sensors[s] = (self.corrections[s] * q.normalized()).normalized();
+            self.raw[s] = q.normalized();
         }
-        for k in 0..self.specs.len() {
-            self.angles[k] = self.joint_angles(k);
-        }
+        self.updated = true;
+        self.derive_outputs();
         Ok(())
     }
 
@@ -411,105 +462,114 @@ impl Joints {
     /// The size in bytes of this rig's joint state blob ([`Joints::save`]).
     pub fn state_size(&self) -> usize {
         let mut w = Writer { buf: None, pos: 0 };
-        self.clone().codec(&mut w);
+        self.encode(&mut w);
         snapshot::HEADER + w.pos + snapshot::TRAILER
     }
 
     /// Saves the joints' estimates as a versioned, checksummed blob (the filters' snapshot
     /// format, its own kind byte) with the rig's description, so that only the same rig
     /// loads it: joints, axes as given, mountings and tuning. Returns its length;
-    /// `BufferTooSmall` below [`Joints::state_size`].
+    /// `BufferTooSmall` below [`Joints::state_size`]. Allocates nothing.
     pub fn save(&self, out: &mut [u8]) -> Result<usize, StateError> {
         let mut w = Writer { buf: None, pos: 0 };
-        let mut copy = self.clone();
-        copy.codec(&mut w);
-        snapshot::seal(out, STATE_KIND, w.pos, |w| copy.codec(w))
+        self.encode(&mut w);
+        snapshot::seal(out, STATE_KIND, w.pos, |w| self.encode(w))
     }
 
     /// Restores a blob from [`Joints::save`] of the same rig: the estimates continue bit
     /// for bit. Refused, with nothing changed, when truncated, corrupted, of another
     /// format version, of a filter, of another rig, or holding a state no estimate could
-    /// hold.
+    /// hold ([`estimator`]'s bounds). Allocates nothing: the blob is read twice, once to
+    /// check it and once to take it.
     pub fn load(&mut self, blob: &[u8]) -> Result<(), StateError> {
         let size = self.state_size() - snapshot::HEADER - snapshot::TRAILER;
         let payload = snapshot::open(blob, STATE_KIND, size)?;
-        let mut fresh = self.clone();
-        let mut r = Reader { buf: payload, pos: 0, ok: true };
-        fresh.codec(&mut r);
-        let same_rig = fresh.specs == self.specs
-            && fresh.mountings.iter().zip(&self.mountings).all(|(a, b)| same_bits(*a, *b))
-            && fresh.params == self.params;
-        if !(r.ok && r.pos == payload.len() && same_rig && fresh.estimators.iter().all(JointEstimator::holds))
-        {
+        if !self.decode(payload, false) {
             return Err(StateError::Corrupt);
         }
-        if !fresh.sensors.iter().all(|q| (q.norm_squared() - 1.0).abs() < 1e-9) {
-            return Err(StateError::Corrupt);
+        let taken = self.decode(payload, true);
+        debug_assert!(taken);
+        // What the update derives: the corrections down the tree, the outputs.
+        self.corrections.fill(Quat::IDENTITY);
+        for &k in &self.order {
+            let j = self.specs[k];
+            self.corrections[j.child] =
+                (self.corrections[j.parent] * self.estimators[k].correction()).normalized();
         }
-        // What the update derives: the corrections down the tree, the angles.
-        for &k in &fresh.order {
-            let j = fresh.specs[k];
-            fresh.corrections[j.child] =
-                (fresh.corrections[j.parent] * fresh.estimators[k].correction()).normalized();
-        }
-        for k in 0..fresh.specs.len() {
-            fresh.angles[k] = fresh.joint_angles(k);
-        }
-        *self = fresh;
+        self.derive_outputs();
         Ok(())
     }
 
-    /// Both directions of the blob's payload: the rig's description (compared on load),
-    /// each estimate, each segment's corrected sensor orientation.
-    fn codec(&mut self, c: &mut dyn Codec) {
-        let mut n = (self.mountings.len(), self.specs.len());
-        c.usize(&mut n.0);
-        c.usize(&mut n.1);
-        if n != (self.mountings.len(), self.specs.len()) {
-            c.fail();
-            return;
+    /// The blob's payload: the rig's description (checked on load), each estimate, each
+    /// segment's last sensor orientation, whether an update was taken. Values are copied
+    /// out one at a time (the codec reads and writes through the same calls), so nothing
+    /// is allocated.
+    fn encode(&self, c: &mut dyn Codec) {
+        let (mut segments, mut joints) = (self.mountings.len(), self.specs.len());
+        c.usize(&mut segments);
+        c.usize(&mut joints);
+        for j in &self.specs {
+            spec_codec(c, &mut j.clone());
         }
-        for j in &mut self.specs {
-            let mut kind = j.kind as u32;
-            c.u32(&mut kind);
-            j.kind = if kind == JointKind::TwoDof as u32 { JointKind::TwoDof } else { JointKind::Hinge };
-            c.usize(&mut j.parent);
-            c.usize(&mut j.child);
-            c.vec3(&mut j.axis_parent);
-            c.vec3(&mut j.axis_child);
+        for m in &self.mountings {
+            c.quat(&mut m.clone());
         }
-        for m in &mut self.mountings {
-            c.quat(m);
+        params_codec(c, &mut self.params.clone());
+        for e in &self.estimators {
+            e.clone().codec(c);
         }
-        let p = &mut self.params;
-        for v in [
-            &mut p.r_hinge,
-            &mut p.r_2dof,
-            &mut p.q_heading,
-            &mut p.q_rate,
-            &mut p.q_axis,
-            &mut p.heading_std0,
-            &mut p.rate_std0,
-            &mut p.axis_std0,
-            &mut p.max_rate,
-            &mut p.rest_gyro,
-            &mut p.rest_time,
-            &mut p.r_acc,
-            &mut p.lever_std0,
-            &mut p.q_lever,
-            &mut p.tilt_std0,
-            &mut p.q_tilt,
-            &mut p.gate,
-            &mut p.rating_tau,
-        ] {
-            c.f64(v);
+        for q in &self.raw {
+            c.quat(&mut q.clone());
         }
-        for e in &mut self.estimators {
-            e.codec(c);
+        c.bool(&mut self.updated.clone());
+    }
+
+    /// Reads a payload: true when it is this rig's and every value one it could hold;
+    /// with `take`, into the joints (after a pass without, which found it so).
+    fn decode(&mut self, payload: &[u8], take: bool) -> bool {
+        let mut r = Reader { buf: payload, pos: 0, ok: true };
+        let (mut segments, mut joints) = (0, 0);
+        r.usize(&mut segments);
+        r.usize(&mut joints);
+        if (segments, joints) != (self.mountings.len(), self.specs.len()) {
+            return false;
         }
-        for q in &mut self.sensors {
-            c.quat(q);
+        let mut same = true;
+        for k in 0..joints {
+            let mut j = hinge_placeholder();
+            spec_codec(&mut r, &mut j);
+            same &= j == self.specs[k];
         }
+        for s in 0..segments {
+            let mut m = Quat::IDENTITY;
+            r.quat(&mut m);
+            same &= same_bits(m, self.mountings[s]);
+        }
+        let mut p = self.params;
+        params_codec(&mut r, &mut p);
+        same &= p == self.params;
+        for k in 0..joints {
+            let mut e = self.estimators[k].clone();
+            e.codec(&mut r);
+            same &= e.holds();
+            if take {
+                self.estimators[k] = e;
+            }
+        }
+        for s in 0..segments {
+            let mut q = Quat::IDENTITY;
+            r.quat(&mut q);
+            same &= (q.norm_squared() - 1.0).abs() < 1e-9;
+            if take {
+                self.raw[s] = q;
+            }
+        }
+        let mut updated = false;
+        r.bool(&mut updated);
+        if take {
+            self.updated = updated;
+        }
+        same && r.ok && r.pos == payload.len()
     }
 
     fn joint_angles(&self, k: usize) -> [f64; 2] {
@@ -524,6 +584,56 @@ impl Joints {
             self.sensors[j.parent],
             self.sensors[j.child],
         )
+    }
+}
+
+const UNIT_X: Vec3 = Vec3::new(1.0, 0.0, 0.0);
+
+fn hinge_placeholder() -> JointSpec {
+    JointSpec { kind: JointKind::Hinge, parent: 0, child: 0, axis_parent: UNIT_X, axis_child: UNIT_X }
+}
+
+/// A joint's description in a blob; a kind number that is neither fails the read.
+fn spec_codec(c: &mut dyn Codec, j: &mut JointSpec) {
+    let mut kind = j.kind as u32;
+    c.u32(&mut kind);
+    j.kind = match kind {
+        0 => JointKind::Hinge,
+        1 => JointKind::TwoDof,
+        _ => {
+            c.fail();
+            JointKind::Hinge
+        }
+    };
+    c.usize(&mut j.parent);
+    c.usize(&mut j.child);
+    c.vec3(&mut j.axis_parent);
+    c.vec3(&mut j.axis_child);
+}
+
+/// The tuning in a blob.
+fn params_codec(c: &mut dyn Codec, p: &mut JointParams) {
+    for v in [
+        &mut p.r_hinge,
+        &mut p.r_2dof,
+        &mut p.q_heading,
+        &mut p.q_rate,
+        &mut p.q_axis,
+        &mut p.heading_std0,
+        &mut p.rate_std0,
+        &mut p.axis_std0,
+        &mut p.max_rate,
+        &mut p.rest_gyro,
+        &mut p.rest_time,
+        &mut p.r_acc,
+        &mut p.lever_std0,
+        &mut p.q_lever,
+        &mut p.tilt_std0,
+        &mut p.q_tilt,
+        &mut p.gate,
+        &mut p.rating_tau,
+    ] {
+        c.f64(v);
     }
 }
 

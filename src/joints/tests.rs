@@ -233,6 +233,16 @@ fn bad_rigs_are_refused_naming_the_joint() {
     ] {
         assert_eq!(Joints::new(2, &[ok], &[], bad).unwrap_err(), JointError::BadParams);
     }
+    // Axes: any squared norm that is a normal finite double.
+    let tiny = Vec3::new(1e-150, 0.0, 0.0);
+    assert!(Joints::new(2, &[hinge(0, 1, tiny)], &[], p).is_ok());
+    for bad in [Vec3::new(1e-170, 0.0, 0.0), Vec3::new(1e200, 0.0, 0.0)] {
+        assert_eq!(Joints::new(2, &[hinge(0, 1, bad)], &[], p).unwrap_err(), JointError::BadAxis(0));
+    }
+    assert_eq!(
+        Joints::new(MAX_SEGMENTS + 1, &[ok], &[], p).unwrap_err(),
+        JointError::TooManySegments(MAX_SEGMENTS + 1)
+    );
     // A forest: two roots, and a segment in no joint.
     assert!(Joints::new(5, &[ok, hinge(2, 3, Y)], &[], p).is_ok());
 }
@@ -272,6 +282,16 @@ fn reset_starts_every_joint_over() {
     assert_eq!(joints.relative_heading(0), 0.0);
     assert_eq!(joints.correction(1), Quat::IDENTITY);
     assert_eq!(joints.estimators, fresh.estimators);
+    // The outputs are the filters' own, uncorrected: the last orientations given.
+    assert_eq!(joints.sensor_quaternion(1), joints.raw[1]);
+    let [theta, other] = joints.angles(0);
+    assert!(theta.is_finite() && other.is_nan());
+    // A snapshot taken now loads to the same outputs.
+    let mut blob = vec![0u8; joints.state_size()];
+    joints.save(&mut blob).unwrap();
+    let mut twin = fresh.clone();
+    twin.load(&blob).unwrap();
+    assert_eq!(format!("{twin:?}"), format!("{joints:?}"));
 }
 
 #[test]
@@ -360,12 +380,14 @@ fn a_snapshot_continues_bit_for_bit_and_bad_blobs_change_nothing() {
     let mut fb = vec![0u8; f.state_size()];
     f.save(&mut fb).unwrap();
     refused(&fb, StateError::Kind(1));
-    // A state no estimate could hold, sealed with a good checksum: a negative variance.
-    let mut bad = joints.clone();
-    bad.estimators[0].corrupt_for_test();
-    let mut b3 = vec![0u8; bad.state_size()];
-    bad.save(&mut b3).unwrap();
-    refused(&b3, StateError::Corrupt);
+    // States no estimate could hold, sealed with a good checksum.
+    for how in 0..4 {
+        let mut bad = joints.clone();
+        bad.estimators[0].corrupt_for_test(how);
+        let mut b3 = vec![0u8; bad.state_size()];
+        bad.save(&mut b3).unwrap();
+        refused(&b3, StateError::Corrupt);
+    }
 }
 
 #[test]

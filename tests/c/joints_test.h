@@ -343,7 +343,13 @@ static void joint_calls(void) {
     CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, &sigma), ORIENT_STATUS_OK);
     CHECK(heading == 0.0);
 
-    /* Handles: a filter is no joints handle, a joints handle no filter, a freed one nothing. */
+    /* Handles: a filter is no joints handle, a joints handle no filter, a freed one nothing,
+       nor a pointer two bytes on from a live one (a joints handle's registry key). */
+    CHECK_STATUS(orient_joints_reset((OrientJoints *)((char *)joints + 2)), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_joints_free((OrientJoints *)((char *)joints + 2)), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_reset((OrientFilter *)((char *)joints + 2)), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_free((OrientFilter *)((char *)joints + 2)), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_filter_reset((OrientFilter *)((char *)filters[0] + 2)), ORIENT_STATUS_INVALID_HANDLE);
     CHECK_STATUS(orient_joints_reset((OrientJoints *)filters[0]), ORIENT_STATUS_INVALID_HANDLE);
     CHECK_STATUS(orient_filter_reset((OrientFilter *)joints), ORIENT_STATUS_INVALID_HANDLE);
     CHECK_STATUS(orient_joints_free((OrientJoints *)filters[0]), ORIENT_STATUS_INVALID_HANDLE);
@@ -389,6 +395,8 @@ static void joint_calls(void) {
     CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, (size_t)n, a, b, &h), ORIENT_STATUS_ZERO_VECTOR);
     b.x = NAN;
     CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, (size_t)n, a, b, &h), ORIENT_STATUS_NON_FINITE);
+    b.x = 1e200;
+    CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, (size_t)n, a, b, &h), ORIENT_STATUS_TOO_LARGE);
     free(gp);
     free(gc);
 }

@@ -535,6 +535,8 @@ public static class OrientTests
                 "OrientJoints: a zero axis", "joint 0");
             var axes = OrientJoints.EstimateHingeAxes(gp, gc, new Vec3 { X = 1, Y = 0.08, Z = 0 }, new Vec3 { X = 1, Y = 0, Z = -0.08 });
             Check(axes.AxisParent.X > 0.9999 && axes.AxisChild.X > 0.9999 && axes.Quality < 0.01, "OrientJoints: hinge axes");
+            Throws(Status.InvalidArgument, () => OrientJoints.EstimateHingeAxes(new Vec3[0], new Vec3[0], x, x),
+                "OrientJoints: no readings");
             joints.Dispose();
             Check(IsDisposedThrows(() => joints.Rating(0)), "OrientJoints: disposed");
         }

@@ -115,6 +115,9 @@ def test_bad_rigs_and_rows_are_refused():
         with pytest.raises(OrientError) as e:
             orient.run_rig(filters, joints, gyr, acc, dt=0.01)
         assert e.value.status == Status.NON_FINITE and e.value.index == 4
+        # One sample per filter, no fewer.
+        with pytest.raises(ValueError):
+            joints.update(filters, np.zeros(1, dtype=orient.SAMPLE_DTYPE))
 
 
 def test_axes_in_the_segment_frames_go_through_the_mountings():

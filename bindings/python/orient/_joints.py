@@ -3,6 +3,7 @@ magnetometer, and a whole rig recording in one call."""
 
 from __future__ import annotations
 
+import ctypes
 from ctypes import byref, c_double, c_size_t, c_uint8, c_void_p
 from dataclasses import dataclass
 from typing import Any, Dict, Optional, Sequence, Tuple, Union
@@ -97,11 +98,13 @@ class Joints:
         is an array of ``SAMPLE_DTYPE`` (one per filter) or a ctypes array of OrientSample."""
         handles = (c_void_p * len(filters))(*[f._h for f in filters])
         if isinstance(samples, np.ndarray):
-            if samples.dtype != SAMPLE_DTYPE or not samples.flags.c_contiguous:
-                raise ValueError("samples must be a C-contiguous array of SAMPLE_DTYPE")
+            if samples.dtype != SAMPLE_DTYPE or not samples.flags.c_contiguous or samples.shape != (len(filters),):
+                raise ValueError(f"samples must be a C-contiguous ({len(filters)},) array of SAMPLE_DTYPE")
             ptr = _ptr(samples, n.OrientSample)
-        else:
+        elif isinstance(samples, ctypes.Array) and samples._type_ is n.OrientSample and len(samples) == len(filters):
             ptr = samples
+        else:
+            raise ValueError(f"samples must be {len(filters)} OrientSample (a SAMPLE_DTYPE array or a ctypes array)")
         _check(lib.orient_joints_update(self._handle(), handles, ptr, len(filters)))
 
     def segment(self, s: int) -> np.ndarray:

@@ -701,7 +701,8 @@ class Status(enum.IntEnum):
     OUT_OF_MEMORY = 21
     #: A joint of orient_joints_new names a segment the rig does not have, is its own
     #: child's parent, gives its child a second parent, closes a cycle, or has an axis
-    #: that is zero, NaN or infinite; orient_last_error names the joint.
+    #: that is NaN, infinite, or too short or too long to normalise; orient_last_error
+    #: names the joint.
     INVALID_JOINT = 22
 
 
@@ -917,7 +918,7 @@ class OrientParamInfo(Structure):
 class OrientJoint(Structure):
     """One joint of a rig: segment indices (a segment is one sensor with its filter, by its
     index in the filters array of orient_joints_update) and axes in the sensors' frames
-    (any length but zero; normalised).
+    (normalised: any length whose square is a normal finite double).
     """
 
     _fields_ = [

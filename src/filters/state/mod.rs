@@ -228,10 +228,14 @@ pub fn open(blob: &[u8], kind: u8, payload_len: usize) -> Result<&[u8], StateErr
     }
     let version = u16::from_le_bytes([blob[4], blob[5]]);
     let len = u32::from_le_bytes([blob[8], blob[9], blob[10], blob[11]]) as usize;
-    if blob.len() < HEADER + len + TRAILER {
+    // On a 32-bit target HEADER + len + TRAILER can overflow: no blob is that long.
+    let Some(total) = len.checked_add(HEADER + TRAILER) else {
+        return Err(StateError::Truncated);
+    };
+    if blob.len() < total {
         return Err(StateError::Truncated);
     }
-    if blob.len() > HEADER + len + TRAILER || blob[7] != 0 {
+    if blob.len() > total || blob[7] != 0 {
         return Err(StateError::Corrupt);
     }
     let mut sum = [0u8; 8];
