@@ -68,7 +68,7 @@ const TX: usize = 17;
 
 /// The joint estimator's tuning: noise densities in continuous time, so that none depends
 /// on the sample rate. The defaults were chosen on simulated gloves (seeds 1-3 of the
-/// tools' `rigsim`) and held on others (seeds 4-6): `rig_joints` in the tools.
+/// tools' `rigsim`) and held on others (seeds 4-9): `rig_joints` in the tools.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointParams {
     /// Hinge residual noise density per component (rad²·s).
@@ -114,7 +114,7 @@ impl Default for JointParams {
             r_hinge: 0.05f64.powi(2) * 0.5,
             r_2dof: 0.08f64.powi(2) * 0.5,
             q_heading: (0.1 * d).powi(2),
-            q_rate: 3e-7,
+            q_rate: 6e-7,
             q_axis: 0.0,
             heading_std0: 1.0 * d,
             rate_std0: 0.5 * d,
