@@ -81,6 +81,16 @@ pub enum JointKind {
     TwoDof,
 }
 
+impl JointKind {
+    /// The kind's name in rig descriptions and the Python binding: `"hinge"`, `"2dof"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            JointKind::Hinge => "hinge",
+            JointKind::TwoDof => "2dof",
+        }
+    }
+}
+
 /// One joint: segment indices and unit axes in the sensors' frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointSpec {

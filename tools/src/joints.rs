@@ -2,7 +2,7 @@
 //! joints and mountings handed to [`orient::joints::Joints`], which corrects every
 //! sensor's orientation from the row where the headings were aligned on.
 
-use crate::rig::{JointKind, JointStage, RigSpec};
+use crate::rig::{JointStage, RigSpec};
 use orient::joints::{self, JointSpec};
 use orient::{Quat, Sample};
 
@@ -24,10 +24,7 @@ impl Joints {
             .joints
             .iter()
             .map(|j| JointSpec {
-                kind: match j.kind {
-                    JointKind::Hinge => joints::JointKind::Hinge,
-                    JointKind::TwoDof => joints::JointKind::TwoDof,
-                },
+                kind: j.kind,
                 parent: j.parent,
                 child: j.child,
                 axis_parent: j.axis_parent,

@@ -23,23 +23,8 @@ pub struct RigSensor {
     pub mounting: Quat,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum JointKind {
-    /// One DoF: `axis_parent` and `axis_child` are the same earth vector at every instant.
-    Hinge,
-    /// Two DoF: the child turns about `axis_parent` (fixed in the parent), then about
-    /// `axis_child` (fixed in the child).
-    TwoDof,
-}
-
-impl JointKind {
-    pub fn name(self) -> &'static str {
-        match self {
-            JointKind::Hinge => "hinge",
-            JointKind::TwoDof => "2dof",
-        }
-    }
-}
+/// The joint kinds of rig.json (`"hinge"`, `"2dof"`): the library's.
+pub use orient::joints::JointKind;
 
 /// One joint: sensor indices into [`RigSpec::sensors`], unit axes in the sensor frames.
 #[derive(Clone, Debug, PartialEq)]
@@ -375,12 +360,8 @@ pub fn yaw_of(q: Quat) -> f64 {
 /// `axis_parent` and then `axis_child` that make up the relative orientation (exactly
 /// when the axes are true, nearest otherwise).
 pub fn joint_angles(spec: &RigSpec, j: &RigJoint, q_parent: Quat, q_child: Quat) -> (f64, f64) {
-    let kind = match j.kind {
-        JointKind::Hinge => orient::joints::JointKind::Hinge,
-        JointKind::TwoDof => orient::joints::JointKind::TwoDof,
-    };
     let (m_p, m_c) = (spec.sensors[j.parent].mounting, spec.sensors[j.child].mounting);
-    let [a, b] = orient::joints::angles(kind, j.axis_parent, j.axis_child, m_p, m_c, q_parent, q_child);
+    let [a, b] = orient::joints::angles(j.kind, j.axis_parent, j.axis_child, m_p, m_c, q_parent, q_child);
     (a, b)
 }
 
