@@ -43,7 +43,8 @@
 //! second: `r` is their variance times their correlation time, so the gain does not
 //! depend on the rate); an innovation beyond `gate √S` is down-weighted (Huber);
 //! `K = P hᵀ / S`, `δx ← δx + K (ν − h δx)`, `P ← P − K h P`. The step applied to `Δ` and
-//! to `φ` is at most `max_rate · dt`: the heading never jumps.
+//! to `φ` by the measurements is at most `max_rate · dt` (the prediction adds the drift):
+//! the heading never jumps.
 //!
 //! The observability rating is the information the constraints gave about `Δ`,
 //! `h_Δ² / R`, low-passed over `rating_tau` and scaled to [0, 1] by its value for a
