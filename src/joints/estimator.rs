@@ -10,9 +10,10 @@
 //!
 //! `x = [Δ, β_p (3), β_c (3), u_p (2), u_c (2), o_p (3), o_c (3), φ (2)]`:
 //! - `Δ`: the relative heading (rad);
-//! - `β_p`, `β_c`: what remains of each sensor's gyroscope bias after its filter (rad/s,
-//!   sensor frame); the relative heading drifts at `dΔ/dt = g_c·β_c − g_p·β_p`, with `g`
-//!   the vertical in each sensor's frame, so the drift seen while the sensors turn
+//! - `β_p`, `β_c`: what remains of each sensor's gyroscope bias after its filter, negated
+//!   (rad/s, sensor frame: a residual bias `b` turns a filter's heading at `g·b`, which
+//!   the correction undoes); the correction drifts at `dΔ/dt = g_c·β_c − g_p·β_p`, with
+//!   `g` the vertical in each sensor's frame, so the drift seen while the sensors turn
 //!   reveals the vertical bias of each;
 //! - `u_p`, `u_c`: the axis corrections (rad): `j = normalize(j₀ + u₁ b₁ + u₂ b₂)` with
 //!   `b₁, b₂` a basis perpendicular to the axis, folded into `j` after each update (the
@@ -271,7 +272,7 @@ impl JointEstimator {
         self.x[0]
     }
 
-    /// The relative heading's drift at the last motion (rad/s): `g_c·β_c − g_p·β_p`.
+    /// The correction's drift at the last motion (rad/s): `g_c·β_c − g_p·β_p`.
     pub(crate) fn drift(&self) -> f64 {
         let v = |o: usize| Vec3::new(self.x[o], self.x[o + 1], self.x[o + 2]);
         self.g[1].dot(v(BC)) - self.g[0].dot(v(BP))

@@ -458,8 +458,9 @@ impl Joints {
         self.estimators[k].heading_std()
     }
 
-    /// The rate at which joint `k`'s two filters' headings drift apart (rad/s), from the
-    /// vertical gyroscope bias each leaves.
+    /// The rate (rad/s) at which joint `k`'s relative heading correction turns to follow
+    /// its two filters' headings as they drift apart on the vertical gyroscope bias each
+    /// leaves: the child filter's heading drift relative to its parent's, negated.
     pub fn drift(&self, k: usize) -> f64 {
         self.estimators[k].drift()
     }

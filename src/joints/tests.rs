@@ -82,6 +82,8 @@ fn a_hinge_holds_the_child_to_its_parent_while_its_heading_drifts() {
         joints.relative_heading(0)
     );
     assert!(joints.rating(0) > 0.3, "{}", joints.rating(0));
+    // The correction's drift is the child's heading drift, undone.
+    assert!((joints.drift(0) + drift).abs() < 0.1 * drift, "{}", joints.drift(0));
 }
 
 #[test]

@@ -5,6 +5,7 @@
 //! ```text
 //! cargo run --release -p orient-tools --bin rig_joints [-- --seeds A-B] [--minutes M]
 //!     [--cases a,b,..] [--filters robust,vqf] [--set KEY=VALUE].. [--oracle] [--cost]
+//!     [--debias true|initial]
 //! ```
 //!
 //! - `--seeds A-B` (default 1-3): the seeds per case (design on 1-3, hold out 4-8).
@@ -13,6 +14,9 @@
 //! - `--oracle`: also the floor: each child's relative heading set from the truth (what
 //!   remains is the filters' inclination and the joints' truth not in any heading).
 //! - `--cost`: the time of the joint stage beside the filters' in the same run.
+//! - `--debias true|initial`: the gyroscopes' readings less the true bias (`true`) or
+//!   less the bias at the start (`initial`, what the still reference pose could give):
+//!   how much of the error a better bias estimate could remove.
 //!
 //! A benchmark, not a test: it asserts nothing.
 
@@ -152,6 +156,7 @@ fn main() {
     let mut params = JointParams::default();
     let mut trace: Option<String> = None;
     let mut truth_input = false;
+    let mut debias = String::new();
     let (mut oracle, mut cost, mut alone, mut verbose) = (false, false, true, false);
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -173,6 +178,7 @@ fn main() {
             "--cost" => cost = true,
             "--trace" => trace = Some(val()),
             "--truth-input" => truth_input = true,
+            "--debias" => debias = val(),
             "--verbose" => verbose = true,
             _ => panic!("unknown argument {a}"),
         }
@@ -187,8 +193,16 @@ fn main() {
             let mut config = SimConfig::preset(case, seed).expect("a preset");
             config.duration_s = minutes * 60.0;
             let mut sim = Simulation::new(config).run();
-            for s in &mut sim.recording.sensors {
+            for (s, bias) in sim.recording.sensors.iter_mut().zip(&sim.bias) {
                 s.mag.clear();
+                for (g, b) in s.gyro.iter_mut().zip(bias) {
+                    match debias.as_str() {
+                        "true" => *g = *g - *b,
+                        "initial" => *g = *g - bias[0],
+                        "" => {}
+                        _ => panic!("--debias true|initial"),
+                    }
+                }
             }
             let rec = &sim.recording;
             let truth: Vec<&[Quat]> = rec.sensors.iter().map(|r| r.truth.as_slice()).collect();
