@@ -1387,24 +1387,30 @@ typedef struct OrientSample {
 } OrientSample;
 
 /**
- * A hinge's axes estimated from motion (orient_estimate_hinge_axes).
+ * A joint's axes estimated from motion (orient_estimate_hinge_axes,
+ * orient_estimate_two_dof_axes).
  */
-typedef struct OrientHingeAxes {
+typedef struct OrientJointAxes {
   /**
-   * The axis in the parent sensor's frame (unit, on the side of the guess).
+   * The (first) axis in the parent sensor's frame (unit, on the side of the guess).
    */
   struct OrientVec3 axis_parent;
   /**
-   * The axis in the child sensor's frame.
+   * The hinge's axis, or the 2-DoF joint's second axis, in the child sensor's frame
+   * (unit, on the side of the guess).
    */
   struct OrientVec3 axis_child;
   /**
-   * RMS residual over RMS angular rate perpendicular to the axis: 0 for an ideal
-   * hinge, a few hundredths with laxity and noise, near 1 when the motion did not turn
-   * the joint or the joint is no hinge (at most 1). Below 0.1 the axes can be trusted.
+   * How far the motion bears the axes out, 0 to 1; below 0.1 they can be trusted. A
+   * hinge: RMS residual over RMS angular rate perpendicular to the axis (0 for an
+   * ideal hinge, a few hundredths with laxity and noise, near 1 when the motion did
+   * not turn the joint or the joint is no hinge). A 2-DoF joint: the larger of the RMS
+   * residual (rad, how far from perpendicular the axes were seen) and three times the
+   * axes' standard error (rad, large when the motion did not turn the joint about both
+   * axes far enough, as a hinge's does not).
    */
   double quality;
-} OrientHingeAxes;
+} OrientJointAxes;
 
 /**
  * Euler angles, radians, intrinsic Z-Y'-X'': R = Rz(yaw) * Ry(pitch) * Rx(roll).
@@ -1826,7 +1832,29 @@ OrientStatus orient_estimate_hinge_axes(const struct OrientVec3 *gyro_parent,
                                         size_t n,
                                         struct OrientVec3 guess_parent,
                                         struct OrientVec3 guess_child,
-                                        struct OrientHingeAxes *out);
+                                        struct OrientJointAxes *out);
+
+/**
+ * A 2-DoF joint's axes, and its quality, from `n` orientations of its parent and child
+ * sensors taken at the same instants (sensor to earth, as orient_filter_sensor_quaternion
+ * gives them: 6D estimates will do, whatever their headings, as long as these hold still
+ * relative to each other over the window; a few seconds of the joint turning about both
+ * axes while the segments move), started from the host's guesses `guess_parent` (the
+ * first axis, parent sensor frame) and `guess_child` (the second, child sensor frame;
+ * the result is on the guesses' side): the pair that best keeps the two axes
+ * perpendicular (Laidig, Weygers, Seel 2022), the child's heading offset estimated with
+ * them. Allocates nothing. INVALID_ARGUMENT for n = 0, COUNT_TOO_LARGE for an `n` no
+ * array can hold; a quaternion is checked as orient_filter_set_quaternion checks its
+ * quaternion and a guess as an axis: NON_FINITE for a NaN or infinite value, ZERO_VECTOR
+ * for one too short to normalise (its squared norm below DBL_MIN), TOO_LARGE for one
+ * whose squared norm overflows.
+ */
+OrientStatus orient_estimate_two_dof_axes(const struct OrientQuaternion *q_parent,
+                                          const struct OrientQuaternion *q_child,
+                                          size_t n,
+                                          struct OrientVec3 guess_parent,
+                                          struct OrientVec3 guess_child,
+                                          struct OrientJointAxes *out);
 
 /**
  * Writes the offline defaults to `*config`: the recommended kind

@@ -540,10 +540,21 @@ private:
 /// (orient_estimate_hinge_axes), started from the host's guesses.
 template <class Readings>
 OrientStatus estimate_hinge_axes(const Readings& parent, const Readings& child, OrientVec3 guess_parent,
-                                 OrientVec3 guess_child, OrientHingeAxes& out) noexcept {
+                                 OrientVec3 guess_child, OrientJointAxes& out) noexcept {
     if (std::size(parent) != std::size(child)) return ORIENT_STATUS_INVALID_ARGUMENT;
     return orient_estimate_hinge_axes(std::data(parent), std::data(child), std::size(parent), guess_parent,
                                       guess_child, &out);
+}
+
+/// A 2-DoF joint's axes from its two sensors' orientations (sensor to earth, 6D estimates
+/// will do) at the same instants (orient_estimate_two_dof_axes), started from the host's
+/// guesses: the first axis in the parent's frame, the second in the child's.
+template <class Orientations>
+OrientStatus estimate_two_dof_axes(const Orientations& parent, const Orientations& child,
+                                   OrientVec3 guess_parent, OrientVec3 guess_child, OrientJointAxes& out) noexcept {
+    if (std::size(parent) != std::size(child)) return ORIENT_STATUS_INVALID_ARGUMENT;
+    return orient_estimate_two_dof_axes(std::data(parent), std::data(child), std::size(parent), guess_parent,
+                                        guess_child, &out);
 }
 
 }  // namespace orient

@@ -1374,25 +1374,31 @@ namespace Orient.Native
     }
 
     /// <summary>
-    /// A hinge's axes estimated from motion (orient_estimate_hinge_axes).
+    /// A joint's axes estimated from motion (orient_estimate_hinge_axes,
+    /// orient_estimate_two_dof_axes).
     /// </summary>
     [StructLayout(LayoutKind.Sequential)]
-    public partial struct HingeAxes
+    public partial struct JointAxes
     {
         /// <summary>
-        /// The axis in the parent sensor's frame (unit, on the side of the guess).
+        /// The (first) axis in the parent sensor's frame (unit, on the side of the guess).
         /// </summary>
         public Vec3 AxisParent;
 
         /// <summary>
-        /// The axis in the child sensor's frame.
+        /// The hinge's axis, or the 2-DoF joint's second axis, in the child sensor's frame
+        /// (unit, on the side of the guess).
         /// </summary>
         public Vec3 AxisChild;
 
         /// <summary>
-        /// RMS residual over RMS angular rate perpendicular to the axis: 0 for an ideal
-        /// hinge, a few hundredths with laxity and noise, near 1 when the motion did not turn
-        /// the joint or the joint is no hinge (at most 1). Below 0.1 the axes can be trusted.
+        /// How far the motion bears the axes out, 0 to 1; below 0.1 they can be trusted. A
+        /// hinge: RMS residual over RMS angular rate perpendicular to the axis (0 for an
+        /// ideal hinge, a few hundredths with laxity and noise, near 1 when the motion did
+        /// not turn the joint or the joint is no hinge). A 2-DoF joint: the larger of the RMS
+        /// residual (rad, how far from perpendicular the axes were seen) and three times the
+        /// axes' standard error (rad, large when the motion did not turn the joint about both
+        /// axes far enough, as a hinge's does not).
         /// </summary>
         public double Quality;
     }
@@ -1832,7 +1838,25 @@ namespace Orient.Native
         /// norm overflows.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
-        public static extern Status orient_estimate_hinge_axes(Vec3* gyroParent, Vec3* gyroChild, UIntPtr n, Vec3 guessParent, Vec3 guessChild, HingeAxes* @out);
+        public static extern Status orient_estimate_hinge_axes(Vec3* gyroParent, Vec3* gyroChild, UIntPtr n, Vec3 guessParent, Vec3 guessChild, JointAxes* @out);
+
+        /// <summary>
+        /// A 2-DoF joint's axes, and its quality, from `n` orientations of its parent and child
+        /// sensors taken at the same instants (sensor to earth, as orient_filter_sensor_quaternion
+        /// gives them: 6D estimates will do, whatever their headings, as long as these hold still
+        /// relative to each other over the window; a few seconds of the joint turning about both
+        /// axes while the segments move), started from the host's guesses `guess_parent` (the
+        /// first axis, parent sensor frame) and `guess_child` (the second, child sensor frame;
+        /// the result is on the guesses' side): the pair that best keeps the two axes
+        /// perpendicular (Laidig, Weygers, Seel 2022), the child's heading offset estimated with
+        /// them. Allocates nothing. INVALID_ARGUMENT for n = 0, COUNT_TOO_LARGE for an `n` no
+        /// array can hold; a quaternion is checked as orient_filter_set_quaternion checks its
+        /// quaternion and a guess as an axis: NON_FINITE for a NaN or infinite value, ZERO_VECTOR
+        /// for one too short to normalise (its squared norm below DBL_MIN), TOO_LARGE for one
+        /// whose squared norm overflows.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_estimate_two_dof_axes(Quaternion* qParent, Quaternion* qChild, UIntPtr n, Vec3 guessParent, Vec3 guessChild, JointAxes* @out);
 
         /// <summary>
         /// Writes the offline defaults to `*config`: the recommended kind

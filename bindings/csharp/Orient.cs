@@ -1177,13 +1177,13 @@ namespace Orient
         /// (a few seconds of the joint turning), started from guesses; quality below 0.1
         /// means the axes can be trusted.
         /// </summary>
-        public static HingeAxes EstimateHingeAxes(Vec3[] gyroParent, Vec3[] gyroChild, Vec3 guessParent, Vec3 guessChild)
+        public static JointAxes EstimateHingeAxes(Vec3[] gyroParent, Vec3[] gyroChild, Vec3 guessParent, Vec3 guessChild)
         {
             if (gyroParent == null) throw new ArgumentNullException("gyroParent");
             if (gyroChild == null) throw new ArgumentNullException("gyroChild");
             if (gyroParent.Length != gyroChild.Length)
                 throw new ArgumentException("as many child readings as parent readings", "gyroChild");
-            HingeAxes h;
+            JointAxes h;
             Status s;
             Vec3 empty = new Vec3();
             fixed (Vec3* pp = gyroParent)
@@ -1194,6 +1194,33 @@ namespace Orient
                 Vec3* a = gyroParent.Length == 0 ? &empty : pp;
                 Vec3* b = gyroChild.Length == 0 ? &empty : pc;
                 s = NativeMethods.orient_estimate_hinge_axes(a, b, (UIntPtr)gyroParent.Length, guessParent, guessChild, &h);
+            }
+            OrientException.Check(s);
+            return h;
+        }
+
+        /// <summary>
+        /// A 2-DoF joint's axes from its two sensors' orientations (sensor to earth; 6D
+        /// estimates will do) at the same instants (a few seconds of the joint turning about
+        /// both axes), started from guesses: the first axis in the parent's frame, the second
+        /// in the child's; quality below 0.1 means the axes can be trusted.
+        /// </summary>
+        public static JointAxes EstimateTwoDofAxes(Quaternion[] parent, Quaternion[] child, Vec3 guessParent, Vec3 guessChild)
+        {
+            if (parent == null) throw new ArgumentNullException("parent");
+            if (child == null) throw new ArgumentNullException("child");
+            if (parent.Length != child.Length)
+                throw new ArgumentException("as many child orientations as parent orientations", "child");
+            JointAxes h;
+            Status s;
+            Quaternion empty = new Quaternion();
+            fixed (Quaternion* pp = parent)
+            fixed (Quaternion* pc = child)
+            {
+                // Empty arrays pin as NULL; the library wants pointers even for n = 0.
+                Quaternion* a = parent.Length == 0 ? &empty : pp;
+                Quaternion* b = child.Length == 0 ? &empty : pc;
+                s = NativeMethods.orient_estimate_two_dof_axes(a, b, (UIntPtr)parent.Length, guessParent, guessChild, &h);
             }
             OrientException.Check(s);
             return h;

@@ -3,7 +3,9 @@
 
 use super::*;
 use crate::filters::pipeline::sample::check_quaternion;
-use crate::joints::{estimate_hinge_axes_by, JointError, JointKind, JointParams, JointSpec, Joints};
+use crate::joints::{
+    estimate_hinge_axes_by, estimate_two_dof_axes_by, JointError, JointKind, JointParams, JointSpec, Joints,
+};
 
 /// OrientJoint.kind: one degree of freedom. The child turns about one axis,
 /// `axis_parent` in the parent sensor's frame and `axis_child` in the child's, the same
@@ -47,17 +49,23 @@ pub struct OrientJoint {
     pub axis_child: OrientVec3,
 }
 
-/// A hinge's axes estimated from motion (orient_estimate_hinge_axes).
+/// A joint's axes estimated from motion (orient_estimate_hinge_axes,
+/// orient_estimate_two_dof_axes).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
-pub struct OrientHingeAxes {
-    /// The axis in the parent sensor's frame (unit, on the side of the guess).
+pub struct OrientJointAxes {
+    /// The (first) axis in the parent sensor's frame (unit, on the side of the guess).
     pub axis_parent: OrientVec3,
-    /// The axis in the child sensor's frame.
+    /// The hinge's axis, or the 2-DoF joint's second axis, in the child sensor's frame
+    /// (unit, on the side of the guess).
     pub axis_child: OrientVec3,
-    /// RMS residual over RMS angular rate perpendicular to the axis: 0 for an ideal
-    /// hinge, a few hundredths with laxity and noise, near 1 when the motion did not turn
-    /// the joint or the joint is no hinge (at most 1). Below 0.1 the axes can be trusted.
+    /// How far the motion bears the axes out, 0 to 1; below 0.1 they can be trusted. A
+    /// hinge: RMS residual over RMS angular rate perpendicular to the axis (0 for an
+    /// ideal hinge, a few hundredths with laxity and noise, near 1 when the motion did
+    /// not turn the joint or the joint is no hinge). A 2-DoF joint: the larger of the RMS
+    /// residual (rad, how far from perpendicular the axes were seen) and three times the
+    /// axes' standard error (rad, large when the motion did not turn the joint about both
+    /// axes far enough, as a hinge's does not).
     pub quality: f64,
 }
 
@@ -482,39 +490,100 @@ pub unsafe extern "C" fn orient_estimate_hinge_axes(
     n: usize,
     guess_parent: OrientVec3,
     guess_child: OrientVec3,
-    out: *mut OrientHingeAxes,
+    out: *mut OrientJointAxes,
 ) -> OrientStatus {
     guard(|| {
-        need(gyro_parent.is_null() || gyro_child.is_null() || out.is_null())?;
-        if n == 0 {
-            return Err(fail(OrientStatus::InvalidArgument, format_args!("no readings (n = 0)")));
-        }
-        let p = items(gyro_parent, n, "readings")?;
-        let c = items(gyro_child, n, "readings")?;
+        need(out.is_null())?;
+        let (p, c) = pair_of_arrays(gyro_parent, gyro_child, n, "readings")?;
         if let Some(i) = (0..n).position(|i| !(vec_from(p[i]).is_finite() && vec_from(c[i]).is_finite())) {
             return Err(fail(OrientStatus::NonFinite, format_args!("reading {i} is NaN or infinite")));
         }
         let (gp, gc) = (vec_from(guess_parent), vec_from(guess_child));
-        for g in [gp, gc] {
-            if !g.is_finite() {
-                return Err(fail(OrientStatus::NonFinite, format_args!("a guess is NaN or infinite")));
-            }
-            if !g.norm_squared().is_finite() {
-                return Err(fail(OrientStatus::TooLarge, format_args!("a guess's squared norm overflows")));
-            }
-            if g.norm_squared() < f64::MIN_POSITIVE {
-                return Err(fail(
-                    OrientStatus::ZeroVector,
-                    format_args!("a guess is too short to normalise"),
-                ));
-            }
-        }
+        check_guess(gp)?;
+        check_guess(gc)?;
         // Every case the estimate refuses was refused above.
         let h =
             estimate_hinge_axes_by(n, |i| (vec_from(p[i]), vec_from(c[i])), (gp, gc)).ok_or_else(|| {
                 fail(OrientStatus::InvalidArgument, format_args!("readings the estimate refuses"))
             })?;
-        out.write(OrientHingeAxes {
+        out.write(OrientJointAxes {
+            axis_parent: vec_to(h.axis_parent),
+            axis_child: vec_to(h.axis_child),
+            quality: h.quality,
+        });
+        Ok(())
+    })
+}
+
+/// A joint's two arrays of `n` items (parent's, child's): NULL_POINTER for a NULL one,
+/// INVALID_ARGUMENT for n = 0, COUNT_TOO_LARGE for an `n` no array can hold.
+unsafe fn pair_of_arrays<'a, T>(
+    parent: *const T,
+    child: *const T,
+    n: usize,
+    what: &str,
+) -> Result<(&'a [T], &'a [T]), OrientStatus> {
+    need(parent.is_null() || child.is_null())?;
+    if n == 0 {
+        return Err(fail(OrientStatus::InvalidArgument, format_args!("no {what} (n = 0)")));
+    }
+    Ok((items(parent, n, what)?, items(child, n, what)?))
+}
+
+/// Checks an axis guess: NON_FINITE, TOO_LARGE (its squared norm overflows) or
+/// ZERO_VECTOR (too short to normalise).
+fn check_guess(g: Vec3) -> Result<(), OrientStatus> {
+    if !g.is_finite() {
+        return Err(fail(OrientStatus::NonFinite, format_args!("a guess is NaN or infinite")));
+    }
+    if !g.norm_squared().is_finite() {
+        return Err(fail(OrientStatus::TooLarge, format_args!("a guess's squared norm overflows")));
+    }
+    if g.norm_squared() < f64::MIN_POSITIVE {
+        return Err(fail(OrientStatus::ZeroVector, format_args!("a guess is too short to normalise")));
+    }
+    Ok(())
+}
+
+/// A 2-DoF joint's axes, and its quality, from `n` orientations of its parent and child
+/// sensors taken at the same instants (sensor to earth, as orient_filter_sensor_quaternion
+/// gives them: 6D estimates will do, whatever their headings, as long as these hold still
+/// relative to each other over the window; a few seconds of the joint turning about both
+/// axes while the segments move), started from the host's guesses `guess_parent` (the
+/// first axis, parent sensor frame) and `guess_child` (the second, child sensor frame;
+/// the result is on the guesses' side): the pair that best keeps the two axes
+/// perpendicular (Laidig, Weygers, Seel 2022), the child's heading offset estimated with
+/// them. Allocates nothing. INVALID_ARGUMENT for n = 0, COUNT_TOO_LARGE for an `n` no
+/// array can hold; a quaternion is checked as orient_filter_set_quaternion checks its
+/// quaternion and a guess as an axis: NON_FINITE for a NaN or infinite value, ZERO_VECTOR
+/// for one too short to normalise (its squared norm below DBL_MIN), TOO_LARGE for one
+/// whose squared norm overflows.
+#[no_mangle]
+pub unsafe extern "C" fn orient_estimate_two_dof_axes(
+    q_parent: *const OrientQuaternion,
+    q_child: *const OrientQuaternion,
+    n: usize,
+    guess_parent: OrientVec3,
+    guess_child: OrientVec3,
+    out: *mut OrientJointAxes,
+) -> OrientStatus {
+    guard(|| {
+        need(out.is_null())?;
+        let (p, c) = pair_of_arrays(q_parent, q_child, n, "orientations")?;
+        for (i, q) in p.iter().chain(c).enumerate() {
+            check_quaternion(quat_from(*q)).map_err(|e| {
+                let status = from_core(e);
+                fail(status, format_args!("orientation {}: {e}", i % n))
+            })?;
+        }
+        let (gp, gc) = (vec_from(guess_parent), vec_from(guess_child));
+        check_guess(gp)?;
+        check_guess(gc)?;
+        // Every case the estimate refuses was refused above.
+        let h = estimate_two_dof_axes_by(n, |i| (quat_from(p[i]), quat_from(c[i])), (gp, gc)).ok_or_else(
+            || fail(OrientStatus::InvalidArgument, format_args!("orientations the estimate refuses")),
+        )?;
+        out.write(OrientJointAxes {
             axis_parent: vec_to(h.axis_parent),
             axis_child: vec_to(h.axis_child),
             quality: h.quality,

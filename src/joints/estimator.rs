@@ -167,16 +167,17 @@ impl JointParams {
     }
 }
 
-/// An axis with a perpendicular basis, carried along as the axis is refined.
+/// An axis with a perpendicular basis (the directions of its small turns), carried along
+/// as the axis is refined.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Axis {
-    j: Vec3,
-    b1: Vec3,
-    b2: Vec3,
+pub(crate) struct Axis {
+    pub(crate) j: Vec3,
+    pub(crate) b1: Vec3,
+    pub(crate) b2: Vec3,
 }
 
 impl Axis {
-    fn new(j: Vec3) -> Axis {
+    pub(crate) fn new(j: Vec3) -> Axis {
         let j = j.normalized();
         let helper = if j.x.abs() <= j.y.abs() && j.x.abs() <= j.z.abs() {
             Vec3::new(1.0, 0.0, 0.0)
@@ -189,7 +190,8 @@ impl Axis {
         Axis { j, b1, b2: j.cross(b1) }
     }
 
-    fn fold(&mut self, u1: f64, u2: f64) {
+    /// The axis turned by `u1` towards `b1` and `u2` towards `b2` (rad, small).
+    pub(crate) fn fold(&mut self, u1: f64, u2: f64) {
         self.j = (self.j + self.b1 * u1 + self.b2 * u2).normalized();
         self.b1 = (self.b1 - self.j * self.j.dot(self.b1)).normalized();
         self.b2 = self.j.cross(self.b1);

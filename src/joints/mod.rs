@@ -47,7 +47,9 @@
 mod axes;
 pub mod estimator;
 
-pub use axes::{estimate_hinge_axes, estimate_hinge_axes_by, HingeAxes};
+pub use axes::{
+    estimate_hinge_axes, estimate_hinge_axes_by, estimate_two_dof_axes, estimate_two_dof_axes_by, JointAxes,
+};
 pub use estimator::JointParams;
 
 use crate::filters::state::{self as snapshot, Codec, Reader, StateError, Writer};

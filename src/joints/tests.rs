@@ -327,6 +327,84 @@ fn the_hinge_axes_come_from_motion() {
     assert!(estimate_hinge_axes(&nan, &wc, (jp, jc)).is_none());
 }
 
+/// A 2-DoF joint's sensor orientations over `seconds` at 100 Hz: the child turns about
+/// `j1` (parent frame) by `alpha(t)`, then about `j2` (child frame) by `beta(t)`, from the
+/// reference relative orientation `r0` (which makes `j1` and `r0 j2` perpendicular); the
+/// child's orientation is seen `offset` rad off in heading.
+fn two_dof_motion(
+    j1: Vec3,
+    j2: Vec3,
+    r0: Quat,
+    alpha: impl Fn(f64) -> f64,
+    beta: impl Fn(f64) -> f64,
+    offset: f64,
+    seconds: f64,
+) -> (Vec<Quat>, Vec<Quat>) {
+    let n = (seconds * 100.0) as usize;
+    let p: Vec<Quat> = (0..n).map(|i| parent_at(i as f64 * 0.01)).collect();
+    let c = (0..n)
+        .map(|i| {
+            let t = i as f64 * 0.01;
+            rot(Z, offset) * parent_at(t) * rot(j1, alpha(t)) * r0 * rot(j2, beta(t))
+        })
+        .collect();
+    (p, c)
+}
+
+#[test]
+fn a_two_dof_joints_axes_come_from_motion() {
+    // An MCP-like joint: flexion about the parent's y, abduction about the child's z,
+    // the child's sensor mounted turned.
+    let r0 = rot(Vec3::new(0.3, -0.2, 1.0), 0.7);
+    let j1 = Vec3::new(0.1, 1.0, 0.05).normalized();
+    // A second axis perpendicular to j1 in the reference pose, in the child's frame.
+    let j2 = r0.rotate_inverse(j1.cross(Vec3::new(1.0, 0.0, 0.2)).normalized());
+    let flex = |t: f64| 0.6 + 0.7 * libm::sin(1.3 * t);
+    let abd = |t: f64| 0.25 * libm::sin(2.1 * t + 0.4);
+    let (p, c) = two_dof_motion(j1, j2, r0, flex, abd, 0.7, 10.0);
+    let off = |v: Vec3, by: f64| rot(Vec3::new(0.3, 0.5, 1.0).cross(v), by.to_radians()).rotate(v);
+    let angle = |a: Vec3, b: Vec3| libm::atan2(a.cross(b).norm(), a.dot(b)).to_degrees();
+    for by in [5.0, 15.0] {
+        let h = estimate_two_dof_axes(&p, &c, (off(j1, by), off(j2, -by))).unwrap();
+        assert!(angle(h.axis_parent, j1) < 0.01 && angle(h.axis_child, j2) < 0.01, "{by}: {h:?}");
+        assert!(h.quality < 0.05, "{h:?}");
+    }
+    // On the guess's side.
+    let h = estimate_two_dof_axes(&p, &c, (-off(j1, 10.0), off(j2, 10.0))).unwrap();
+    assert!(angle(h.axis_parent, -j1) < 0.01 && angle(h.axis_child, j2) < 0.01, "{h:?}");
+    // Soft tissue: each orientation wobbles by a degree or so; the axes stay within one.
+    let wobble = |q: Quat, i: usize| {
+        let k = i as f64;
+        rot(Vec3::new(libm::sin(0.7 * k), libm::cos(1.3 * k), libm::sin(2.9 * k)), 0.02 * libm::sin(0.05 * k))
+            * q
+    };
+    let pw: Vec<Quat> = p.iter().enumerate().map(|(i, q)| wobble(*q, i)).collect();
+    let cw: Vec<Quat> = c.iter().enumerate().map(|(i, q)| wobble(*q, i + 7)).collect();
+    let h = estimate_two_dof_axes(&pw, &cw, (off(j1, 10.0), off(j2, 10.0))).unwrap();
+    assert!(angle(h.axis_parent, j1) < 1.0 && angle(h.axis_child, j2) < 1.0, "{h:?}");
+    assert!(h.quality < 0.1, "{h:?}");
+    // A hinge (no abduction) leaves the second axis free: the quality says so.
+    let (p1, c1) = two_dof_motion(j1, j2, r0, flex, |_| 0.0, 0.7, 10.0);
+    let hinge = estimate_two_dof_axes(&p1, &c1, (off(j1, 10.0), off(j2, 10.0))).unwrap();
+    assert!(hinge.quality > 0.1, "{hinge:?}");
+    // A ball joint (a third turn about the child's own axis) is no 2-DoF joint.
+    let twist = |i: usize| rot(j1.cross(j2).normalized(), 0.5 * libm::sin(0.9 * i as f64 * 0.01));
+    let c3: Vec<Quat> = c.iter().enumerate().map(|(i, q)| *q * twist(i)).collect();
+    let ball = estimate_two_dof_axes(&p, &c3, (off(j1, 10.0), off(j2, 10.0))).unwrap();
+    assert!(ball.quality > 0.1, "{ball:?}");
+    // What it refuses.
+    let (y, z) = (Y, Z);
+    assert!(estimate_two_dof_axes(&p, &c[1..], (y, z)).is_none());
+    assert!(estimate_two_dof_axes(&[], &[], (y, z)).is_none());
+    assert!(estimate_two_dof_axes(&p, &c, (Vec3::ZERO, z)).is_none());
+    assert!(estimate_two_dof_axes(&p, &c, (y, Vec3::new(f64::NAN, 0.0, 0.0))).is_none());
+    let mut bad = p.clone();
+    bad[3] = Quat::new(0.0, 0.0, 0.0, 0.0);
+    assert!(estimate_two_dof_axes(&bad, &c, (y, z)).is_none());
+    bad[3] = Quat::new(f64::INFINITY, 0.0, 0.0, 0.0);
+    assert!(estimate_two_dof_axes(&bad, &c, (y, z)).is_none());
+}
+
 #[test]
 fn a_snapshot_continues_bit_for_bit_and_bad_blobs_change_nothing() {
     let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 30.0);

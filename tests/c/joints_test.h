@@ -176,6 +176,61 @@ static void joints_new_refusals(void) {
     CHECK_STATUS(orient_joints_free(out), ORIENT_STATUS_OK);
 }
 
+/* A 2-DoF joint's axes (the parent's z, then the child's y) from ten seconds of the two
+ * sensors' orientations, the child's 40 degrees off in heading, started 5 degrees off. */
+static void two_dof_axes(void) {
+    const int n = 1000;
+    OrientQuaternion *qp = (OrientQuaternion *)malloc(sizeof *qp * (size_t)n);
+    OrientQuaternion *qc = (OrientQuaternion *)malloc(sizeof *qc * (size_t)n);
+    OrientVec3 a, b;
+    OrientJointAxes h;
+    double t;
+    int i;
+    if (qp == NULL || qc == NULL) {
+        CHECK(0);
+        free(qp);
+        free(qc);
+        return;
+    }
+    for (i = 0; i < n; i++) {
+        t = i * 0.01;
+        qp[i] = oq_of(parent_at(t));
+        qc[i] = oq_of(q_mul(q_axis(0, 0, 1, 40 * DEGREE),
+                            q_mul(parent_at(t), q_mul(q_axis(0, 0, 1, 0.25 * sin(2.1 * t)),
+                                                      q_axis(0, 1, 0, flexion_at(t))))));
+    }
+    a.x = 0.0, a.y = 0.087, a.z = 1.0;
+    b.x = 0.087, b.y = 1.0, b.z = 0.0;
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, (size_t)n, a, b, &h), ORIENT_STATUS_OK);
+    CHECK(h.axis_parent.z > cos(0.1 * DEGREE) && h.axis_child.y > cos(0.1 * DEGREE));
+    CHECK(h.quality >= 0.0 && h.quality < 0.05);
+    /* Every refusal the header lists. */
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, 0, a, b, &h), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_estimate_two_dof_axes(NULL, qc, (size_t)n, a, b, &h), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, NULL, (size_t)n, a, b, &h), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, (size_t)n, a, b, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, SIZE_MAX, a, b, &h), ORIENT_STATUS_COUNT_TOO_LARGE);
+    qc[7].y = NAN;
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, (size_t)n, a, b, &h), ORIENT_STATUS_NON_FINITE);
+    qc[7].w = 0.0, qc[7].x = 0.0, qc[7].y = 0.0, qc[7].z = 0.0;
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, (size_t)n, a, b, &h), ORIENT_STATUS_ZERO_VECTOR);
+    qc[7].w = 1e200;
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, (size_t)n, a, b, &h), ORIENT_STATUS_TOO_LARGE);
+    qc[7].w = 1.0;
+    b.x = 0.0, b.y = 0.0, b.z = 0.0;
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, (size_t)n, a, b, &h), ORIENT_STATUS_ZERO_VECTOR);
+    b.x = INFINITY;
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, (size_t)n, a, b, &h), ORIENT_STATUS_NON_FINITE);
+    b.x = 1e200;
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, (size_t)n, a, b, &h), ORIENT_STATUS_TOO_LARGE);
+    /* A refused call leaves *out as it was. */
+    h.quality = -1.0;
+    CHECK_STATUS(orient_estimate_two_dof_axes(qp, qc, (size_t)n, a, b, &h), ORIENT_STATUS_TOO_LARGE);
+    CHECK(h.quality == -1.0);
+    free(qp);
+    free(qc);
+}
+
 static void joint_calls(void) {
     OrientJoint j = hinge_joint(0, 1);
     OrientJoints *joints = NULL, *gone = NULL;
@@ -183,7 +238,7 @@ static void joint_calls(void) {
     OrientSample s[2], bad[2];
     OrientQuaternion q, before;
     OrientVec3 a, b, *gp, *gc;
-    OrientHingeAxes h;
+    OrientJointAxes h;
     double angles[2], r, heading, sigma, heading_before, dt = 0.01;
     int i, n;
     const int rows = 1500;
@@ -399,4 +454,5 @@ static void joint_calls(void) {
     CHECK_STATUS(orient_estimate_hinge_axes(gp, gc, (size_t)n, a, b, &h), ORIENT_STATUS_TOO_LARGE);
     free(gp);
     free(gc);
+    two_dof_axes();
 }

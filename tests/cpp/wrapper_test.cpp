@@ -492,9 +492,21 @@ static void joints() {
     CHECK(!bad.ok() && bad.error().status == ORIENT_STATUS_INVALID_JOINT);
     CHECK(bad.error().message.find("joint 1") != std::string::npos);
 
-    OrientHingeAxes h{};
+    OrientJointAxes h{};
     CHECK(orient::estimate_hinge_axes(wp, wc, orient::vec3(1, 0.08, 0), orient::vec3(1, 0, -0.08), h) == ORIENT_STATUS_OK);
     CHECK(h.axis_parent.x > 0.9999 && h.axis_child.x > 0.9999 && h.quality < 0.01);
+    // A 2-DoF joint (the parent's z, then the child's y) from orientations, the child's
+    // 40 degrees off in heading.
+    std::vector<OrientQuaternion> qp, qc;
+    for (int i = 0; i < 1000; i++) {
+        double t = i * dt;
+        qp.push_back(parent(t));
+        qc.push_back(mul(rot(0, 0, 1, 0.7), mul(parent(t), mul(rot(0, 0, 1, 0.25 * std::sin(2.1 * t)), rot(0, 1, 0, flexion(t))))));
+    }
+    CHECK(orient::estimate_two_dof_axes(qp, qc, orient::vec3(0, 0.08, 1), orient::vec3(0.08, 1, 0), h) == ORIENT_STATUS_OK);
+    CHECK(h.axis_parent.z > 0.9999 && h.axis_child.y > 0.9999 && h.quality < 0.05);
+    qc.pop_back();
+    CHECK(orient::estimate_two_dof_axes(qp, qc, orient::vec3(0, 0, 1), orient::vec3(0, 1, 0), h) == ORIENT_STATUS_INVALID_ARGUMENT);
 #if ORIENT_HPP_EXCEPTIONS
     bool thrown = false;
     try {

@@ -537,6 +537,20 @@ public static class OrientTests
             Check(axes.AxisParent.X > 0.9999 && axes.AxisChild.X > 0.9999 && axes.Quality < 0.01, "OrientJoints: hinge axes");
             Throws(Status.InvalidArgument, () => OrientJoints.EstimateHingeAxes(new Vec3[0], new Vec3[0], x, x),
                 "OrientJoints: no readings");
+            // A 2-DoF joint (the hand's z, then the finger's y) from orientations, the
+            // finger's 40 degrees off in heading.
+            var qp = new Orient.Native.Quaternion[1000];
+            var qc = new Orient.Native.Quaternion[1000];
+            for (int i = 0; i < qp.Length; i++)
+            {
+                double t = i * 0.01;
+                qp[i] = HandAt(t);
+                qc[i] = QMul(QAxis(0, 0, 1, 0.7), QMul(HandAt(t), QMul(QAxis(0, 0, 1, 0.25 * Math.Sin(2.1 * t)), QAxis(0, 1, 0, FlexionAt(t)))));
+            }
+            var two = OrientJoints.EstimateTwoDofAxes(qp, qc, new Vec3 { X = 0, Y = 0.08, Z = 1 }, new Vec3 { X = 0.08, Y = 1, Z = 0 });
+            Check(two.AxisParent.Z > 0.9999 && two.AxisChild.Y > 0.9999 && two.Quality < 0.05, "OrientJoints: 2-DoF axes");
+            Throws(Status.InvalidArgument, () => OrientJoints.EstimateTwoDofAxes(new Orient.Native.Quaternion[0], new Orient.Native.Quaternion[0], x, x),
+                "OrientJoints: no orientations");
             joints.Dispose();
             Check(IsDisposedThrows(() => joints.Rating(0)), "OrientJoints: disposed");
         }

@@ -91,6 +91,20 @@ def test_a_hinged_finger_in_one_call():
     # The hinge axes from the same motion, started 5 degrees off.
     h = orient.estimate_hinge_axes(gh[:500], gf[:500], [1, 0.08, 0], [1, 0, -0.08])
     assert h.axis_parent[0] > 0.9999 and h.axis_child[0] > 0.9999 and h.quality < 0.01
+    # A 2-DoF joint (the hand's z, then the finger's y) from orientations, the finger's
+    # 40 degrees off in heading.
+    t = np.arange(1000) * 0.01
+    qp = np.array([hand_at(x) for x in t])
+    qc = np.array([qmul(axis(0, 0, 1, 0.7), qmul(hand_at(x), qmul(axis(0, 0, 1, 0.25 * math.sin(2.1 * x)),
+                                                                   axis(0, 1, 0, flexion_at(x))))) for x in t])
+    two = orient.estimate_two_dof_axes(qp, qc, [0, 0.08, 1], [0.08, 1, 0])
+    assert two.axis_parent[2] > 0.9999 and two.axis_child[1] > 0.9999 and two.quality < 0.05
+    with pytest.raises(ValueError):
+        orient.estimate_two_dof_axes(qp, qc[:-1], [0, 0, 1], [0, 1, 0])
+    qc[5, 0] = np.nan
+    with pytest.raises(OrientError) as e:
+        orient.estimate_two_dof_axes(qp, qc, [0, 0, 1], [0, 1, 0])
+    assert e.value.status == Status.NON_FINITE
 
 
 def test_bad_rigs_and_rows_are_refused():

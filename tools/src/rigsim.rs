@@ -390,6 +390,12 @@ fn deg(d: f64) -> f64 {
     d.to_radians()
 }
 
+/// A command line's seeds, `A-B` or `A`: the first and the last.
+pub fn seed_range(v: &str) -> (u64, u64) {
+    let (a, b) = v.split_once('-').unwrap_or((v, v));
+    (a.parse().expect("a seed"), b.parse().expect("a seed"))
+}
+
 /// The rotation by the rotation vector `v`.
 pub fn exp(v: Vec3) -> Quat {
     let a = v.norm();

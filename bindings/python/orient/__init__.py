@@ -36,7 +36,8 @@ from ._filter import (
     status_message,
     version,
 )
-from ._joints import SAMPLE_DTYPE, HingeAxes, Joint, Joints, estimate_hinge_axes, run_rig
+from ._joints import (SAMPLE_DTYPE, Joint, JointAxes, Joints, estimate_hinge_axes, estimate_two_dof_axes,
+                      run_rig)
 from ._native import (
     FLAG_ACCEL_REJECTED,
     FLAG_ACCEL_USED,
@@ -60,7 +61,8 @@ __version__ = version()
 __all__ = [
     "align_rig_heading",
     "estimate_hinge_axes",
-    "HingeAxes",
+    "estimate_two_dof_axes",
+    "JointAxes",
     "Joint",
     "Joints",
     "run_rig",

@@ -162,8 +162,9 @@ class Joints:
 
 
 @dataclass
-class HingeAxes:
-    """What :func:`estimate_hinge_axes` found; ``quality`` below 0.1 can be trusted."""
+class JointAxes:
+    """What :func:`estimate_hinge_axes` or :func:`estimate_two_dof_axes` found;
+    ``quality`` below 0.1 can be trusted."""
 
     axis_parent: np.ndarray
     axis_child: np.ndarray
@@ -171,19 +172,36 @@ class HingeAxes:
 
 
 def estimate_hinge_axes(gyr_parent: ArrayLike, gyr_child: ArrayLike, guess_parent: ArrayLike,
-                        guess_child: ArrayLike) -> HingeAxes:
+                        guess_child: ArrayLike) -> JointAxes:
     """A hinge's axes from (N, 3) gyroscope readings (rad/s) of its two sensors at the same
     instants, started from the guesses (sensor frames)."""
     p = np.ascontiguousarray(gyr_parent, dtype=np.float64)
     c = np.ascontiguousarray(gyr_child, dtype=np.float64)
     if p.ndim != 2 or p.shape[1] != 3 or p.shape != c.shape:
         raise ValueError(f"readings must both have shape (N, 3), got {p.shape} and {c.shape}")
-    out = n.OrientHingeAxes()
+    out = n.OrientJointAxes()
     _check(lib.orient_estimate_hinge_axes(_ptr(p, n.OrientVec3), _ptr(c, n.OrientVec3), len(p),
                                           _vec3(guess_parent, "guess_parent"), _vec3(guess_child, "guess_child"),
                                           byref(out)))
     a, b = out.axis_parent, out.axis_child
-    return HingeAxes(np.array([a.x, a.y, a.z]), np.array([b.x, b.y, b.z]), out.quality)
+    return JointAxes(np.array([a.x, a.y, a.z]), np.array([b.x, b.y, b.z]), out.quality)
+
+
+def estimate_two_dof_axes(q_parent: ArrayLike, q_child: ArrayLike, guess_parent: ArrayLike,
+                          guess_child: ArrayLike) -> JointAxes:
+    """A 2-DoF joint's axes from (N, 4) orientations (w, x, y, z; sensor to earth, 6D
+    estimates will do) of its two sensors at the same instants, started from the guesses:
+    the first axis in the parent's sensor frame, the second in the child's."""
+    p = np.ascontiguousarray(q_parent, dtype=np.float64)
+    c = np.ascontiguousarray(q_child, dtype=np.float64)
+    if p.ndim != 2 or p.shape[1] != 4 or p.shape != c.shape:
+        raise ValueError(f"orientations must both have shape (N, 4), got {p.shape} and {c.shape}")
+    out = n.OrientJointAxes()
+    _check(lib.orient_estimate_two_dof_axes(_ptr(p, n.OrientQuaternion), _ptr(c, n.OrientQuaternion), len(p),
+                                            _vec3(guess_parent, "guess_parent"),
+                                            _vec3(guess_child, "guess_child"), byref(out)))
+    a, b = out.axis_parent, out.axis_child
+    return JointAxes(np.array([a.x, a.y, a.z]), np.array([b.x, b.y, b.z]), out.quality)
 
 
 def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike, acc: ArrayLike,
@@ -251,4 +269,4 @@ def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike,
     return out
 
 
-__all__ = ["Joint", "Joints", "HingeAxes", "estimate_hinge_axes", "run_rig", "SAMPLE_DTYPE"]
+__all__ = ["Joint", "Joints", "JointAxes", "estimate_hinge_axes", "estimate_two_dof_axes", "run_rig", "SAMPLE_DTYPE"]

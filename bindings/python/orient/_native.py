@@ -959,17 +959,24 @@ class OrientSample(Structure):
     ]
 
 
-class OrientHingeAxes(Structure):
-    """A hinge's axes estimated from motion (orient_estimate_hinge_axes)."""
+class OrientJointAxes(Structure):
+    """A joint's axes estimated from motion (orient_estimate_hinge_axes,
+    orient_estimate_two_dof_axes).
+    """
 
     _fields_ = [
-        # The axis in the parent sensor's frame (unit, on the side of the guess).
+        # The (first) axis in the parent sensor's frame (unit, on the side of the guess).
         ("axis_parent", OrientVec3),
-        # The axis in the child sensor's frame.
+        # The hinge's axis, or the 2-DoF joint's second axis, in the child sensor's frame
+        # (unit, on the side of the guess).
         ("axis_child", OrientVec3),
-        # RMS residual over RMS angular rate perpendicular to the axis: 0 for an ideal
-        # hinge, a few hundredths with laxity and noise, near 1 when the motion did not turn
-        # the joint or the joint is no hinge (at most 1). Below 0.1 the axes can be trusted.
+        # How far the motion bears the axes out, 0 to 1; below 0.1 they can be trusted. A
+        # hinge: RMS residual over RMS angular rate perpendicular to the axis (0 for an
+        # ideal hinge, a few hundredths with laxity and noise, near 1 when the motion did
+        # not turn the joint or the joint is no hinge). A 2-DoF joint: the larger of the RMS
+        # residual (rad, how far from perpendicular the axes were seen) and three times the
+        # axes' standard error (rad, large when the motion did not turn the joint about both
+        # axes far enough, as a hinge's does not).
         ("quality", c_double),
     ]
 
@@ -1101,7 +1108,18 @@ PROTOTYPES = {
             c_size_t,
             OrientVec3,
             OrientVec3,
-            POINTER(OrientHingeAxes),
+            POINTER(OrientJointAxes),
+        ],
+    ),
+    "orient_estimate_two_dof_axes": (
+        c_int32,
+        [
+            POINTER(OrientQuaternion),
+            POINTER(OrientQuaternion),
+            c_size_t,
+            OrientVec3,
+            OrientVec3,
+            POINTER(OrientJointAxes),
         ],
     ),
     "orient_smooth_config_default": (c_int32, [POINTER(OrientConfig)]),

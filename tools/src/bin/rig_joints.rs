@@ -26,7 +26,7 @@ use orient_tools::rig::{
     joint_errors, reference_row, run_rig, score_rig, twist_angle, Alone, JointStage, RigRecording, RigScores,
     SensorFilter,
 };
-use orient_tools::rigsim::{SimConfig, Simulation};
+use orient_tools::rigsim::{seed_range, SimConfig, Simulation};
 
 /// Sets each child's heading relative to its parent from the truth.
 struct Oracle<'a> {
@@ -162,11 +162,7 @@ fn main() {
     while let Some(a) = it.next() {
         let mut val = || it.next().expect("a value");
         match a.as_str() {
-            "--seeds" => {
-                let v = val();
-                let (a, b) = v.split_once('-').unwrap_or((&v, &v));
-                (s0, s1) = (a.parse().unwrap(), b.parse().unwrap());
-            }
+            "--seeds" => (s0, s1) = seed_range(&val()),
             "--minutes" => minutes = val().parse().unwrap(),
             "--cases" => cases = val().split(',').map(String::from).collect(),
             "--filters" => {
