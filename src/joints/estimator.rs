@@ -44,8 +44,11 @@
 //! second: `r` is their variance times their correlation time, so the gain does not
 //! depend on the rate); an innovation beyond `gate √S` is down-weighted (Huber);
 //! `K = P hᵀ / S`, `δx ← δx + K (ν − h δx)`, `P ← P − K h P`. The step applied to `Δ` and
-//! to `φ` by the measurements is at most `max_rate · dt` (the prediction adds the drift):
-//! the heading never jumps.
+//! to `φ` by the measurements is at most `max_rate · dt` a sample (the prediction adds the
+//! drift): the heading never jumps. An update the bound cuts to a fraction `f` of its
+//! step takes the gain `f K` in every state and removes from `P` only what that gain
+//! does, `(2f − f²) P hᵀ h P / S` (Joseph's form for any gain): the estimate stays as
+//! uncertain as the step it did not take and goes on at the bound.
 //!
 //! The observability rating is the information the constraints gave about `Δ`,
 //! `h_Δ² / R`, low-passed over `rating_tau` and scaled to [0, 1] by its value for a
@@ -345,6 +348,7 @@ impl JointEstimator {
         let dp = [q_p.rotate(self.p_axis.b1), q_p.rotate(self.p_axis.b2)];
         let dc = [rz.rotate(q_c.rotate(self.c_axis.b1)), rz.rotate(q_c.rotate(self.c_axis.b2))];
         let mut dx = [0.0; N];
+        let step = prm.max_rate * dt;
         let mut info = 0.0;
         match (rest, self.kind) {
             (true, _) => {}
@@ -361,7 +365,7 @@ impl JointEstimator {
                     h[UC + 1] = -comp(dc[1], i);
                     tilt(-e_c, &mut h, i);
                     info += h[0] * h[0] / rr;
-                    self.scalar_update(&h, -comp(r, i), rr, &mut dx);
+                    self.scalar_update(&h, -comp(r, i), rr, &mut dx, step);
                 }
                 self.info_scale = 1.0 / rr;
             }
@@ -377,7 +381,7 @@ impl JointEstimator {
                 h[TX + 1] = e_p.dot(Vec3::new(0.0, 1.0, 0.0).cross(e_c));
                 let rr = prm.r_2dof / dt;
                 info += h[0] * h[0] / rr;
-                self.scalar_update(&h, -f, rr, &mut dx);
+                self.scalar_update(&h, -f, rr, &mut dx, step);
                 self.info_scale = 1.0 / rr;
             }
         }
@@ -403,12 +407,11 @@ impl JointEstimator {
                     h[OC + k] = -comp(cc[k], i);
                 }
                 tilt(-fc, &mut h, i);
-                self.scalar_update(&h, -comp(r, i), rr, &mut dx);
+                self.scalar_update(&h, -comp(r, i), rr, &mut dx, step);
             }
         }
         self.rating += alpha * ((info / self.info_scale).min(1.0) - self.rating);
-        let step = prm.max_rate * dt;
-        self.x[0] += dx[0].clamp(-step, step);
+        self.x[0] += dx[0];
         for k in BP..UP_ {
             self.x[k] += dx[k];
         }
@@ -418,7 +421,7 @@ impl JointEstimator {
             self.x[k] += dx[k];
         }
         for k in TX..N {
-            self.x[k] += dx[k].clamp(-step, step);
+            self.x[k] += dx[k];
         }
     }
 
@@ -455,8 +458,12 @@ impl JointEstimator {
     }
 
     /// A scalar measurement `0 = z + h δx + v` with innovation `nu` before `δx` and noise
-    /// variance `r`.
-    fn scalar_update(&mut self, h: &[f64; N], nu: f64, r: f64, dx: &mut [f64; N]) {
+    /// variance `r`, the step of `Δ` and of `φ` this sample kept within `±step`. Where the
+    /// bound cuts the step to a fraction `f` of the gain's, the whole update takes the
+    /// gain `f K`, and the covariance what that gain removes (Joseph's form,
+    /// `P ← P − (2f − f²) P hᵀ h P / S`): the estimate stays as uncertain as the step it
+    /// did not take, and goes on at the bound.
+    fn scalar_update(&mut self, h: &[f64; N], nu: f64, r: f64, dx: &mut [f64; N], step: f64) {
         let mut ph = [0.0; N];
         for i in 0..N {
             ph[i] = (0..N).map(|k| self.p[i][k] * h[k]).sum();
@@ -471,12 +478,21 @@ impl JointEstimator {
         if !(s.is_finite() && s > 0.0 && nu.is_finite()) {
             return;
         }
-        for i in 0..N {
-            dx[i] += ph[i] / s * nu;
+        let mut f: f64 = 1.0;
+        for k in [0, TX, TX + 1] {
+            let change = ph[k] / s * nu;
+            let to = dx[k] + change;
+            if to.abs() > step && change != 0.0 {
+                f = f.min(((step.copysign(change) - dx[k]) / change).clamp(0.0, 1.0));
+            }
         }
         for i in 0..N {
+            dx[i] += f * ph[i] / s * nu;
+        }
+        let taken = (2.0 * f - f * f) / s;
+        for i in 0..N {
             for k in 0..N {
-                self.p[i][k] -= ph[i] * ph[k] / s;
+                self.p[i][k] -= ph[i] * ph[k] * taken;
             }
         }
     }
@@ -580,5 +596,43 @@ impl JointEstimator {
             }
         }
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A heading measurement whose step the bound cuts: the state moves by the bound, and
+    /// the covariance loses `(2f − f²) P hᵀ h P / S` (Joseph's form for the gain `f K`),
+    /// not the full `P hᵀ h P / S`, so the heading stays uncertain.
+    #[test]
+    fn a_cut_step_takes_the_gain_f_k_and_its_covariance() {
+        let params = JointParams { heading_std0: 0.5, ..JointParams::default() };
+        let x = Vec3::new(1.0, 0.0, 0.0);
+        let mut e = JointEstimator::new(JointKind::Hinge, x, x, params);
+        let before = e.clone();
+        let mut h = [0.0; N];
+        h[0] = 1.0;
+        h[UP_] = 0.3;
+        let (nu, r, step) = (0.4, 1e-4, 1e-3);
+        let mut dx = [0.0; N];
+        e.scalar_update(&h, nu, r, &mut dx, step);
+        // The readable form: P hᵀ, S = h P hᵀ + R, the gain's step K ν, its fraction f.
+        let ph: Vec<f64> = (0..N).map(|i| (0..N).map(|k| before.p[i][k] * h[k]).sum()).collect();
+        let s = (0..N).map(|k| h[k] * ph[k]).sum::<f64>() + r;
+        assert!(nu * nu <= params.gate * params.gate * s, "inside the gate");
+        let f = step / (ph[0] / s * nu);
+        assert!(f > 0.0 && f < 0.01, "{f}");
+        assert!((dx[0] - step).abs() <= 1e-18, "{}", dx[0]);
+        for i in 0..N {
+            assert!((dx[i] - f * ph[i] / s * nu).abs() <= 1e-15, "dx[{i}]");
+            for k in 0..N {
+                let want = before.p[i][k] - (2.0 * f - f * f) * ph[i] * ph[k] / s;
+                assert!((e.p[i][k] - want).abs() <= 1e-15, "P[{i}][{k}]: {} vs {want}", e.p[i][k]);
+            }
+        }
+        // Most of the heading's variance is left: the next samples go on at the bound.
+        assert!(e.p[0][0] > 0.98 * before.p[0][0], "{} of {}", e.p[0][0], before.p[0][0]);
     }
 }
