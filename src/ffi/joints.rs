@@ -573,7 +573,8 @@ pub unsafe extern "C" fn orient_estimate_two_dof_axes(
         for (i, q) in p.iter().chain(c).enumerate() {
             check_quaternion(quat_from(*q)).map_err(|e| {
                 let status = from_core(e);
-                fail(status, format_args!("orientation {}: {e}", i % n))
+                let side = if i < n { "parent" } else { "child" };
+                fail(status, format_args!("{side} orientation {}: {e}", i % n))
             })?;
         }
         let (gp, gc) = (vec_from(guess_parent), vec_from(guess_child));

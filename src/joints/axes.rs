@@ -259,11 +259,19 @@ pub fn estimate_two_dof_axes_by(
         let (p, c) = pair(i);
         p.normalized().rotate(a.j).dot((rz * c.normalized()).normalized().rotate(b.j))
     };
-    let lag1: f64 = (1..n).map(|i| resid(i - 1) * resid(i)).sum();
-    let rho = if c > 0.0 { (lag1 / c).clamp(0.0, 1.0) } else { 0.0 };
+    let floor = 1e-4;
+    let variance = c / (n as f64 - 5.0).max(1.0);
+    // The correlation of residuals above the floor only: what an exact fit leaves is
+    // rounding, however smooth.
+    let rho = if variance > floor {
+        let lag1: f64 = (1..n).map(|i| resid(i - 1) * resid(i)).sum();
+        (lag1 / c).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let n_eff = (n as f64 * (1.0 - rho) / (1.0 + rho)).max(1.0);
     let rms = (c / n as f64).sqrt();
-    let s2 = (c / (n as f64 - 5.0).max(1.0)).max(1e-4) * n as f64 / n_eff;
+    let s2 = variance.max(floor) * n as f64 / n_eff;
     let mut worst: f64 = 0.0;
     for k in 0..4 {
         let mut e = [0.0; 5];

@@ -92,7 +92,8 @@ pub struct JointParams {
     pub rate_std0: f64,
     pub axis_std0: f64,
     /// The largest correction of the relative heading (and of the tilt) per second
-    /// (rad/s).
+    /// (rad/s, above zero): an update that would turn them faster takes a fraction of its
+    /// gain in every state.
     pub max_rate: f64,
     /// Rest: both gyroscopes below this norm (rad/s) for `rest_time` seconds.
     pub rest_gyro: f64,
@@ -139,7 +140,8 @@ impl Default for JointParams {
 }
 
 impl JointParams {
-    /// Every field finite and not negative, and `gate`, `rating_tau` above zero.
+    /// Every field finite and not negative; `gate`, `rating_tau`, `r_hinge`, `r_2dof` and
+    /// `max_rate` above zero (a zero bound would stop every update).
     pub(crate) fn is_valid(&self) -> bool {
         let p = self;
         let all = [
@@ -165,6 +167,7 @@ impl JointParams {
         all.iter().all(|v| v.is_finite() && *v >= 0.0)
             && p.gate > 0.0
             && p.rating_tau > 0.0
+            && p.max_rate > 0.0
             && p.r_hinge > 0.0
             && p.r_2dof > 0.0
     }
@@ -411,6 +414,10 @@ impl JointEstimator {
             }
         }
         self.rating += alpha * ((info / self.info_scale).min(1.0) - self.rating);
+        // Each update kept the steps within the bound but for rounding.
+        for k in [0, TX, TX + 1] {
+            dx[k] = dx[k].clamp(-step, step);
+        }
         self.x[0] += dx[0];
         for k in BP..UP_ {
             self.x[k] += dx[k];

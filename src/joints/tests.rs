@@ -232,6 +232,7 @@ fn bad_rigs_are_refused_naming_the_joint() {
         JointParams { gate: 0.0, ..p },
         JointParams { q_rate: -1.0, ..p },
         JointParams { r_acc: f64::NAN, ..p },
+        JointParams { max_rate: 0.0, ..p },
     ] {
         assert_eq!(Joints::new(2, &[ok], &[], bad).unwrap_err(), JointError::BadParams);
     }
