@@ -502,6 +502,11 @@ impl JointEstimator {
                 self.p[i][k] -= ph[i] * ph[k] * taken;
             }
         }
+        // A measurement that all but fixes a state (a lever arm under fast rotation) leaves
+        // its variance at rounding level, which can fall below zero: it is zero.
+        for i in 0..N {
+            self.p[i][i] = self.p[i][i].max(0.0);
+        }
     }
 }
 
