@@ -5,7 +5,7 @@
 //! ```text
 //! cargo run --release -p orient-tools --bin rig_joints [-- --seeds A-B] [--minutes M]
 //!     [--cases a,b,..] [--filters robust,vqf] [--set KEY=VALUE].. [--oracle] [--cost]
-//!     [--debias true|initial]
+//!     [--debias true|initial] [--filter-set NAME=VALUE]..
 //! ```
 //!
 //! - `--seeds A-B` (default 1-3): the seeds per case (design on 1-3, hold out 4-8).
@@ -14,6 +14,7 @@
 //! - `--oracle`: also the floor: each child's relative heading set from the truth (what
 //!   remains is the filters' inclination and the joints' truth not in any heading).
 //! - `--cost`: the time of the joint stage beside the filters' in the same run.
+//! - `--filter-set NAME=VALUE`: a robust filter parameter by its name (`bias_limit`, ...).
 //! - `--debias true|initial`: the gyroscopes' readings less the true bias (`true`) or
 //!   less the bias at the start (`initial`, what the still reference pose could give):
 //!   how much of the error a better bias estimate could remove.
@@ -111,12 +112,14 @@ enum Base {
     Vqf,
 }
 
-fn filters(b: Base, n: usize, dt: f64) -> Vec<SensorFilter> {
+fn filters(b: Base, n: usize, dt: f64, tuning: &[(String, f64)]) -> Vec<SensorFilter> {
+    let mut config = Config::new(Kind::Robust).unwrap();
+    for (name, value) in tuning {
+        config.set(name, *value).expect("a robust parameter's name").expect("a value in range");
+    }
     (0..n)
         .map(|_| match b {
-            Base::Robust => {
-                SensorFilter::Orient(Box::new(Filter::new(&Config::new(Kind::Robust).unwrap()).unwrap()))
-            }
+            Base::Robust => SensorFilter::Orient(Box::new(Filter::new(&config).unwrap())),
             Base::Vqf => SensorFilter::vqf(dt, false),
         })
         .collect()
@@ -157,6 +160,7 @@ fn main() {
     let mut trace: Option<String> = None;
     let mut truth_input = false;
     let mut debias = String::new();
+    let mut tuning: Vec<(String, f64)> = Vec::new();
     let (mut oracle, mut cost, mut alone, mut verbose) = (false, false, true, false);
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -175,6 +179,11 @@ fn main() {
             "--trace" => trace = Some(val()),
             "--truth-input" => truth_input = true,
             "--debias" => debias = val(),
+            "--filter-set" => {
+                let v = val();
+                let (k, x) = v.split_once('=').expect("--filter-set NAME=VALUE");
+                tuning.push((k.to_string(), x.parse().expect("a number")));
+            }
             "--verbose" => verbose = true,
             _ => panic!("unknown argument {a}"),
         }
@@ -215,16 +224,16 @@ fn main() {
                 for (m, name) in methods.iter().enumerate().chain(trace.iter().map(|_| (3, &"trace"))) {
                     let run = match m {
                         0 if alone || cost => {
-                            let mut f = filters(*base, rec.spec.sensors.len(), dt);
+                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning);
                             run_rig(rec, &mut f, &mut Alone, true)
                         }
                         1 => {
-                            let mut f = filters(*base, rec.spec.sensors.len(), dt);
+                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning);
                             let mut st = Joints::new(&rec.spec, start, params);
                             run_rig(rec, &mut f, &mut st, true)
                         }
                         3 => {
-                            let mut f = filters(*base, rec.spec.sensors.len(), dt);
+                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning);
                             let out = std::io::BufWriter::new(
                                 std::fs::File::create(trace.as_ref().unwrap()).unwrap(),
                             );
@@ -232,7 +241,7 @@ fn main() {
                             run_rig(rec, &mut f, &mut Trace { rec, joints, out, truth_input }, true)
                         }
                         2 if oracle => {
-                            let mut f = filters(*base, rec.spec.sensors.len(), dt);
+                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning);
                             run_rig(rec, &mut f, &mut Oracle { rec, start }, true)
                         }
                         _ => continue,
