@@ -27,7 +27,9 @@
 //! where allowed): mounting, heading, declination and sensor models; rig calibration
 //! and heading alignment over the live handles; a magnetometer calibrator per input
 //! (a refused reading leaves its bytes as they were; at the end, plausible readings must
-//! give a fit); the gyroscope offset; the smoother; the array update; uncertainty.
+//! give a fit); the gyroscope offset; the smoother; the array update; uncertainty;
+//! joints over the live filters, and the hinge and 2-DoF axis estimates (after the
+//! calls, with what bytes remain).
 //!
 //! Blobs are loaded as saved (into filters of any kind), damaged, cut, and forged
 //! with a recomputed checksum.
@@ -722,6 +724,48 @@ unsafe fn joints_pass(b: &mut Bytes, live: &[*mut OrientFilter]) {
     assert_eq!(orient_joints_free(j), OrientStatus::Ok);
 }
 
+/// Then a joint's axes from fuzzed readings (a hinge's) and orientations (a 2-DoF
+/// joint's), from fuzzed guesses: each status is one the header lists, a refused call
+/// leaves `*out` as it was, and an accepted one gives unit axes and a quality in [0, 1].
+unsafe fn axes_pass(b: &mut Bytes) {
+    if b.empty() {
+        return;
+    }
+    let n = b.pick(48) + 1;
+    let vec = |b: &mut Bytes| OrientVec3 { x: b.f64(), y: b.f64(), z: b.f64() };
+    let quat = |b: &mut Bytes| OrientQuaternion { w: b.f64(), x: b.f64(), y: b.f64(), z: b.f64() };
+    let (gp, gc): (Vec<_>, Vec<_>) = (0..n).map(|_| (vec(b), vec(b))).unzip();
+    let (qp, qc): (Vec<_>, Vec<_>) = (0..n).map(|_| (quat(b), quat(b))).unzip();
+    let (guess_p, guess_c) = (vec(b), vec(b));
+    let axes_bits = |a: &OrientJointAxes| {
+        [a.axis_parent, a.axis_child]
+            .iter()
+            .flat_map(|v| [v.x, v.y, v.z])
+            .chain([a.quality])
+            .map(f64::to_bits)
+            .collect::<Vec<_>>()
+    };
+    let unwritten = OrientJointAxes { quality: -7.0, ..Default::default() };
+    for two_dof in [false, true] {
+        let mut out = unwritten;
+        let (name, s) = if two_dof {
+            let s = orient_estimate_two_dof_axes(qp.as_ptr(), qc.as_ptr(), n, guess_p, guess_c, &mut out);
+            ("orient_estimate_two_dof_axes", s)
+        } else {
+            let s = orient_estimate_hinge_axes(gp.as_ptr(), gc.as_ptr(), n, guess_p, guess_c, &mut out);
+            ("orient_estimate_hinge_axes", s)
+        };
+        let what = format!("{name}: {n} rows, guesses {guess_p:?} {guess_c:?}");
+        if check(name, s, &what) != OrientStatus::Ok {
+            assert!(axes_bits(&out) == axes_bits(&unwritten), "{what}: refused with {s:?} and wrote {out:?}");
+            continue;
+        }
+        let unit_vec = |v: OrientVec3| (v.x * v.x + v.y * v.y + v.z * v.z - 1.0).abs() < 1e-9;
+        assert!(unit_vec(out.axis_parent) && unit_vec(out.axis_child), "{what}: axes {out:?}");
+        assert!((0.0..=1.0).contains(&out.quality), "{what}: quality {}", out.quality);
+    }
+}
+
 fn ptr_or_null(v: &Option<Vec<f64>>) -> *const f64 {
     v.as_ref().map_or(std::ptr::null(), |v| v.as_ptr())
 }
@@ -1259,6 +1303,7 @@ fuzz_target!(|data: &[u8]| {
         }
     }
     unsafe { joints_pass(&mut b, &hs.live) };
+    unsafe { axes_pass(&mut b) };
     // The calibrator still takes plausible readings into a fit.
     let mut copy = cal;
     let n = 300.max(4 * copy.count as usize);
