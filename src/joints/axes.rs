@@ -64,47 +64,26 @@ pub fn estimate_hinge_axes_by(
         gyro_parent(i).cross(axis(x[0], x[1])).norm() - gyro_child(i).cross(axis(x[2], x[3])).norm()
     };
     let cost = |x: &[f64; 4]| (0..n).map(|i| resid(x, i).powi(2)).sum::<f64>();
-    let (g0, g1) = (sph(guess.0.normalized()), sph(guess.1.normalized()));
-    let mut x = [g0[0], g0[1], g1[0], g1[1]];
-    let mut lambda = 1e-3;
-    let mut c = cost(&x);
-    for _ in 0..50 {
-        let mut jtj = [[0.0; 4]; 4];
-        let mut jtr = [0.0; 4];
+    // JᵀJ and Jᵀr by forward differences.
+    let normal = |x: &[f64; 4]| {
+        let (mut jtj, mut jtr) = ([[0.0; 4]; 4], [0.0; 4]);
         for i in 0..n {
-            let r = resid(&x, i);
+            let r = resid(x, i);
             let mut jac = [0.0; 4];
             for (k, d) in jac.iter_mut().enumerate() {
-                let mut xp = x;
+                let mut xp = *x;
                 xp[k] += 1e-6;
                 *d = (resid(&xp, i) - r) / 1e-6;
             }
-            for a in 0..4 {
-                jtr[a] += jac[a] * r;
-                for b in 0..4 {
-                    jtj[a][b] += jac[a] * jac[b];
-                }
-            }
+            accumulate(&mut jtj, &mut jtr, &jac, r);
         }
-        let mut a = jtj;
-        for (k, row) in a.iter_mut().enumerate() {
-            row[k] *= 1.0 + lambda;
-        }
-        let Some(step) = solve(a, jtr) else { break };
-        let xn = [x[0] - step[0], x[1] - step[1], x[2] - step[2], x[3] - step[3]];
-        let cn = cost(&xn);
-        if cn < c {
-            let done = (c - cn) < 1e-12 * c;
-            x = xn;
-            c = cn;
-            lambda *= 0.3;
-            if done {
-                break;
-            }
-        } else {
-            lambda *= 10.0;
-        }
-    }
+        (jtj, jtr)
+    };
+    let (g0, g1) = (sph(guess.0.normalized()), sph(guess.1.normalized()));
+    let start = [g0[0], g0[1], g1[0], g1[1]];
+    let (x, c) = levenberg_marquardt(start, n, cost, normal, |x, step| {
+        [x[0] - step[0], x[1] - step[1], x[2] - step[2], x[3] - step[3]]
+    });
     let (mut jp, mut jc) = (axis(x[0], x[1]), axis(x[2], x[3]));
     if jp.dot(guess.0) < 0.0 {
         jp = -jp;
@@ -116,6 +95,55 @@ pub fn estimate_hinge_axes_by(
     let scale = ((0..n as usize).map(|i| gyro_parent(i).cross(jp).norm_squared()).sum::<f64>() / n).sqrt();
     let quality = ((c / n).sqrt() / scale.max(1e-12)).min(1.0);
     Some(JointAxes { axis_parent: jp, axis_child: jc, quality })
+}
+
+/// Adds one residual `r` with its gradient `jac` to the normal equations `JᵀJ`, `Jᵀr`.
+fn accumulate<const P: usize>(jtj: &mut [[f64; P]; P], jtr: &mut [f64; P], jac: &[f64; P], r: f64) {
+    for a in 0..P {
+        jtr[a] += jac[a] * r;
+        for b in 0..P {
+            jtj[a][b] += jac[a] * jac[b];
+        }
+    }
+}
+
+/// Levenberg-Marquardt from `start` over `n` residuals: `normal(x)` gives `JᵀJ` and `Jᵀr`,
+/// `cost(x)` the sum of squared residuals, `moved(x, δ)` the state turned by `−δ`. The
+/// damping is Marquardt's (`λ` times each diagonal entry, at least `10⁻¹² n`); a step
+/// that lowers the cost is taken and `λ` shrinks, else `λ` grows; it stops after 100
+/// iterations, when a step gains less than `10⁻¹²` of the cost, or when `λ` passes
+/// `10¹²`. The state reached and its cost.
+fn levenberg_marquardt<S: Copy, const P: usize>(
+    start: S,
+    n: usize,
+    cost: impl Fn(&S) -> f64,
+    normal: impl Fn(&S) -> ([[f64; P]; P], [f64; P]),
+    moved: impl Fn(&S, &[f64; P]) -> S,
+) -> (S, f64) {
+    let (mut x, mut c, mut lambda) = (start, cost(&start), 1e-3);
+    for _ in 0..100 {
+        let (mut jtj, jtr) = normal(&x);
+        for (k, row) in jtj.iter_mut().enumerate() {
+            row[k] += lambda * row[k].max(1e-12 * n as f64);
+        }
+        let Some(step) = solve(jtj, jtr) else { break };
+        let xn = moved(&x, &step);
+        let cn = cost(&xn);
+        if cn < c {
+            let done = (c - cn) <= 1e-12 * c;
+            (x, c) = (xn, cn);
+            lambda *= 0.3;
+            if done {
+                break;
+            }
+        } else {
+            lambda *= 10.0;
+            if lambda > 1e12 {
+                break;
+            }
+        }
+    }
+    (x, c)
 }
 
 /// Solves an N×N system by Gaussian elimination with partial pivoting.
@@ -202,45 +230,25 @@ pub fn estimate_two_dof_axes_by(
                     e_p.dot(c.rotate(b.b2)),
                     e_p.dot(up.cross(e_c)),
                 ];
-                for r_ in 0..5 {
-                    jtr[r_] += jac[r_] * r;
-                    for k in 0..5 {
-                        jtj[r_][k] += jac[r_] * jac[k];
-                    }
-                }
+                accumulate(jtj, jtr, &jac, r);
             }
         }
         cost
     };
     let fit = |d0: f64| {
-        let (mut a, mut b, mut d) = (Axis::new(guess.0), Axis::new(guess.1), d0);
-        let mut c = eval(&a, &b, d, None);
-        let mut lambda = 1e-3;
-        for _ in 0..100 {
+        let start = (Axis::new(guess.0), Axis::new(guess.1), d0);
+        let cost = |x: &(Axis, Axis, f64)| eval(&x.0, &x.1, x.2, None);
+        let normal = |x: &(Axis, Axis, f64)| {
             let (mut jtj, mut jtr) = ([[0.0; 5]; 5], [0.0; 5]);
-            eval(&a, &b, d, Some((&mut jtj, &mut jtr)));
-            for (k, row) in jtj.iter_mut().enumerate() {
-                row[k] += lambda * row[k].max(1e-12 * n as f64);
-            }
-            let Some(step) = solve(jtj, jtr) else { break };
-            let (mut an, mut bn, dn) = (a, b, d - step[4]);
-            an.fold(-step[0], -step[1]);
-            bn.fold(-step[2], -step[3]);
-            let cn = eval(&an, &bn, dn, None);
-            if cn < c {
-                let done = (c - cn) <= 1e-12 * c;
-                (a, b, d, c) = (an, bn, dn, cn);
-                lambda *= 0.3;
-                if done {
-                    break;
-                }
-            } else {
-                lambda *= 10.0;
-                if lambda > 1e12 {
-                    break;
-                }
-            }
-        }
+            eval(&x.0, &x.1, x.2, Some((&mut jtj, &mut jtr)));
+            (jtj, jtr)
+        };
+        let ((a, b, d), c) = levenberg_marquardt(start, n, cost, normal, |x, step: &[f64; 5]| {
+            let (mut a, mut b) = (x.0, x.1);
+            a.fold(-step[0], -step[1]);
+            b.fold(-step[2], -step[3]);
+            (a, b, x.2 - step[4])
+        });
         (c, a, b, d)
     };
     let quarter = core::f64::consts::FRAC_PI_2;
