@@ -418,9 +418,11 @@ pub const ORIENT_PARAM_ROBUST_BIAS_SIGMA: u32 = 94;
 /// Unit rad/s; range 0 to 10; default 0.0005235987755982989.
 pub const ORIENT_PARAM_ROBUST_BIAS_SIGMA_REST: u32 = 95;
 
-/// Parameter slot (robust): Random walk of the gyroscope bias, for the heading
-/// uncertainty only (eq. H1): a bias learned at rest is forgotten at this rate; default
-/// 1.745e-4 (0.01 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s).
+/// Parameter slot (robust): Random walk of the gyroscope bias: how fast the motion bias
+/// filter lets a learned bias go (its process noise) and the heading uncertainty grows
+/// with it (eq. H1); larger follows a drifting bias sooner and takes more of a fast
+/// motion's scale errors for bias; 0 learns the bias at rest only; default 1.745e-4 (0.01
+/// deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s).
 ///
 /// Unit rad/s/sqrt(s); range 0 to 10; default 0.00017453292519943296.
 pub const ORIENT_PARAM_ROBUST_BIAS_WALK: u32 = 96;

@@ -304,9 +304,11 @@ settings! {
             min: 0.0,
             max: 10.0,
             zero_off: false,
-            doc: "Random walk of the gyroscope bias, for the heading uncertainty only (eq. H1): a \
-                 bias learned at rest is forgotten at this rate; default 1.745e-4 (0.01 deg/s/sqrt(s): \
-                 VQF's 0.1 deg/s over its biasForgettingTime of 100 s).",
+            doc: "Random walk of the gyroscope bias: how fast the motion bias filter lets a \
+                 learned bias go (its process noise) and the heading uncertainty grows with it \
+                 (eq. H1); larger follows a drifting bias sooner and takes more of a fast motion's \
+                 scale errors for bias; 0 learns the bias at rest only; default 1.745e-4 (0.01 \
+                 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s).",
         },
         mag_heading_sigma: f64 = ROBUST_MAG_HEADING_SIGMA 97 {
             unit: "rad",

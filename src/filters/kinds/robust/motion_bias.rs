@@ -16,8 +16,8 @@
 //! K = P⁻ LP(R)ᵀ (LP(R) P⁻ LP(R)ᵀ + W)⁻¹,   b̂ += K e,   P = P⁻ − K LP(R) P⁻,
 //! ```
 //!
-//! with `V = σ_f² dt / T_f` (the bias forgotten from 0 to σ_f = 0.1 °/s over T_f = 100 s),
-//! `W = diag(w, w, w / 10⁻⁴) (1 + |ω|²/ω_s² + |a_l|²/a_s²)` and `w = σ_m⁴ / V + σ_m²`
+//! with `V = σ_w² dt`, σ_w = `bias_walk` (the bias's random walk; by default VQF's
+//! forgetting, 0.1 °/s over 100 s), `W = diag(w, w, w / 10⁻⁴) (1 + |ω|²/ω_s² + |a_l|²/a_s²)` and `w = σ_m⁴ / V + σ_m²`
 //! (the variance that makes σ_m the steady standard deviation of a bias measured at
 //! every step), σ_m = `bias_sigma_motion`, |ω|² the mean squared rate and |a_l|² the mean
 //! squared linear acceleration (the accelerometer in the almost-inertial frame less its
@@ -36,10 +36,6 @@
 
 use super::*;
 
-/// Time over which an unmeasured bias is forgotten (s), and by how much (rad/s): VQF's
-/// biasForgettingTime and its 0.1 °/s.
-const FORGET_TIME: f64 = 100.0;
-const FORGET_SIGMA: f64 = 0.001_745_329_251_994_329_5;
 /// The rate (rad/s) at which the measurement's variance has doubled: the gyroscope's
 /// scale and axis errors turn the estimate in proportion to the rate, which the
 /// inclination correction shows as bias while the sensor turns (orient: chosen with
@@ -109,12 +105,14 @@ pub(super) struct Activity {
 }
 
 /// What an update needs of the settings: the accelerometer's low-pass τ (s), the bias
-/// before any rest σ_b, the motion estimate's σ_m (rad/s) and the clip (rad/s).
+/// before any rest σ_b, the motion estimate's σ_m (rad/s), the clip (rad/s) and the
+/// bias's random walk σ_w (rad/s/√s).
 pub(super) struct MotionSettings {
     pub(super) tau: f64,
     pub(super) sigma_b: f64,
     pub(super) sigma_m: f64,
     pub(super) limit: f64,
+    pub(super) walk: f64,
 }
 
 fn mul(a: &M3, b: &M3) -> M3 {
@@ -243,14 +241,14 @@ impl MotionBias {
         self.sum_c = Vec3::ZERO;
         self.t = 0.0;
         self.n = 0;
-        let (tau, sigma_b, sigma_m, limit) = (m.tau, m.sigma_b, m.sigma_m, m.limit);
+        let (tau, sigma_b, sigma_m, limit, walk) = (m.tau, m.sigma_b, m.sigma_m, m.limit, m.walk);
         let r = q.to_matrix();
         let r_lp: M3 = core::array::from_fn(|i| {
             let v = self.r_lp[i].filter(dt, tau, Vec3::new(r[i][0], r[i][1], r[i][2]));
             [v.x, v.y, v.z]
         });
         let rb_lp = self.rb_lp.filter(dt, tau, apply(&r, b));
-        let v = FORGET_SIGMA * FORGET_SIGMA * dt / FORGET_TIME;
+        let v = walk * walk * dt;
         for i in 0..3 {
             if self.p[i][i] < sigma_b * sigma_b {
                 self.p[i][i] += v;

@@ -631,6 +631,33 @@ fn estimates_bias_in_motion_from_the_inclination_correction() {
     assert!((f.bias() - bias).norm() < 1e-3, "{:?}", f.bias());
 }
 
+/// `bias_walk` is the motion bias filter's process noise: a bias that drifts while the
+/// sensor turns is followed the closer the larger it is, and not at all at 0.
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn the_bias_walk_sets_how_closely_a_drifting_bias_is_followed() {
+    // 0.3 deg/s of drift per minute on x, a constant on y.
+    let bias = |t: f64| Vec3::new(0.002 + 0.3f64.to_radians() * t / 60.0, -0.004, 0.0);
+    let error = |walk: f64| {
+        let settings = RobustSettings { bias_walk: walk, ..Default::default() };
+        let mut f = filter(settings, Quat::IDENTITY);
+        let mut q = Quat::IDENTITY;
+        let n = 18_000;
+        for i in 0..n {
+            let t = i as f64 * DT;
+            let w = Vec3::new(0.4 * libm::sin(0.3 * t), 0.4 * libm::cos(0.2 * t), 0.3);
+            q = q * rotation_of(w, DT);
+            f.update(DT, w + bias(t), Some(q.rotate_inverse(G)), None).unwrap();
+        }
+        assert!(!f.at_rest());
+        (f.bias(), (f.bias() - bias(n as f64 * DT)).norm())
+    };
+    let default = RobustSettings::default().bias_walk;
+    let ((none, e0), (_, e1), (_, e3)) = (error(0.0), error(default), error(3.0 * default));
+    assert_eq!(none, Vec3::ZERO);
+    assert!(e3 < 0.8 * e1 && e1 < 0.8 * e0, "errors at 0, 1x and 3x the default: {e0:e} {e1:e} {e3:e}");
+}
+
 /// The motion bias filter measures a rate: the drift each correction removes over the
 /// time since the last one. A gyroscope at four times the accelerometer's rate must give
 /// the same learning as one accelerometer reading per gyroscope reading (counting only
