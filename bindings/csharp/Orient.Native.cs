@@ -738,7 +738,8 @@ namespace Orient.Native
         /// Parameter slot (robust): Largest component the motion estimate may give the bias, and
         /// its measurement error (a larger component learned at rest raises the bound for every
         /// component to it); default 0.0349 (orient: 2 deg/s, VQF's biasClip and the rest
-        /// threshold: a larger bias would also hide rest).
+        /// threshold: a larger bias would also hide rest); 4 deg/s under joints
+        /// (orient_config_for_joints()).
         ///
         /// Unit rad/s; range 0 to 10; default 0.03490658503988659.
         /// </summary>
@@ -803,7 +804,8 @@ namespace Orient.Native
         /// filter lets a learned bias go (its process noise) and the heading uncertainty grows
         /// with it (eq. H1); larger follows a drifting bias sooner and takes more of a fast
         /// motion's scale errors for bias; 0 learns the bias at rest only; default 1.745e-4 (0.01
-        /// deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s).
+        /// deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); three times it
+        /// under joints (orient_config_for_joints()).
         ///
         /// Unit rad/s/sqrt(s); range 0 to 10; default 0.00017453292519943296.
         /// </summary>
@@ -1697,6 +1699,20 @@ namespace Orient.Native
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern double orient_madgwick_beta(double gyroError);
+
+        /// <summary>
+        /// Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_ROBUST
+        /// the gyroscope bias random walk (ORIENT_PARAM_ROBUST_BIAS_WALK) at 5.236e-4
+        /// rad/s/sqrt(s) (0.03 deg/s/sqrt(s), three times its default), so a drifting bias is
+        /// followed within seconds, and the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
+        /// 0.0698 rad/s (4 deg/s); other kinds have neither and `config` is left as it was. Call
+        /// it after orient_config_default() for each sensor of a rig whose joints hold its
+        /// heading (docs/ACCURACY.md: on simulated gloves it takes the joints' error with biases
+        /// to 3 deg/s from 1.86 to 1.33 deg); a sensor alone keeps the defaults. The statuses of
+        /// orient_config_set_param() for a NULL or invalid `config`, which is then left as it was.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_config_for_joints(Config* config);
 
         /// <summary>
         /// Creates a rig's joints: `n_joints` joints (NULL only when 0) over `n_segments`

@@ -175,6 +175,18 @@ namespace Orient
             }
         }
 
+        /// <summary>Sets what a sensor's filter runs with under joints
+        /// (orient_config_for_joints): for the recommended kind a faster bias random walk
+        /// and a 4 deg/s motion bias bound; other kinds are left as they were. Returns this.</summary>
+        public OrientSettings ForJoints()
+        {
+            fixed (Config* c = &raw)
+            {
+                OrientException.Check(NativeMethods.orient_config_for_joints(c));
+            }
+            return this;
+        }
+
         /// <summary>A parameter by name (see Parameters), range-checked on set.</summary>
         public double this[string name]
         {

@@ -365,7 +365,29 @@ fn config(b: &mut Bytes, kind: i32) -> Option<(OrientConfig, String)> {
             taken += &format!(", param {id} = {v:e}");
         }
     }
+    for_joints(&c);
     Some((c, taken))
+}
+
+/// orient_config_for_joints on a copy of `c`: OK and only the robust kind's two slots
+/// changed, or refused as orient_config_set_param refuses the same configuration, with
+/// nothing changed.
+fn for_joints(c: &OrientConfig) {
+    let mut j = *c;
+    let s = check("orient_config_for_joints", unsafe { orient_config_for_joints(&mut j) }, "");
+    let mut probe = *c;
+    let set = unsafe { orient_config_set_param(&mut probe, ORIENT_PARAM_GRAVITY, c.params[ORIENT_PARAM_GRAVITY as usize]) };
+    if s != OrientStatus::Ok {
+        assert_eq!(s, set, "for_joints and set_param disagree on one configuration");
+        assert_eq!(config_bytes(&j), config_bytes(c), "refused for_joints changed the configuration");
+        return;
+    }
+    let slots = [ORIENT_PARAM_ROBUST_BIAS_WALK as usize, ORIENT_PARAM_ROBUST_BIAS_LIMIT as usize];
+    for (i, (a, b)) in c.params.iter().zip(&j.params).enumerate() {
+        if a.to_bits() != b.to_bits() {
+            assert!(c.kind == OrientKind::Robust as i32 && slots.contains(&i), "for_joints changed slot {i} of kind {}", c.kind);
+        }
+    }
 }
 
 /// The handles of one input: live ones, and freed addresses not handed out again.

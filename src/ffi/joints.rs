@@ -123,6 +123,31 @@ fn index(i: usize, n: usize, what: &str) -> Result<usize, OrientStatus> {
     }
 }
 
+/// Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_ROBUST
+/// the gyroscope bias random walk (ORIENT_PARAM_ROBUST_BIAS_WALK) at 5.236e-4
+/// rad/s/sqrt(s) (0.03 deg/s/sqrt(s), three times its default), so a drifting bias is
+/// followed within seconds, and the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
+/// 0.0698 rad/s (4 deg/s); other kinds have neither and `config` is left as it was. Call
+/// it after orient_config_default() for each sensor of a rig whose joints hold its
+/// heading (docs/ACCURACY.md: on simulated gloves it takes the joints' error with biases
+/// to 3 deg/s from 1.86 to 1.33 deg); a sensor alone keeps the defaults. The statuses of
+/// orient_config_set_param() for a NULL or invalid `config`, which is then left as it was.
+#[no_mangle]
+pub unsafe extern "C" fn orient_config_for_joints(config: *mut OrientConfig) -> OrientStatus {
+    guard(|| {
+        let before = config_from(config)?;
+        let mut c = before.clone();
+        c.for_joints();
+        // Only the slots set: the others stay as the caller's struct has them.
+        for (i, (a, b)) in before.slots().iter().zip(c.slots()).enumerate() {
+            if a.to_bits() != b.to_bits() {
+                (*config).params[i] = *b;
+            }
+        }
+        Ok(())
+    })
+}
+
 /// Creates a rig's joints: `n_joints` joints (NULL only when 0) over `n_segments`
 /// segments, with the sensors' `mountings` (sensor to segment, as
 /// orient_filter_set_mounting; NULL for the identity everywhere, else `n_segments` of

@@ -53,7 +53,7 @@ pub use axes::{
 pub use estimator::JointParams;
 
 use crate::filters::state::{self as snapshot, Codec, Reader, StateError, Writer};
-use crate::filters::{Filter, Sample};
+use crate::filters::{Config, Filter, Sample};
 use crate::math::{Quat, Vec3};
 use estimator::JointEstimator;
 
@@ -61,6 +61,28 @@ use estimator::JointEstimator;
 pub const MAX_JOINTS: usize = 64;
 /// The most segments one [`Joints`] holds.
 pub const MAX_SEGMENTS: usize = 256;
+
+/// The settings a sensor's filter takes under joints ([`Config::for_joints`]), by the
+/// recommended kind's parameter names: the gyroscope bias random walk at 0.03 °/s/√s,
+/// three times the default, so the motion bias filter follows a drifting bias within
+/// seconds rather than minutes (the joints hold the relative heading that a faster
+/// bias estimate would otherwise let wander), and the motion estimate's bound at 4 °/s,
+/// so a glove's bias up to 3 °/s per axis is learned whole. Measured on simulated gloves
+/// and a leg (docs/ACCURACY.md); alone, on BROAD's real trials, the defaults stay better.
+pub const SENSOR_SETTINGS: [(&str, f64); 2] =
+    [("bias_walk", 5.235_987_755_982_989e-4), ("bias_limit", 0.069_813_170_079_773_18)];
+
+impl Config {
+    /// Sets [`SENSOR_SETTINGS`], the settings a sensor's filter runs with under joints,
+    /// where the kind has them (the recommended kind); other kinds are left as they were.
+    pub fn for_joints(&mut self) {
+        for (name, value) in SENSOR_SETTINGS {
+            if let Some(set) = self.set(name, value) {
+                debug_assert!(set.is_ok(), "{name} in range (tested)");
+            }
+        }
+    }
+}
 
 /// `n` copies of `v`, or OutOfMemory.
 fn filled<T: Clone>(n: usize, v: T) -> Result<Vec<T>, JointError> {

@@ -522,3 +522,28 @@ fn a_large_offset_is_taken_up_without_a_jump() {
     assert!((last + offset).abs() < 1f64.to_radians(), "{} deg", last.to_degrees());
     assert!(at_4s < -15f64.to_radians(), "{} deg after 4 s", at_4s.to_degrees());
 }
+
+/// `for_joints` sets the table's values on the recommended kind, in range, and nothing
+/// else; a kind without those parameters is left as it was.
+#[test]
+fn for_joints_sets_the_sensor_settings_where_the_kind_has_them() {
+    use crate::filters::Kind;
+    for kind in Kind::ALL {
+        let before = Config::new(kind).unwrap();
+        let mut c = before.clone();
+        c.for_joints();
+        let mut changed = 0;
+        for (id, (a, b)) in before.slots().iter().zip(c.slots()).enumerate() {
+            if a.to_bits() != b.to_bits() {
+                let spec = kind.param(id as u32).unwrap();
+                let (_, want) = SENSOR_SETTINGS.iter().find(|(n, _)| *n == spec.name).unwrap();
+                assert_eq!(b.to_bits(), want.to_bits());
+                assert!(spec.accepts(*want));
+                changed += 1;
+            }
+        }
+        let has = SENSOR_SETTINGS.iter().filter(|(n, _)| kind.param_by_name(n).is_some()).count();
+        assert_eq!(changed, has, "{kind:?}");
+        assert_eq!(has, if kind == Kind::Robust { SENSOR_SETTINGS.len() } else { 0 }, "{kind:?}");
+    }
+}

@@ -231,6 +231,42 @@ static void two_dof_axes(void) {
     free(qc);
 }
 
+/* orient_config_for_joints: the robust kind's two settings, other kinds and refused
+ * configs left byte for byte. */
+static void config_for_joints(void) {
+    OrientConfig c, before;
+    double walk, limit;
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &c), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_config_for_joints(&c), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_config_get_param(&c, ORIENT_PARAM_ROBUST_BIAS_WALK, &walk), ORIENT_STATUS_OK);
+    CHECK(fabs(walk - 0.03 * DEGREE) < 1e-15);
+    CHECK_STATUS(orient_config_get_param(&c, ORIENT_PARAM_ROBUST_BIAS_LIMIT, &limit), ORIENT_STATUS_OK);
+    CHECK(fabs(limit - 4.0 * DEGREE) < 1e-15);
+    /* Nothing else: the default with those two set is the same struct. */
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &before), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_config_set_param(&before, ORIENT_PARAM_ROBUST_BIAS_WALK, walk), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_config_set_param(&before, ORIENT_PARAM_ROBUST_BIAS_LIMIT, limit), ORIENT_STATUS_OK);
+    CHECK(memcmp(&c, &before, sizeof c) == 0);
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_MADGWICK, &c), ORIENT_STATUS_OK);
+    before = c;
+    CHECK_STATUS(orient_config_for_joints(&c), ORIENT_STATUS_OK);
+    CHECK(memcmp(&c, &before, sizeof c) == 0);
+    /* The statuses of orient_config_set_param for a NULL or invalid config. */
+    CHECK_STATUS(orient_config_for_joints(NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &c), ORIENT_STATUS_OK);
+    c.struct_size -= 8;
+    before = c;
+    CHECK_STATUS(orient_config_for_joints(&c), ORIENT_STATUS_VERSION_MISMATCH);
+    CHECK_STATUS(orient_config_set_param(&c, ORIENT_PARAM_ROBUST_BIAS_WALK, 0.0), ORIENT_STATUS_VERSION_MISMATCH);
+    CHECK(memcmp(&c, &before, sizeof c) == 0);
+    c.struct_size += 8;
+    c.kind = 99;
+    before = c;
+    CHECK_STATUS(orient_config_for_joints(&c), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_config_set_param(&c, ORIENT_PARAM_ROBUST_BIAS_WALK, 0.0), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK(memcmp(&c, &before, sizeof c) == 0);
+}
+
 static void joint_calls(void) {
     OrientJoint j = hinge_joint(0, 1);
     OrientJoints *joints = NULL, *gone = NULL;
@@ -455,4 +491,5 @@ static void joint_calls(void) {
     free(gp);
     free(gc);
     two_dof_axes();
+    config_for_joints();
 }

@@ -551,6 +551,11 @@ public static class OrientTests
             Check(two.AxisParent.Z > 0.9999 && two.AxisChild.Y > 0.9999 && two.Quality < 0.05, "OrientJoints: 2-DoF axes");
             Throws(Status.InvalidArgument, () => OrientJoints.EstimateTwoDofAxes(new Orient.Native.Quaternion[0], new Orient.Native.Quaternion[0], x, x),
                 "OrientJoints: no orientations");
+            var under = new OrientSettings(Kind.Robust).ForJoints();
+            Check(Math.Abs(under["bias_walk"] - 0.03 * Math.PI / 180) < 1e-15 && Math.Abs(under["bias_limit"] - 4.0 * Math.PI / 180) < 1e-15,
+                "OrientSettings.ForJoints: the two settings");
+            Check(new OrientSettings(Kind.Madgwick).ForJoints()["beta_imu"] == new OrientSettings(Kind.Madgwick)["beta_imu"],
+                "OrientSettings.ForJoints: other kinds unchanged");
             joints.Dispose();
             Check(IsDisposedThrows(() => joints.Rating(0)), "OrientJoints: disposed");
         }

@@ -144,3 +144,14 @@ def test_axes_in_the_segment_frames_go_through_the_mountings():
         np.testing.assert_allclose(b, [0.0, -1.0, 0.0], atol=1e-12)
     with pytest.raises(ValueError):
         orient.Joints([orient.Joint("hinge", 0, 1, x, x, axes="world")], 2)
+
+
+def test_a_filter_for_joints_takes_the_sensor_settings():
+    plain, under = orient.Robust(), orient.Robust(for_joints=True)
+    assert under["bias_walk"] == pytest.approx(math.radians(0.03), abs=1e-15)
+    assert under["bias_limit"] == pytest.approx(math.radians(4.0), abs=1e-15)
+    assert plain["bias_walk"] < under["bias_walk"]
+    # Given settings come after, and other kinds have none of them.
+    assert orient.Robust(for_joints=True, bias_walk=0.0)["bias_walk"] == 0.0
+    m = orient.Madgwick(for_joints=True)
+    assert m["beta_imu"] == orient.Madgwick()["beta_imu"]

@@ -234,6 +234,10 @@ class Filter:
         frame: earth frame of every output: ``"enu"`` (default), ``"ned"`` or ``"nwu"``.
         initial: ``None`` (default: from the first accelerometer/magnetometer sample),
             ``"identity"``, or a quaternion (w, x, y, z) in the configured frame.
+        for_joints: the settings a sensor's filter runs with under :class:`Joints`
+            (``orient_config_for_joints``: for the recommended kind a faster bias random
+            walk and a 4 deg/s motion bias bound; other kinds unchanged), before
+            ``settings``.
         **settings: parameters by name (see :meth:`params`); each is checked against
             the library's range.
 
@@ -252,6 +256,7 @@ class Filter:
         *,
         frame: str = "enu",
         initial: Union[None, str, Sequence[float], np.ndarray] = None,
+        for_joints: bool = False,
         **settings: float,
     ) -> None:
         self._handle: Optional[int] = None
@@ -281,6 +286,8 @@ class Filter:
                 raise ValueError(f"initial must be (w, x, y, z), got shape {q.shape}")
             config.init = Init.GIVEN
             config.initial = n.OrientQuaternion(*map(float, q))
+        if for_joints:
+            _check(lib.orient_config_for_joints(byref(config)))
         for name, value in settings.items():
             try:
                 _check(lib.orient_config_set_param(byref(config), _param_id(k, name), float(value)))

@@ -418,7 +418,8 @@ PARAM_ROBUST_BIAS_SIGMA_MOTION = 100
 #: Parameter slot (robust): Largest component the motion estimate may give the bias, and
 #: its measurement error (a larger component learned at rest raises the bound for every
 #: component to it); default 0.0349 (orient: 2 deg/s, VQF's biasClip and the rest
-#: threshold: a larger bias would also hide rest).
+#: threshold: a larger bias would also hide rest); 4 deg/s under joints
+#: (orient_config_for_joints()).
 #:
 #: Unit rad/s; range 0 to 10; default 0.03490658503988659.
 PARAM_ROBUST_BIAS_LIMIT = 88
@@ -469,7 +470,8 @@ PARAM_ROBUST_BIAS_SIGMA_REST = 95
 #: filter lets a learned bias go (its process noise) and the heading uncertainty grows
 #: with it (eq. H1); larger follows a drifting bias sooner and takes more of a fast
 #: motion's scale errors for bias; 0 learns the bias at rest only; default 1.745e-4 (0.01
-#: deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s).
+#: deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); three times it
+#: under joints (orient_config_for_joints()).
 #:
 #: Unit rad/s/sqrt(s); range 0 to 10; default 0.00017453292519943296.
 PARAM_ROBUST_BIAS_WALK = 96
@@ -1065,6 +1067,7 @@ PROTOTYPES = {
     "orient_status_message": (c_char_p, [c_int32]),
     "orient_last_error": (c_char_p, []),
     "orient_madgwick_beta": (c_double, [c_double]),
+    "orient_config_for_joints": (c_int32, [POINTER(OrientConfig)]),
     "orient_joints_new": (
         c_int32,
         [

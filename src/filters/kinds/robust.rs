@@ -237,7 +237,8 @@ settings! {
             doc: "Largest component the motion estimate may give the bias, and its measurement \
                  error (a larger component learned at rest raises the bound for every component \
                  to it); default 0.0349 (orient: 2 deg/s, VQF's biasClip and the rest threshold: \
-                 a larger bias would also hide rest).",
+                 a larger bias would also hide rest); 4 deg/s under joints \
+                 (orient_config_for_joints()).",
         },
         mag_norm_th: f64 = ROBUST_MAG_NORM_TH 89 {
             unit: "1",
@@ -308,7 +309,8 @@ settings! {
                  learned bias go (its process noise) and the heading uncertainty grows with it \
                  (eq. H1); larger follows a drifting bias sooner and takes more of a fast motion's \
                  scale errors for bias; 0 learns the bias at rest only; default 1.745e-4 (0.01 \
-                 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s).",
+                 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); three times it under \
+                 joints (orient_config_for_joints()).",
         },
         mag_heading_sigma: f64 = ROBUST_MAG_HEADING_SIGMA 97 {
             unit: "rad",

@@ -5,7 +5,7 @@
 //! ```text
 //! cargo run --release -p orient-tools --bin rig_joints [-- --seeds A-B] [--minutes M]
 //!     [--cases a,b,..] [--filters robust,vqf] [--set KEY=VALUE].. [--oracle] [--cost]
-//!     [--debias true|initial] [--filter-set NAME=VALUE]..
+//!     [--debias true|initial] [--filter-set NAME=VALUE].. [--plain]
 //! ```
 //!
 //! - `--seeds A-B` (default 1-3): the seeds per case (design on 1-3, hold out 4-8).
@@ -15,6 +15,9 @@
 //!   remains is the filters' inclination and the joints' truth not in any heading).
 //! - `--cost`: the time of the joint stage beside the filters' in the same run.
 //! - `--filter-set NAME=VALUE`: a robust filter parameter by its name (`bias_limit`, ...).
+//! - Under joints (and for the oracle) the filters take the settings for joints
+//!   (`Config::for_joints`, before `--filter-set`); every sensor alone, the defaults.
+//!   `--plain`: the defaults under joints too.
 //! - `--debias true|initial`: the gyroscopes' readings less the true bias (`true`) or
 //!   less the bias at the start (`initial`, what the still reference pose could give):
 //!   how much of the error a better bias estimate could remove.
@@ -112,8 +115,13 @@ enum Base {
     Vqf,
 }
 
-fn filters(b: Base, n: usize, dt: f64, tuning: &[(String, f64)]) -> Vec<SensorFilter> {
+/// The sensors' filters; `under_joints`: with the settings for joints (`Config::for_joints`)
+/// before `tuning`.
+fn filters(b: Base, n: usize, dt: f64, tuning: &[(String, f64)], under_joints: bool) -> Vec<SensorFilter> {
     let mut config = Config::new(Kind::Robust).unwrap();
+    if under_joints {
+        config.for_joints();
+    }
     for (name, value) in tuning {
         config.set(name, *value).expect("a robust parameter's name").expect("a value in range");
     }
@@ -161,7 +169,7 @@ fn main() {
     let mut truth_input = false;
     let mut debias = String::new();
     let mut tuning: Vec<(String, f64)> = Vec::new();
-    let (mut oracle, mut cost, mut alone, mut verbose) = (false, false, true, false);
+    let (mut oracle, mut cost, mut alone, mut verbose, mut plain) = (false, false, true, false, false);
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         let mut val = || it.next().expect("a value");
@@ -185,6 +193,7 @@ fn main() {
                 tuning.push((k.to_string(), x.parse().expect("a number")));
             }
             "--verbose" => verbose = true,
+            "--plain" => plain = true,
             _ => panic!("unknown argument {a}"),
         }
     }
@@ -224,16 +233,16 @@ fn main() {
                 for (m, name) in methods.iter().enumerate().chain(trace.iter().map(|_| (3, &"trace"))) {
                     let run = match m {
                         0 if alone || cost => {
-                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning);
+                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning, false);
                             run_rig(rec, &mut f, &mut Alone, true)
                         }
                         1 => {
-                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning);
+                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning, !plain);
                             let mut st = Joints::new(&rec.spec, start, params);
                             run_rig(rec, &mut f, &mut st, true)
                         }
                         3 => {
-                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning);
+                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning, !plain);
                             let out = std::io::BufWriter::new(
                                 std::fs::File::create(trace.as_ref().unwrap()).unwrap(),
                             );
@@ -241,7 +250,7 @@ fn main() {
                             run_rig(rec, &mut f, &mut Trace { rec, joints, out, truth_input }, true)
                         }
                         2 if oracle => {
-                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning);
+                            let mut f = filters(*base, rec.spec.sensors.len(), dt, &tuning, !plain);
                             run_rig(rec, &mut f, &mut Oracle { rec, start }, true)
                         }
                         _ => continue,

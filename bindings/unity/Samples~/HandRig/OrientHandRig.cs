@@ -138,7 +138,14 @@ public class OrientHandRig : MonoBehaviour
         times = clockTimes ?? new double[0];
         steps = times.Length;
         filters = new OrientFilter[driven.Length];
-        for (int i = 0; i < driven.Length; i++) filters[i] = new OrientFilter(kind);
+        for (int i = 0; i < driven.Length; i++)
+        {
+            // Under joints each filter may follow its gyroscope's drifting bias faster: the
+            // joints hold the headings (orient_config_for_joints).
+            var settings = new OrientSettings(kind);
+            if (useJoints) settings.ForJoints();
+            filters[i] = new OrientFilter(settings);
+        }
         rig = new OrientRig(filters);
         step = new Sample[driven.Length];
         orientations = new Orient.Native.Quaternion[driven.Length];

@@ -14,10 +14,11 @@
 //!   each child's heading relative to its parent from the joint constraints, from the
 //!   alignment on (from the first row without one). The joints run on 6D estimates: every
 //!   magnetometer is left out, and the rig's common heading is the reference pose's (the
-//!   segments' mean at the alignment), which RIG-FORMAT.md leaves free. A magnetometer
-//!   read near a hand or a desk turns a 9D estimate faster than the joints follow (a
-//!   simulated 5-minute glove with a magnet under the desk: 4.0 deg with every sensor
-//!   9D, 3.5 deg with the hand 9D and the fingers 6D, 0.9 deg all 6D). `--no-joints`:
+//!   segments' mean at the alignment), which RIG-FORMAT.md leaves free. Each sensor's
+//!   filter takes the settings for joints (`Config::for_joints`) before any `--set`. A
+//!   magnetometer read near a hand or a desk turns a 9D estimate faster than the joints
+//!   follow (a simulated 5-minute glove with a magnet under the desk: 4.0 deg with every
+//!   sensor 9D, 3.5 deg with the hand 9D and the fingers 6D, 0.9 deg all 6D). `--no-joints`:
 //!   every sensor alone, with its magnetometer unless `--no-mag`.
 //! - Writes `OUT/<sensor>.csv` (`t,quat_w,quat_x,quat_y,quat_z`: the sensor's
 //!   orientation, sensor to earth, ENU, one row per input row) and `OUT/joints.csv`: `t`
@@ -132,6 +133,9 @@ pub fn main(args: Vec<String>) {
             None => SensorFilter::vqf(dt, with_mag),
             Some(kind) => {
                 let mut config = Config::new(kind).unwrap_or_else(|e| fail(e));
+                if args.joints {
+                    config.for_joints();
+                }
                 for (key, value) in &args.sets {
                     match config.set(key, *value) {
                         None => fail(format!("{} has no parameter '{key}'", kind.name())),
