@@ -1690,8 +1690,10 @@ double orient_madgwick_beta(double gyro_error);
  * 0.0698 rad/s (4 deg/s); other kinds have neither and `config` is left as it was. Call
  * it after orient_config_default() for each sensor of a rig whose joints hold its
  * heading (docs/ACCURACY.md: on simulated gloves it takes the joints' error with biases
- * to 3 deg/s from 1.86 to 1.33 deg); a sensor alone keeps the defaults. The statuses of
- * orient_config_set_param() for a NULL or invalid `config`, which is then left as it was.
+ * to 3 deg/s from 1.86 to 1.33 deg); a sensor alone keeps the defaults. NULL_POINTER for
+ * a NULL `config`; VERSION_MISMATCH for a `struct_size` other than this header's;
+ * INVALID_ARGUMENT for an unknown kind, frame or init; PARAM_OUT_OF_RANGE for a slot
+ * outside its parameter's range; a refused `config` is left as it was.
  */
 OrientStatus orient_config_for_joints(struct OrientConfig *config);
 

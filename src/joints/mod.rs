@@ -16,6 +16,11 @@
 //! its orientation is its filter's. Each child's correction is its parent's times its
 //! own, so a chain (wrist, MCP, PIP) follows its root.
 //!
+//! Make each sensor's filter from a configuration given
+//! [`Config::for_joints`](crate::Config::for_joints)
+//! ([`SENSOR_SETTINGS`](crate::joints::SENSOR_SETTINGS)): under joints a filter may follow
+//! its gyroscope's drifting bias faster than alone.
+//!
 //! ```
 //! use orient::joints::{JointKind, JointParams, JointSpec, Joints};
 //! use orient::{Quat, Sample, Vec3};

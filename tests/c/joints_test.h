@@ -265,6 +265,21 @@ static void config_for_joints(void) {
     CHECK_STATUS(orient_config_for_joints(&c), ORIENT_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(orient_config_set_param(&c, ORIENT_PARAM_ROBUST_BIAS_WALK, 0.0), ORIENT_STATUS_INVALID_ARGUMENT);
     CHECK(memcmp(&c, &before, sizeof c) == 0);
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &c), ORIENT_STATUS_OK);
+    c.frame = 7;
+    before = c;
+    CHECK_STATUS(orient_config_for_joints(&c), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK(memcmp(&c, &before, sizeof c) == 0);
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &c), ORIENT_STATUS_OK);
+    c.init = 7;
+    before = c;
+    CHECK_STATUS(orient_config_for_joints(&c), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK(memcmp(&c, &before, sizeof c) == 0);
+    CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &c), ORIENT_STATUS_OK);
+    c.params[ORIENT_PARAM_ROBUST_BIAS_SIGMA] = -1.0;
+    before = c;
+    CHECK_STATUS(orient_config_for_joints(&c), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+    CHECK(memcmp(&c, &before, sizeof c) == 0);
 }
 
 static void joint_calls(void) {

@@ -595,8 +595,9 @@ impl Robust {
     ///   under 1/4); a magnetometer reading's rotated norm is its own (nonzero) norm to
     ///   rounding, and a difference of fields that vanishes gives a NaN dip that fails
     ///   every comparison and is never stored.
-    /// - The motion bias filter (`motion_bias`) may compute an infinite or NaN value from
-    ///   low-passes at the ends of their range (its 1/det, its products): it stores its
+    /// - The motion bias filter (`motion_bias`) divides σ_m⁴ by its V only when V > 0, and
+    ///   may compute an infinite or NaN value from low-passes at the ends of their range
+    ///   (its 1/det, its products) or from a V so small that σ_m⁴ / V overflows: it stores its
     ///   update only when the bias and the covariance come out finite, and clips the bias
     ///   to its bound.
     /// - Angles: `sin`/`cos` of any finite argument (|ω| dt up to 2e11 rad) are finite;

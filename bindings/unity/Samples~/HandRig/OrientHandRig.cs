@@ -141,7 +141,8 @@ public class OrientHandRig : MonoBehaviour
         for (int i = 0; i < driven.Length; i++)
         {
             // Under joints each filter may follow its gyroscope's drifting bias faster: the
-            // joints hold the headings (orient_config_for_joints).
+            // joints hold the headings (orient_config_for_joints). Until the flat-hand
+            // calibration binds the joints the filters run alone with these settings too.
             var settings = new OrientSettings(kind);
             if (useJoints) settings.ForJoints();
             filters[i] = new OrientFilter(settings);

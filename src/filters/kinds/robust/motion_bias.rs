@@ -251,11 +251,13 @@ impl MotionBias {
         let v = walk * walk * dt;
         for i in 0..3 {
             if self.p[i][i] < sigma_b * sigma_b {
-                self.p[i][i] += v;
+                self.p[i][i] = (self.p[i][i] + v).min(sigma_b * sigma_b);
             }
         }
         self.age = (self.age + dt).min(SETTLED * tau);
-        if !learning || self.age < SETTLED * tau {
+        // A bias that never moves (V = 0, or a walk whose square underflows) is learned at
+        // rest only: W's σ_m⁴ / V would be infinite.
+        if !learning || self.age < SETTLED * tau || v <= 0.0 {
             return None;
         }
         let pm = sigma_m * sigma_m;

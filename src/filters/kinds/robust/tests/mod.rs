@@ -655,6 +655,8 @@ fn the_bias_walk_sets_how_closely_a_drifting_bias_is_followed() {
     let default = RobustSettings::default().bias_walk;
     let ((none, e0), (_, e1), (_, e3)) = (error(0.0), error(default), error(3.0 * default));
     assert_eq!(none, Vec3::ZERO);
+    // A walk whose square underflows is no walk either (and leaves everything finite).
+    assert_eq!(error(1e-200).0, Vec3::ZERO);
     assert!(e3 < 0.8 * e1 && e1 < 0.8 * e0, "errors at 0, 1x and 3x the default: {e0:e} {e1:e} {e3:e}");
 }
 
