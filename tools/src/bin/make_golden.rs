@@ -204,6 +204,21 @@ fn main() {
             vec![],
             motion(13, 300, |_| marg),
         ),
+        // The motion bias filter: it learns from two accelerometer time constants on (1 s
+        // here), with the walk and the bound under joints (orient_config_for_joints).
+        case(
+            "robust_imu_enu_motion_bias",
+            Kind::Robust,
+            Frame::Enu,
+            0,
+            Quat::IDENTITY,
+            vec![
+                (id::ROBUST_TAU_ACC, 0.5),
+                (id::ROBUST_BIAS_WALK, 5.235_987_755_982_989e-4),
+                (id::ROBUST_BIAS_LIMIT, 0.069_813_170_079_773_18),
+            ],
+            motion(14, 600, |_| imu),
+        ),
     ];
     let out = std::env::args().nth(1).unwrap_or_else(|| {
         concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/golden/filters.golden").to_string()
