@@ -37,7 +37,10 @@
 //! - every joint: the joint centre's specific force seen from both sides is one vector,
 //!   `R(q_p)(a_p + M_p o_p) − R(T R_z(Δ) q_c)(a_c + M_c o_c) = 0` with
 //!   `M o = ω × (ω × o) + ω̇ × o`: while the rig accelerates horizontally it fixes `Δ`
-//!   whatever the axes' direction.
+//!   whatever the axes' direction. Its residual's errors (soft tissue on the lever arms,
+//!   the laxity, the finite-difference `ω̇`) grow with the motion: its `r` is
+//!   `r_acc (1 + (|ω_p|² + |ω_c|²) / ω_s² + (|ω̇_p|² + |ω̇_c|²) / α_s²)`, `ω_s` =
+//!   `acc_rate_scale`, `α_s` = `acc_accel_scale`.
 //!
 //! Each scalar update: `S = h P hᵀ + R` with `R = r / dt` (the residuals' errors, laxity,
 //! soft tissue and the filters' inclination errors, are correlated over a fraction of a
@@ -98,9 +101,13 @@ pub struct JointParams {
     /// Rest: both gyroscopes below this norm (rad/s) for `rest_time` seconds.
     pub rest_gyro: f64,
     pub rest_time: f64,
-    /// Joint centre specific-force residual noise density per component ((m/s²)²·s); 0
-    /// leaves the constraint out.
+    /// Joint centre specific-force residual noise density per component ((m/s²)²·s) at
+    /// rest; 0 leaves the constraint out.
     pub r_acc: f64,
+    /// The angular rate (rad/s, of either sensor, summed in squares) and the angular
+    /// acceleration (rad/s²) at which `r_acc` has doubled: above zero.
+    pub acc_rate_scale: f64,
+    pub acc_accel_scale: f64,
     /// Initial standard deviation (m) and random walk (m²/s) of each lever-arm component.
     pub lever_std0: f64,
     pub q_lever: f64,
@@ -128,7 +135,9 @@ impl Default for JointParams {
             max_rate: 5.0 * d,
             rest_gyro: 0.15,
             rest_time: 0.3,
-            r_acc: 0.003,
+            r_acc: 0.001,
+            acc_rate_scale: 1.0,
+            acc_accel_scale: 20.0,
             lever_std0: 0.05,
             q_lever: 1e-10,
             tilt_std0: 0.0,
@@ -140,8 +149,9 @@ impl Default for JointParams {
 }
 
 impl JointParams {
-    /// Every field finite and not negative; `gate`, `rating_tau`, `r_hinge`, `r_2dof` and
-    /// `max_rate` above zero (a zero bound would stop every update).
+    /// Every field finite and not negative; `gate`, `rating_tau`, `r_hinge`, `r_2dof`,
+    /// `max_rate` (a zero bound would stop every update) and the two scales of `r_acc`
+    /// above zero.
     pub(crate) fn is_valid(&self) -> bool {
         let p = self;
         let all = [
@@ -157,6 +167,8 @@ impl JointParams {
             p.rest_gyro,
             p.rest_time,
             p.r_acc,
+            p.acc_rate_scale,
+            p.acc_accel_scale,
             p.lever_std0,
             p.q_lever,
             p.tilt_std0,
@@ -168,6 +180,8 @@ impl JointParams {
             && p.gate > 0.0
             && p.rating_tau > 0.0
             && p.max_rate > 0.0
+            && p.acc_rate_scale > 0.0
+            && p.acc_accel_scale > 0.0
             && p.r_hinge > 0.0
             && p.r_2dof > 0.0
     }
@@ -401,7 +415,9 @@ impl JointEstimator {
             let unit = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), UP];
             let cp = unit.map(|e| q_p.rotate(m(wp, dwp, e)));
             let cc = unit.map(|e| rz.rotate(q_c.rotate(m(wc, dwc, e))));
-            let rr = prm.r_acc / dt;
+            let (ws, als) = (prm.acc_rate_scale, prm.acc_accel_scale);
+            let motion = (wp.dot(wp) + wc.dot(wc)) / (ws * ws) + (dwp.dot(dwp) + dwc.dot(dwc)) / (als * als);
+            let rr = prm.r_acc / dt * (1.0 + motion);
             for i in 0..3 {
                 let mut h = [0.0; N];
                 h[0] = comp(d_delta, i);

@@ -667,6 +667,8 @@ fn params_codec(c: &mut dyn Codec, p: &mut JointParams) {
         &mut p.rest_gyro,
         &mut p.rest_time,
         &mut p.r_acc,
+        &mut p.acc_rate_scale,
+        &mut p.acc_accel_scale,
         &mut p.lever_std0,
         &mut p.q_lever,
         &mut p.tilt_std0,

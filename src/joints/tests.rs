@@ -233,6 +233,8 @@ fn bad_rigs_are_refused_naming_the_joint() {
         JointParams { q_rate: -1.0, ..p },
         JointParams { r_acc: f64::NAN, ..p },
         JointParams { max_rate: 0.0, ..p },
+        JointParams { acc_rate_scale: 0.0, ..p },
+        JointParams { acc_accel_scale: 0.0, ..p },
     ] {
         assert_eq!(Joints::new(2, &[ok], &[], bad).unwrap_err(), JointError::BadParams);
     }

@@ -141,6 +141,8 @@ fn set_param(p: &mut JointParams, kv: &str) {
         "r_2dof" => p.r_2dof = v,
         "q_heading" => p.q_heading = v,
         "q_rate" => p.q_rate = v,
+        "acc_rate_scale" => p.acc_rate_scale = v,
+        "acc_accel_scale" => p.acc_accel_scale = v,
         "q_axis" => p.q_axis = v,
         "heading_std0" => p.heading_std0 = v,
         "rate_std0" => p.rate_std0 = v,
