@@ -1704,11 +1704,11 @@ namespace Orient.Native
         /// Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_ROBUST
         /// the gyroscope bias random walk (ORIENT_PARAM_ROBUST_BIAS_WALK) at 5.236e-4
         /// rad/s/sqrt(s) (0.03 deg/s/sqrt(s), three times its default), so a drifting bias is
-        /// followed within seconds, and the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
+        /// followed more closely, and the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
         /// 0.0698 rad/s (4 deg/s); other kinds have neither and `config` is left as it was. Call
         /// it after orient_config_default() for each sensor of a rig whose joints hold its
-        /// heading (docs/ACCURACY.md: on simulated gloves it takes the joints' error with biases
-        /// to 3 deg/s from 1.86 to 1.33 deg); a sensor alone keeps the defaults. NULL_POINTER for
+        /// heading (docs/ACCURACY.md has the simulated gloves' figures); a sensor alone keeps the
+        /// defaults. NULL_POINTER for
         /// a NULL `config`; VERSION_MISMATCH for a `struct_size` other than this header's;
         /// INVALID_ARGUMENT for an unknown kind, frame or init; PARAM_OUT_OF_RANGE for a slot
         /// outside its parameter's range; a refused `config` is left as it was.

@@ -69,9 +69,9 @@ pub const MAX_SEGMENTS: usize = 256;
 
 /// The settings a sensor's filter takes under joints ([`Config::for_joints`]), by the
 /// recommended kind's parameter names: the gyroscope bias random walk at 0.03 °/s/√s,
-/// three times the default, so the motion bias filter follows a drifting bias within
-/// seconds rather than minutes (the joints hold the relative heading that a faster
-/// bias estimate would otherwise let wander), and the motion estimate's bound at 4 °/s,
+/// three times the default, so the motion bias filter follows a drifting bias more
+/// closely (the joints hold the relative heading that a faster bias estimate would
+/// otherwise let wander), and the motion estimate's bound at 4 °/s,
 /// so a glove's bias up to 3 °/s per axis is learned whole. Measured on simulated gloves
 /// and a leg (docs/ACCURACY.md); alone, on BROAD's real trials, the defaults stay better.
 pub const SENSOR_SETTINGS: [(&str, f64); 2] =

@@ -177,8 +177,7 @@ impl Robust {
         // While the low-pass still averages its first readings the corrections undo the
         // start's error, not a bias's drift: nothing is learned from them (and nothing at
         // rest, where the rest estimate learns the whole bias).
-        let learning =
-            !self.rest.at_rest() && s.bias_sigma_motion > 0.0 && s.bias_walk > 0.0 && !self.acc_lp.warming;
+        let learning = !self.rest.at_rest() && s.bias_sigma_motion > 0.0 && !self.acc_lp.warming;
         // The motion estimate may not grow a component past the limit, but a larger bias
         // learned at rest (a drifting one, tracked through the rest gate) is kept.
         let limit = s.bias_limit.max(self.bias.max_abs());

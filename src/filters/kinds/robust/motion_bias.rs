@@ -17,7 +17,8 @@
 //! ```
 //!
 //! with `V = σ_w² dt`, σ_w = `bias_walk` (the bias's random walk; by default VQF's
-//! forgetting, 0.1 °/s over 100 s), `W = diag(w, w, w / 10⁻⁴) (1 + |ω|²/ω_s² + |a_l|²/a_s²)` and `w = σ_m⁴ / V + σ_m²`
+//! forgetting, 0.1 °/s over 100 s; no update while V = 0),
+//! `W = diag(w, w, w / 10⁻⁴) (1 + |ω|²/ω_s² + |a_l|²/a_s²)` and `w = σ_m⁴ / V + σ_m²`
 //! (the variance that makes σ_m the steady standard deviation of a bias measured at
 //! every step), σ_m = `bias_sigma_motion`, |ω|² the mean squared rate and |a_l|² the mean
 //! squared linear acceleration (the accelerometer in the almost-inertial frame less its
