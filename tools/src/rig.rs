@@ -11,7 +11,7 @@ use crate::eval::Recording;
 use crate::json::{self, Value};
 use orient::{Filter, Quat, Sample, Vec3};
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// One sensor of a rig.
 #[derive(Clone, Debug, PartialEq)]
@@ -504,7 +504,7 @@ pub struct RigRun {
     pub sensors: Vec<Vec<Quat>>,
     /// Samples a filter rejected, over all sensors.
     pub rejected: usize,
-    /// Wall time of the per-sample loop.
+    /// Thread CPU time of the per-sample loop ([`crate::clock`]).
     pub elapsed: Duration,
     /// The row after which headings were aligned (the last row of the reference pose).
     pub aligned_at: Option<usize>,
@@ -544,7 +544,7 @@ pub fn run_rig(
     let mut row_samples = vec![Sample { dt: 0.0, gyro: None, accel: None, mag: None }; n];
     let mut q = vec![Quat::IDENTITY; n];
     let mut rejected = 0;
-    let start = Instant::now();
+    let start = crate::clock::thread_cpu();
     for i in 0..rows {
         for ((f, sample), from) in filters.iter_mut().zip(row_samples.iter_mut()).zip(&samples) {
             *sample = from[i];
@@ -563,7 +563,12 @@ pub fn run_rig(
             out.push(*q);
         }
     }
-    RigRun { sensors: out, rejected, elapsed: start.elapsed(), aligned_at: align_row }
+    RigRun {
+        sensors: out,
+        rejected,
+        elapsed: crate::clock::thread_cpu().saturating_sub(start),
+        aligned_at: align_row,
+    }
 }
 
 /// Gives every segment the mean heading of all segments (each segment's orientation is

@@ -30,9 +30,9 @@ use orient::ffi::{
 use orient::filters::madgwick::{Madgwick, MadgwickSettings};
 use orient::filters::mahony::{Mahony, MahonySettings};
 use orient::{Config, Filter, Kind, Quat, Sample, Vec3};
+use orient_tools::clock;
 use orient_tools::eval::Recording;
 use std::hint::black_box;
-use std::time::Instant;
 
 const PER_ROUND: usize = 20_000;
 /// Sensors in the rig of the multi-sensor benchmark (the bones of a hand).
@@ -53,9 +53,8 @@ fn time_interleaved(rounds: usize, units: usize, variants: &mut [Box<dyn FnMut()
     let mut runs = vec![Vec::with_capacity(rounds); variants.len()];
     for _ in 0..rounds {
         for (v, r) in variants.iter_mut().zip(runs.iter_mut()) {
-            let t = Instant::now();
-            v();
-            r.push(t.elapsed().as_secs_f64() * 1e9 / units as f64);
+            let ((), t) = clock::time(&mut *v);
+            r.push(t.as_secs_f64() * 1e9 / units as f64);
         }
     }
     runs.into_iter().map(median).collect()
@@ -281,8 +280,10 @@ fn main() {
         return;
     }
     println!(
-        "orient {} bench: median ns per update over {rounds} rounds x {PER_ROUND} samples (BROAD excerpt)",
-        env!("CARGO_PKG_VERSION")
+        "orient {} bench: median ns per update (thread CPU time) over {rounds} rounds x {PER_ROUND} samples \
+         (BROAD excerpt) on {}",
+        env!("CARGO_PKG_VERSION"),
+        clock::cpu_model()
     );
     println!(
         "{:<20} {:>7} {:>7} {:>9} {:>7} {:>8} {:>9}   anchors (ns, orient Rust / anchor)",

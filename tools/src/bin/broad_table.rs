@@ -13,6 +13,7 @@
 //! sets a parameter on every kind that has it.
 
 use orient::{Config, Filter, Kind, Quat};
+use orient_tools::clock;
 use orient_tools::eval::{remove_heading_offset, score, Recording, Scores};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -93,9 +94,9 @@ fn main() {
     for (_, rec) in &recordings {
         let mut row = Vec::new();
         for (c, (_, six)) in columns.iter().enumerate() {
-            let t = Instant::now();
-            row.push(run(&configs[c / 2], rec, *six));
-            seconds[c] += t.elapsed().as_secs_f64();
+            let (scores, t) = clock::time(|| run(&configs[c / 2], rec, *six));
+            row.push(scores);
+            seconds[c] += t.as_secs_f64();
         }
         table.push(row);
     }
@@ -149,8 +150,9 @@ fn main() {
     }
     println!();
     println!(
-        "\nCells: total / heading / inclination RMSE (deg). ns/sample: filter, scoring and \
-         copying included.\n{} trials, {samples} samples, {} runs in {:.1} s (reading included)",
+        "\nCells: total / heading / inclination RMSE (deg). ns/sample: thread CPU time on {}, \
+         filter, scoring and copying included.\n{} trials, {samples} samples, {} runs in {:.1} s (reading included)",
+        clock::cpu_model(),
         recordings.len(),
         columns.len() * recordings.len(),
         elapsed.as_secs_f64()

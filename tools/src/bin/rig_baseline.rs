@@ -19,10 +19,10 @@
 //! written. A benchmark, not a test: it asserts nothing.
 
 use orient::{Config, Filter, Kind};
+use orient_tools::clock;
 use orient_tools::eval::{self, remove_heading_offset};
 use orient_tools::rig::{joint_errors, run_rig, score_rig, Alone, RigRecording, RigScores, SensorFilter};
 use orient_tools::rigsim::{vertical_hinge_fraction, SimConfig, Simulation};
-use std::time::Instant;
 
 const CASES: [(&str, &str); 5] = [
     ("100hz", "100 Hz"),
@@ -136,11 +136,10 @@ fn main() {
             let mut config = SimConfig::preset(preset, seed).unwrap();
             config.duration_s = minutes * 60.0;
             config.rest_s = rest.unwrap_or(config.rest_s);
-            let t = Instant::now();
-            let sim = Simulation::new(config).run();
-            sim_time += t.elapsed().as_secs_f64();
+            let (sim, t) = clock::time(|| Simulation::new(config).run());
+            sim_time += t.as_secs_f64();
             vertical[c] += vertical_hinge_fraction(&sim, 60.0) / seeds as f64;
-            let t = Instant::now();
+            let t0 = clock::thread_cpu();
             for (r, row) in rows.iter().enumerate() {
                 let (s, per_sensor) = score(&sim.recording, *row, &robust);
                 if *preset == "60hz-vigorous" && r < 2 {
@@ -160,7 +159,7 @@ fn main() {
                 );
                 results[r][c].push(s);
             }
-            filter_time += t.elapsed().as_secs_f64();
+            filter_time += clock::thread_cpu().saturating_sub(t0).as_secs_f64();
         }
     }
     let mean = |v: &[RigScores], f: fn(&RigScores) -> f64| v.iter().map(f).sum::<f64>() / v.len() as f64;
@@ -215,8 +214,9 @@ fn main() {
         println!("  {:<10} {}", row.label(), cells.join(",  "));
     }
     println!(
-        "\nhinge axes > 60 deg from horizontal: {} % of the time (per case); simulation {sim_time:.1} s, \
-         filters and scoring {filter_time:.1} s",
-        vertical.iter().map(|v| format!("{:.0}", 100.0 * v)).collect::<Vec<_>>().join(" / ")
+        "\nhinge axes > 60 deg from horizontal: {} % of the time (per case); thread CPU time on {}: \
+         simulation {sim_time:.1} s, filters and scoring {filter_time:.1} s",
+        vertical.iter().map(|v| format!("{:.0}", 100.0 * v)).collect::<Vec<_>>().join(" / "),
+        clock::cpu_model()
     );
 }

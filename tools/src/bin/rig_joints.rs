@@ -13,7 +13,8 @@
 //!   the units of the field's doc).
 //! - `--oracle`: also the floor: each child's relative heading set from the truth (what
 //!   remains is the filters' inclination and the joints' truth not in any heading).
-//! - `--cost`: the time of the joint stage beside the filters' in the same run.
+//! - `--cost`: the time of the joint stage beside the filters' in the same run (thread CPU
+//!   time, [`orient_tools::clock`]).
 //! - `--filter-set NAME=VALUE`: a robust filter parameter by its name (`bias_limit`, ...).
 //! - Under joints (and for the oracle) the filters take the settings for joints
 //!   (`Config::for_joints`, before `--filter-set`); every sensor alone, the defaults.
@@ -322,7 +323,9 @@ fn main() {
     }
     if cost && samples > 0 {
         println!(
-            "\ncost: joint stage {:.1} ns per joint update; time ratio (filters + joints) / filters = {:.3}",
+            "\ncost (thread CPU time on {}): joint stage {:.1} ns per joint update; time ratio \
+             (filters + joints) / filters = {:.3}",
+            orient_tools::clock::cpu_model(),
             (t_joints - t_filters) * 1e9 / samples as f64,
             t_joints / t_filters
         );
