@@ -349,9 +349,7 @@ impl JointEstimator {
         for k in TX..N {
             self.p[k][k] += prm.q_tilt * dt;
         }
-        if rest {
-            self.rating -= alpha * self.rating;
-        } else {
+        if !rest {
             self.g = [q_p.rotate_inverse(UP), q_c.rotate_inverse(UP)];
             self.predict(dt);
         }
@@ -429,6 +427,7 @@ impl JointEstimator {
                 self.scalar_update(&h, -comp(r, i), rr, &mut dx, step);
             }
         }
+        // At rest `info` is 0: the rating decays with the low-pass's time constant.
         self.rating += alpha * ((info / self.info_scale).min(1.0) - self.rating);
         // Each update kept the steps within the bound but for rounding.
         for k in [0, TX, TX + 1] {

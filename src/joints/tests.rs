@@ -137,6 +137,38 @@ fn at_rest_the_estimate_holds_and_the_rating_falls() {
     assert!(joints.rating(0) < 0.01, "{}", joints.rating(0));
 }
 
+/// The rating is a low-pass over `rating_tau` of what the constraints told: at rest they
+/// tell nothing, and it decays by `1 − α` a row, `α = dt / (rating_tau + dt)` (once: an
+/// earlier version decayed it twice a row, at half the documented time constant).
+#[test]
+fn at_rest_the_rating_decays_with_its_time_constant() {
+    let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 30.0);
+    let q = parent_at(30.0);
+    let c = q * rot(X, flexion_at(30.0));
+    let still = |q: Quat| Sample {
+        dt: 0.01,
+        gyro: Some(Vec3::ZERO),
+        accel: Some(q.rotate_inverse(Z * G)),
+        mag: None,
+    };
+    let prm = JointParams::default();
+    let rows_to_rest = (prm.rest_time / 0.01).ceil() as usize + 1;
+    for _ in 0..rows_to_rest {
+        joints.update(&[q, c], &[still(q), still(c)]).unwrap();
+    }
+    let r0 = joints.rating(0);
+    assert!(r0 > 0.1, "{r0}");
+    let rows = (prm.rating_tau / 0.01) as i32;
+    for _ in 0..rows {
+        joints.update(&[q, c], &[still(q), still(c)]).unwrap();
+    }
+    let alpha = 0.01 / (prm.rating_tau + 0.01);
+    let want = r0 * (1.0 - alpha).powi(rows);
+    assert!((joints.rating(0) - want).abs() <= 1e-12 * r0, "{} vs {want}", joints.rating(0));
+    // About e⁻¹ of where it was after one time constant.
+    assert!((joints.rating(0) / r0 - (-1f64).exp()).abs() < 0.01, "{}", joints.rating(0) / r0);
+}
+
 #[test]
 fn a_chain_composes_the_corrections_down_from_its_root() {
     // Segment 2 hangs from 1, which hangs from 0: listed child first, estimated in order.
