@@ -518,6 +518,18 @@ public:
     }
     OrientStatus reset() noexcept { return orient_joints_reset(h_); }
 
+    /// Sets the joint parameter called `name` (orient_joint_param_info lists them with
+    /// their ranges) for every joint: UNKNOWN_PARAM or PARAM_OUT_OF_RANGE change nothing.
+    OrientStatus set_param(const char* name, double value) noexcept {
+        return orient_joints_set_param(h_, name, value);
+    }
+    /// The joint parameter called `name`; NaN when the call fails.
+    double param(const char* name) const noexcept {
+        double v = std::numeric_limits<double>::quiet_NaN();
+        orient_joints_get_param(h_, name, &v);
+        return v;
+    }
+
     /// Size of save()'s snapshot (constant for a rig).
     std::size_t state_size() const noexcept {
         std::size_t n = 0;

@@ -1837,8 +1837,48 @@ namespace Orient.Native
         public static extern Status orient_joints_save(IntPtr joints, byte* buffer, UIntPtr capacity, UIntPtr* written);
 
         /// <summary>
+        /// The number of joint parameters, the tuning every joint of a rig shares
+        /// (orient_joint_param_info lists them).
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joint_param_count(uint* count);
+
+        /// <summary>
+        /// Describes joint parameter number `index` (0 &lt;= index &lt; orient_joint_param_count): its
+        /// name (what orient_joints_set_param takes), unit, meaning, default and accepted range;
+        /// `id` is `index` and `flags` 0. The strings are the library's, static.
+        /// INVALID_ARGUMENT for an index at or beyond the count.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joint_param_info(uint index, ParamInfo* info);
+
+        /// <summary>
+        /// Reads the joint parameter called `name` (NUL-terminated; orient_joint_param_info
+        /// lists them) of a rig's joints into `value`. INVALID_HANDLE for joints that are not
+        /// live, UNKNOWN_PARAM for a name no joint parameter has.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_get_param(IntPtr joints, byte* name, double* value);
+
+        /// <summary>
+        /// Sets the joint parameter called `name` (NUL-terminated; orient_joint_param_info lists
+        /// them with their ranges) for every joint of the rig, the estimates kept: taken from the
+        /// next orient_joints_update on, and an initial standard deviation (a name ending in
+        /// `_std0`) when the estimates next start (orient_joints_reset; before the first update,
+        /// at once: for filters whose headings were not aligned, heading_std0 as far apart as they
+        /// may be, and a hinge finds 30 degrees within a degree in a minute of motion; align
+        /// larger offsets first, orient_rig_align_heading). A blob saved with
+        /// another value no longer loads (orient_joints_load: INVALID_STATE). INVALID_HANDLE for
+        /// joints that are not live, UNKNOWN_PARAM for a name no joint parameter has,
+        /// PARAM_OUT_OF_RANGE for a value outside its range (NaN, infinite and subnormal values
+        /// included); either changes nothing.
+        /// </summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern Status orient_joints_set_param(IntPtr joints, byte* name, double value);
+
+        /// <summary>
         /// Restores a blob from orient_joints_save into joints made for the same rig (the same
-        /// joints, axes as given and mountings). ORIENT_STATUS_INVALID_STATE, with the joints
+        /// joints, axes as given, mountings and joint parameters). ORIENT_STATUS_INVALID_STATE, with the joints
         /// unchanged, for a blob that is truncated, corrupted, of another format version, a
         /// filter's, another rig's, or holding a state no joint could hold; COUNT_TOO_LARGE for a
         /// `size` no buffer can have.

@@ -723,18 +723,24 @@ namespace Orient
             {
                 Native.ParamInfo info;
                 OrientException.Check(NativeMethods.orient_param_info((int)kind, i, &info));
-                ParameterInfo p = new ParameterInfo();
-                p.Id = info.Id;
-                p.Name = Marshal.PtrToStringAnsi(info.Name);
-                p.Unit = Marshal.PtrToStringAnsi(info.Unit);
-                p.Description = Marshal.PtrToStringAnsi(info.Description);
-                p.Default = info.DefaultValue;
-                p.Min = info.Min;
-                p.ZeroTurnsOff = (info.Flags & Native.Consts.ParamFlagZeroOff) != 0;
-                p.Max = info.Max;
-                list.Add(p);
+                list.Add(FromNative(info));
             }
             return list;
+        }
+
+        /// <summary>A parameter's description as the library gives it.</summary>
+        internal static ParameterInfo FromNative(Native.ParamInfo info)
+        {
+            ParameterInfo p = new ParameterInfo();
+            p.Id = info.Id;
+            p.Name = Marshal.PtrToStringAnsi(info.Name);
+            p.Unit = Marshal.PtrToStringAnsi(info.Unit);
+            p.Description = Marshal.PtrToStringAnsi(info.Description);
+            p.Default = info.DefaultValue;
+            p.Min = info.Min;
+            p.ZeroTurnsOff = (info.Flags & Native.Consts.ParamFlagZeroOff) != 0;
+            p.Max = info.Max;
+            return p;
         }
     }
 
@@ -1151,6 +1157,57 @@ namespace Orient
         {
             OrientException.Check(NativeMethods.orient_joints_reset(H));
             GC.KeepAlive(this);
+        }
+
+        /// <summary>The joint parameter called `name` (see <see cref="Parameters"/>), shared
+        /// by every joint of the rig. Setting it takes effect from the next update (an
+        /// initial standard deviation, a name ending in _std0, at the next Reset, or at once
+        /// before the first update); a name or value out of range throws OrientException
+        /// (UnknownParam, ParamOutOfRange) with nothing changed.</summary>
+        public double this[string name]
+        {
+            get
+            {
+                byte[] bytes = Utf8(name);
+                double v;
+                fixed (byte* p = bytes)
+                {
+                    OrientException.Check(NativeMethods.orient_joints_get_param(H, p, &v));
+                }
+                GC.KeepAlive(this);
+                return v;
+            }
+            set
+            {
+                byte[] bytes = Utf8(name);
+                fixed (byte* p = bytes)
+                {
+                    OrientException.Check(NativeMethods.orient_joints_set_param(H, p, value));
+                }
+                GC.KeepAlive(this);
+            }
+        }
+
+        private static byte[] Utf8(string name)
+        {
+            if (name == null) throw new ArgumentNullException("name");
+            return Encoding.UTF8.GetBytes(name + "\0");
+        }
+
+        /// <summary>Every joint parameter with its unit, meaning, default and range, for
+        /// inspectors.</summary>
+        public static IList<ParameterInfo> Parameters()
+        {
+            uint n;
+            OrientException.Check(NativeMethods.orient_joint_param_count(&n));
+            List<ParameterInfo> list = new List<ParameterInfo>((int)n);
+            for (uint i = 0; i < n; i++)
+            {
+                Native.ParamInfo info;
+                OrientException.Check(NativeMethods.orient_joint_param_info(i, &info));
+                list.Add(OrientFilter.FromNative(info));
+            }
+            return list;
         }
 
         /// <summary>A snapshot of the joints' estimates with the rig's description; save

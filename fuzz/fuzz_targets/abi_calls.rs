@@ -28,7 +28,8 @@
 //! and heading alignment over the live handles; a magnetometer calibrator per input
 //! (a refused reading leaves its bytes as they were; at the end, plausible readings must
 //! give a fit); the gyroscope offset; the smoother; the array update; uncertainty;
-//! joints over the live filters, and the hinge and 2-DoF axis estimates (after the
+//! joints over the live filters (now and then with a joint parameter set), and the hinge
+//! and 2-DoF axis estimates (after the
 //! calls, with what bytes remain).
 //!
 //! Blobs are loaded as saved (into filters of any kind), damaged, cut, and forged
@@ -708,6 +709,29 @@ unsafe fn joints_pass(b: &mut Bytes, live: &[*mut OrientFilter]) {
         assert!(j.is_null(), "{what}: refused with {s:?} and made a handle");
         return;
     }
+    // Now and then a joint parameter set to a fuzzed value: refused, it changes nothing;
+    // taken, it reads back, and the rows below run with it.
+    let mut tuning: Option<(std::ffi::CString, f64)> = None;
+    if b.u8() % 4 == 0 {
+        let mut count = 0u32;
+        assert_eq!(orient_joint_param_count(&mut count), OrientStatus::Ok);
+        let mut info = MaybeUninit::<OrientParamInfo>::uninit();
+        assert_eq!(orient_joint_param_info(b.pick(count as usize) as u32, info.as_mut_ptr()), OrientStatus::Ok);
+        let info = info.assume_init();
+        let name = std::ffi::CStr::from_ptr(info.name).to_owned();
+        let value = b.param_value(&info);
+        let before = joints_blob(j);
+        let what = format!("{what}; set {name:?} = {value:e}");
+        let s = check("orient_joints_set_param", orient_joints_set_param(j, name.as_ptr(), value), &what);
+        let mut read = f64::NAN;
+        assert_eq!(orient_joints_get_param(j, name.as_ptr(), &mut read), OrientStatus::Ok);
+        if s == OrientStatus::Ok {
+            assert_eq!(read.to_bits(), value.to_bits(), "{what}: read back {read:e}");
+            tuning = Some((name, value));
+        } else {
+            assert!(joints_blob(j) == before, "{what}: refused with {s:?} and changed the joints");
+        }
+    }
     for row in 0..6 {
         if b.empty() {
             break;
@@ -729,6 +753,9 @@ unsafe fn joints_pass(b: &mut Bytes, live: &[*mut OrientFilter]) {
         let blob = joints_blob(j);
         let mut twin = std::ptr::null_mut();
         assert_eq!(orient_joints_new(specs.as_ptr(), count, n, std::ptr::null(), &mut twin), OrientStatus::Ok);
+        if let Some((name, value)) = &tuning {
+            assert_eq!(orient_joints_set_param(twin, name.as_ptr(), *value), OrientStatus::Ok);
+        }
         assert_eq!(orient_joints_load(twin, blob.as_ptr(), blob.len()), OrientStatus::Ok, "{what}");
         assert!(joints_blob(twin) == blob, "{what}: a loaded blob saves differently");
         assert_eq!(orient_joints_free(twin), OrientStatus::Ok);

@@ -70,19 +70,25 @@ pub unsafe extern "C" fn orient_param_info(
         let text = strings::param_text(spec.id).ok_or_else(|| {
             fail(OrientStatus::Panic, format_args!("no strings for parameter slot {}", spec.id))
         })?;
-        put(info, || {
-            Ok(OrientParamInfo {
-                id: spec.id,
-                flags: if spec.zero_off { ORIENT_PARAM_FLAG_ZERO_OFF } else { 0 },
-                name: text.name,
-                unit: text.unit,
-                description: text.doc,
-                default_value: spec.default,
-                min: spec.min,
-                max: spec.max,
-            })
-        })
+        put(info, || Ok(param_info(spec, text)))
     })
+}
+
+/// A parameter's description as C sees it: the table's entry with its static strings.
+pub(super) fn param_info(
+    spec: &crate::filters::params::ParamSpec,
+    text: strings::ParamText,
+) -> OrientParamInfo {
+    OrientParamInfo {
+        id: spec.id,
+        flags: if spec.zero_off { ORIENT_PARAM_FLAG_ZERO_OFF } else { 0 },
+        name: text.name,
+        unit: text.unit,
+        description: text.doc,
+        default_value: spec.default,
+        min: spec.min,
+        max: spec.max,
+    }
 }
 
 /// Looks up the slot of the parameter called `name` (NUL-terminated) for `kind`.

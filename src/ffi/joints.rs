@@ -5,6 +5,7 @@ use super::*;
 use crate::filters::pipeline::sample::check_quaternion;
 use crate::joints::{
     estimate_hinge_axes_by, estimate_two_dof_axes_by, JointError, JointKind, JointParams, JointSpec, Joints,
+    JOINT_PARAMS,
 };
 
 /// OrientJoint.kind: one degree of freedom. The child turns about one axis,
@@ -111,6 +112,8 @@ fn joint_error(e: JointError) -> OrientStatus {
         JointError::BadMounting(_) => OrientStatus::ZeroVector,
         JointError::BadParams | JointError::WrongLength(_) => OrientStatus::InvalidArgument,
         JointError::NonFinite(_) => OrientStatus::NonFinite,
+        JointError::UnknownParam => OrientStatus::UnknownParam,
+        JointError::ParamOutOfRange(_) => OrientStatus::ParamOutOfRange,
     };
     fail(status, format_args!("{e}"))
 }
@@ -483,8 +486,90 @@ pub unsafe extern "C" fn orient_joints_save(
     })
 }
 
+/// The number of joint parameters, the tuning every joint of a rig shares
+/// (orient_joint_param_info lists them).
+#[no_mangle]
+pub unsafe extern "C" fn orient_joint_param_count(count: *mut u32) -> OrientStatus {
+    guard(|| put(count, || Ok(JOINT_PARAMS.len() as u32)))
+}
+
+/// Describes joint parameter number `index` (0 <= index < orient_joint_param_count): its
+/// name (what orient_joints_set_param takes), unit, meaning, default and accepted range;
+/// `id` is `index` and `flags` 0. The strings are the library's, static.
+/// INVALID_ARGUMENT for an index at or beyond the count.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joint_param_info(index: u32, info: *mut OrientParamInfo) -> OrientStatus {
+    guard(|| {
+        need(info.is_null())?;
+        let Some(spec) = JOINT_PARAMS.get(index as usize) else {
+            return Err(fail(
+                OrientStatus::InvalidArgument,
+                format_args!("joint parameter index {index}: there are {}", JOINT_PARAMS.len()),
+            ));
+        };
+        let text = strings::joint_param_text(index).ok_or_else(|| {
+            fail(OrientStatus::Panic, format_args!("no strings for joint parameter {index}"))
+        })?;
+        put(info, || Ok(super::config::param_info(spec, text)))
+    })
+}
+
+/// The name as a joint parameter's index; UNKNOWN_PARAM for no such name.
+unsafe fn joint_param(name: *const c_char) -> Result<&'static str, OrientStatus> {
+    let name = CStr::from_ptr(name).to_str().unwrap_or("");
+    JOINT_PARAMS
+        .iter()
+        .find(|s| s.name == name)
+        .map(|s| s.name)
+        .ok_or_else(|| fail(OrientStatus::UnknownParam, format_args!("no joint parameter '{name}'")))
+}
+
+/// Reads the joint parameter called `name` (NUL-terminated; orient_joint_param_info
+/// lists them) of a rig's joints into `value`. INVALID_HANDLE for joints that are not
+/// live, UNKNOWN_PARAM for a name no joint parameter has.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_get_param(
+    joints: *const OrientJoints,
+    name: *const c_char,
+    value: *mut f64,
+) -> OrientStatus {
+    guard(|| {
+        need(name.is_null() || value.is_null())?;
+        let j = &joints_ref(joints)?.joints;
+        let name = joint_param(name)?;
+        let v = j.param(name).ok_or_else(|| fail(OrientStatus::Panic, format_args!("{name} unread")))?;
+        value.write(v);
+        Ok(())
+    })
+}
+
+/// Sets the joint parameter called `name` (NUL-terminated; orient_joint_param_info lists
+/// them with their ranges) for every joint of the rig, the estimates kept: taken from the
+/// next orient_joints_update on, and an initial standard deviation (a name ending in
+/// `_std0`) when the estimates next start (orient_joints_reset; before the first update,
+/// at once: for filters whose headings were not aligned, heading_std0 as far apart as they
+/// may be, and a hinge finds 30 degrees within a degree in a minute of motion; align
+/// larger offsets first, orient_rig_align_heading). A blob saved with
+/// another value no longer loads (orient_joints_load: INVALID_STATE). INVALID_HANDLE for
+/// joints that are not live, UNKNOWN_PARAM for a name no joint parameter has,
+/// PARAM_OUT_OF_RANGE for a value outside its range (NaN, infinite and subnormal values
+/// included); either changes nothing.
+#[no_mangle]
+pub unsafe extern "C" fn orient_joints_set_param(
+    joints: *mut OrientJoints,
+    name: *const c_char,
+    value: f64,
+) -> OrientStatus {
+    guard(|| {
+        need(name.is_null())?;
+        let j = &mut joints_mut(joints)?.joints;
+        let name = joint_param(name)?;
+        j.set_param(name, value).map_err(joint_error)
+    })
+}
+
 /// Restores a blob from orient_joints_save into joints made for the same rig (the same
-/// joints, axes as given and mountings). ORIENT_STATUS_INVALID_STATE, with the joints
+/// joints, axes as given, mountings and joint parameters). ORIENT_STATUS_INVALID_STATE, with the joints
 /// unchanged, for a blob that is truncated, corrupted, of another format version, a
 /// filter's, another rig's, or holding a state no joint could hold; COUNT_TOO_LARGE for a
 /// `size` no buffer can have.

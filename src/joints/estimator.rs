@@ -61,6 +61,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::JointKind;
+use crate::filters::params::ParamSpec;
 use crate::math::{Quat, Vec3};
 
 const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
@@ -76,7 +77,8 @@ const TX: usize = 17;
 
 /// The joint estimator's tuning: noise densities in continuous time, so that none depends
 /// on the sample rate. The defaults were chosen on simulated gloves (seeds 1-3 of the
-/// tools' `rigsim`) and held on others (seeds 4-9): `rig_joints` in the tools.
+/// tools' `rigsim`) and held on others (seeds 4-9): `rig_joints` in the tools. Each
+/// field's unit, meaning, default and range, as hosts see them: [`JOINT_PARAMS`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointParams {
     /// Hinge residual noise density per component (rad²·s).
@@ -121,69 +123,297 @@ pub struct JointParams {
 }
 
 impl Default for JointParams {
+    /// The defaults of [`JOINT_PARAMS`].
     fn default() -> JointParams {
-        let d = 1f64.to_radians();
-        JointParams {
-            r_hinge: 0.05f64.powi(2) * 0.5,
-            r_2dof: 0.08f64.powi(2) * 0.5,
-            q_heading: (0.1 * d).powi(2),
-            q_rate: 6e-7,
+        let mut p = JointParams {
+            r_hinge: 0.0,
+            r_2dof: 0.0,
+            q_heading: 0.0,
+            q_rate: 0.0,
             q_axis: 0.0,
-            heading_std0: 1.0 * d,
-            rate_std0: 0.5 * d,
-            axis_std0: 0.09,
-            max_rate: 5.0 * d,
-            rest_gyro: 0.15,
-            rest_time: 0.3,
-            r_acc: 0.001,
-            acc_rate_scale: 1.0,
-            acc_accel_scale: 20.0,
-            lever_std0: 0.05,
-            q_lever: 1e-10,
+            heading_std0: 0.0,
+            rate_std0: 0.0,
+            axis_std0: 0.0,
+            max_rate: 0.0,
+            rest_gyro: 0.0,
+            rest_time: 0.0,
+            r_acc: 0.0,
+            acc_rate_scale: 0.0,
+            acc_accel_scale: 0.0,
+            lever_std0: 0.0,
+            q_lever: 0.0,
             tilt_std0: 0.0,
-            q_tilt: 3e-5,
-            gate: 3.0,
-            rating_tau: 2.0,
+            q_tilt: 0.0,
+            gate: 0.0,
+            rating_tau: 0.0,
+        };
+        for (spec, v) in JOINT_PARAMS.iter().zip(p.fields_mut()) {
+            *v = spec.default;
         }
+        p
     }
 }
 
+/// Each [`JointParams`] field as a host sees it: the name, unit, meaning, default and
+/// accepted range, in the order of [`JointParams::fields_mut`] (and of a joint blob).
+/// The C ABI's `orient_joint_param_info`, `orient_joints_set_param` and the bindings
+/// read this table; a test holds its defaults to [`JointParams::default`].
+pub const JOINT_PARAMS: [ParamSpec; 20] = [
+    spec(
+        0,
+        "r_hinge",
+        "rad^2 s",
+        "Hinge residual noise density per component: how far the axis seen from \
+        the two sensors may disagree (laxity, soft tissue, the filters' inclination), as variance times \
+        correlation time; default 0.00125 (orient: chosen on simulated gloves).",
+        0.00125,
+        1e-12,
+        1e3,
+    ),
+    spec(
+        1,
+        "r_2dof",
+        "rad^2 s",
+        "2-DoF residual noise density (the two axes' perpendicularity); default \
+        0.0032 (orient: chosen on simulated gloves).",
+        0.0032,
+        1e-12,
+        1e3,
+    ),
+    spec(
+        2,
+        "q_heading",
+        "rad^2/s",
+        "Random walk of the relative heading (what the two filters' headings do \
+        that no residual bias explains); default 3.046e-6 (0.1 deg/sqrt(s)).",
+        Q_HEADING,
+        0.0,
+        1.0,
+    ),
+    spec(
+        3,
+        "q_rate",
+        "rad^2/s^3",
+        "Random walk of each residual gyroscope bias component (how fast the \
+        biases the filters leave move); default 6e-7 (orient: simulated gloves with drifting biases).",
+        6e-7,
+        0.0,
+        1.0,
+    ),
+    spec(
+        4,
+        "q_axis",
+        "rad^2/s",
+        "Random walk of each axis correction; default 0: the axes settle (with \
+        axis_std0 0 too, the given axes are kept).",
+        0.0,
+        0.0,
+        1.0,
+    ),
+    spec(
+        5,
+        "heading_std0",
+        "rad",
+        "Initial standard deviation of the relative heading, taken when the \
+        estimate starts (the joints made, or reset): 1 deg by default, for filters whose headings were \
+        aligned at a reference pose (orient_rig_align_heading); as far apart as they may be when they \
+        were not (a hinge finds 30 deg within a degree in a minute of motion).",
+        DEG,
+        0.0,
+        4.0,
+    ),
+    spec(
+        6,
+        "rate_std0",
+        "rad/s",
+        "Initial standard deviation of each residual bias component, taken when \
+        the estimate starts; default 0.5 deg/s.",
+        0.5 * DEG,
+        0.0,
+        1.0,
+    ),
+    spec(
+        7,
+        "axis_std0",
+        "rad",
+        "Initial standard deviation of each axis correction (how far off the \
+        given axes may be), taken when the estimate starts; default 0.09 (about 5 deg).",
+        0.09,
+        0.0,
+        1.0,
+    ),
+    spec(
+        8,
+        "max_rate",
+        "rad/s",
+        "The largest correction of a relative heading and tilt per second: the \
+        outputs never jump; default 5 deg/s.",
+        5.0 * DEG,
+        1e-6,
+        100.0,
+    ),
+    spec(
+        9,
+        "rest_gyro",
+        "rad/s",
+        "Rest, when the joint holds: both gyroscopes below this norm for \
+        rest_time; default 0.15.",
+        0.15,
+        0.0,
+        100.0,
+    ),
+    spec(
+        10,
+        "rest_time",
+        "s",
+        "How long both gyroscopes stay below rest_gyro before the joint holds; \
+        default 0.3.",
+        0.3,
+        0.0,
+        1e3,
+    ),
+    spec(
+        11,
+        "r_acc",
+        "(m/s^2)^2 s",
+        "Joint centre specific-force residual noise density per component at \
+        rest (it grows with the motion: acc_rate_scale, acc_accel_scale); 0 leaves the constraint out; \
+        default 0.001 (orient: chosen on simulated gloves).",
+        0.001,
+        0.0,
+        1e6,
+    ),
+    spec(
+        12,
+        "acc_rate_scale",
+        "rad/s",
+        "The angular rate (both sensors', summed in squares) at which \
+        r_acc has doubled; default 1.",
+        1.0,
+        1e-6,
+        1e6,
+    ),
+    spec(
+        13,
+        "acc_accel_scale",
+        "rad/s^2",
+        "The angular acceleration (both sensors', summed in squares) at \
+        which r_acc has doubled; default 20.",
+        20.0,
+        1e-6,
+        1e6,
+    ),
+    spec(
+        14,
+        "lever_std0",
+        "m",
+        "Initial standard deviation of each lever-arm component (the joint centre \
+        in each sensor's frame), taken when the estimate starts; default 0.05.",
+        0.05,
+        0.0,
+        10.0,
+    ),
+    spec(15, "q_lever", "m^2/s", "Random walk of each lever-arm component; default 1e-10.", 1e-10, 0.0, 1.0),
+    spec(
+        16,
+        "tilt_std0",
+        "rad",
+        "Initial standard deviation of the child's tilt correction, taken when \
+        the estimate starts; default 0.",
+        0.0,
+        0.0,
+        1.0,
+    ),
+    spec(
+        17,
+        "q_tilt",
+        "rad^2/s",
+        "Random walk of the child's tilt correction (what the two filters' \
+        inclinations do); default 3e-5.",
+        3e-5,
+        0.0,
+        1.0,
+    ),
+    spec(
+        18,
+        "gate",
+        "1",
+        "Innovations beyond this many standard deviations are down-weighted (Huber); \
+        default 3.",
+        3.0,
+        0.1,
+        1e3,
+    ),
+    spec(19, "rating_tau", "s", "The rating's low-pass time constant; default 2.", 2.0, 1e-3, 1e3),
+];
+
+const DEG: f64 = core::f64::consts::PI / 180.0;
+const Q_HEADING: f64 = (0.1 * DEG) * (0.1 * DEG);
+
+const fn spec(
+    id: u32,
+    name: &'static str,
+    unit: &'static str,
+    doc: &'static str,
+    default: f64,
+    min: f64,
+    max: f64,
+) -> ParamSpec {
+    ParamSpec { id, name, unit, doc, default, min, max, zero_off: false }
+}
+
 impl JointParams {
-    /// Every field finite and not negative; `gate`, `rating_tau`, `r_hinge`, `r_2dof`,
-    /// `max_rate` (a zero bound would stop every update) and the two scales of `r_acc`
-    /// above zero.
-    pub(crate) fn is_valid(&self) -> bool {
+    /// Every field in [`JOINT_PARAMS`]' order.
+    pub fn fields_mut(&mut self) -> [&mut f64; 20] {
         let p = self;
-        let all = [
-            p.r_hinge,
-            p.r_2dof,
-            p.q_heading,
-            p.q_rate,
-            p.q_axis,
-            p.heading_std0,
-            p.rate_std0,
-            p.axis_std0,
-            p.max_rate,
-            p.rest_gyro,
-            p.rest_time,
-            p.r_acc,
-            p.acc_rate_scale,
-            p.acc_accel_scale,
-            p.lever_std0,
-            p.q_lever,
-            p.tilt_std0,
-            p.q_tilt,
-            p.gate,
-            p.rating_tau,
-        ];
-        all.iter().all(|v| v.is_finite() && *v >= 0.0)
-            && p.gate > 0.0
-            && p.rating_tau > 0.0
-            && p.max_rate > 0.0
-            && p.acc_rate_scale > 0.0
-            && p.acc_accel_scale > 0.0
-            && p.r_hinge > 0.0
-            && p.r_2dof > 0.0
+        [
+            &mut p.r_hinge,
+            &mut p.r_2dof,
+            &mut p.q_heading,
+            &mut p.q_rate,
+            &mut p.q_axis,
+            &mut p.heading_std0,
+            &mut p.rate_std0,
+            &mut p.axis_std0,
+            &mut p.max_rate,
+            &mut p.rest_gyro,
+            &mut p.rest_time,
+            &mut p.r_acc,
+            &mut p.acc_rate_scale,
+            &mut p.acc_accel_scale,
+            &mut p.lever_std0,
+            &mut p.q_lever,
+            &mut p.tilt_std0,
+            &mut p.q_tilt,
+            &mut p.gate,
+            &mut p.rating_tau,
+        ]
+    }
+
+    /// The field called `name` ([`JOINT_PARAMS`]); `None` for no such field.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        let k = JOINT_PARAMS.iter().position(|s| s.name == name)?;
+        let mut p = *self;
+        let v = *p.fields_mut()[k];
+        Some(v)
+    }
+
+    /// Sets the field called `name` when [`JOINT_PARAMS`] accepts `value` for it: `None`
+    /// for no such field, `Some(false)` (nothing changed) for a value out of its range.
+    pub fn set(&mut self, name: &str, value: f64) -> Option<bool> {
+        let k = JOINT_PARAMS.iter().position(|s| s.name == name)?;
+        let ok = JOINT_PARAMS[k].accepts(value);
+        if ok {
+            *self.fields_mut()[k] = value;
+        }
+        Some(ok)
+    }
+
+    /// Every field within its range in [`JOINT_PARAMS`].
+    pub(crate) fn is_valid(&self) -> bool {
+        let mut p = *self;
+        let ok = JOINT_PARAMS.iter().zip(p.fields_mut()).all(|(s, v)| s.accepts(*v));
+        ok
     }
 }
 
@@ -274,6 +504,11 @@ impl JointEstimator {
             rating: 0.0,
             info_scale: 1.0,
         }
+    }
+
+    /// Takes another tuning from the next update on.
+    pub(crate) fn set_params(&mut self, params: JointParams) {
+        self.params = params;
     }
 
     /// Every state and covariance entry is finite.

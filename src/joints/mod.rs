@@ -55,7 +55,7 @@ pub mod estimator;
 pub use axes::{
     estimate_hinge_axes, estimate_hinge_axes_by, estimate_two_dof_axes, estimate_two_dof_axes_by, JointAxes,
 };
-pub use estimator::JointParams;
+pub use estimator::{JointParams, JOINT_PARAMS};
 
 use crate::filters::state::{self as snapshot, Codec, Reader, StateError, Writer};
 use crate::filters::{Config, Filter, Sample};
@@ -178,6 +178,10 @@ pub enum JointError {
     TooManySegments(usize),
     /// The joints' memory could not be allocated.
     OutOfMemory,
+    /// No [`JOINT_PARAMS`] entry has this name.
+    UnknownParam,
+    /// The value is outside the parameter's range in [`JOINT_PARAMS`] (its index there).
+    ParamOutOfRange(usize),
 }
 
 impl core::fmt::Display for JointError {
@@ -195,6 +199,11 @@ impl core::fmt::Display for JointError {
             JointError::NonFinite(s) => write!(f, "segment {s}: a value is not finite"),
             JointError::TooManySegments(n) => write!(f, "{n} segments: at most {MAX_SEGMENTS}"),
             JointError::OutOfMemory => write!(f, "the joints' memory could not be allocated"),
+            JointError::UnknownParam => write!(f, "no joint parameter has this name"),
+            JointError::ParamOutOfRange(k) => {
+                let s = &JOINT_PARAMS[k];
+                write!(f, "{} outside [{}, {}]", s.name, s.min, s.max)
+            }
         }
     }
 }
@@ -500,6 +509,30 @@ impl Joints {
         self.estimators[k].axes()
     }
 
+    /// The tuning's field called `name` ([`JOINT_PARAMS`]); `None` for no such field.
+    pub fn param(&self, name: &str) -> Option<f64> {
+        self.params.get(name)
+    }
+
+    /// Sets the tuning's field called `name` ([`JOINT_PARAMS`]): every joint takes it from
+    /// its next update on, and an initial standard deviation (`*_std0`) when its estimate
+    /// next starts ([`Joints::reset`]; before the first update, at once). The estimates
+    /// are kept. A blob saved with another tuning no longer loads. `UnknownParam` or
+    /// `ParamOutOfRange` change nothing.
+    pub fn set_param(&mut self, name: &str, value: f64) -> Result<(), JointError> {
+        let k = JOINT_PARAMS.iter().position(|s| s.name == name).ok_or(JointError::UnknownParam)?;
+        if self.params.set(name, value) != Some(true) {
+            return Err(JointError::ParamOutOfRange(k));
+        }
+        for e in &mut self.estimators {
+            e.set_params(self.params);
+        }
+        if !self.updated && name.ends_with("_std0") {
+            self.reset();
+        }
+        Ok(())
+    }
+
     /// The size in bytes of this rig's joint state blob ([`Joints::save`]).
     pub fn state_size(&self) -> usize {
         let mut w = Writer { buf: None, pos: 0 };
@@ -652,30 +685,9 @@ fn spec_codec(c: &mut dyn Codec, j: &mut JointSpec) {
     c.vec3(&mut j.axis_child);
 }
 
-/// The tuning in a blob.
+/// The tuning in a blob, in [`JOINT_PARAMS`]' order.
 fn params_codec(c: &mut dyn Codec, p: &mut JointParams) {
-    for v in [
-        &mut p.r_hinge,
-        &mut p.r_2dof,
-        &mut p.q_heading,
-        &mut p.q_rate,
-        &mut p.q_axis,
-        &mut p.heading_std0,
-        &mut p.rate_std0,
-        &mut p.axis_std0,
-        &mut p.max_rate,
-        &mut p.rest_gyro,
-        &mut p.rest_time,
-        &mut p.r_acc,
-        &mut p.acc_rate_scale,
-        &mut p.acc_accel_scale,
-        &mut p.lever_std0,
-        &mut p.q_lever,
-        &mut p.tilt_std0,
-        &mut p.q_tilt,
-        &mut p.gate,
-        &mut p.rating_tau,
-    ] {
+    for v in p.fields_mut() {
         c.f64(v);
     }
 }

@@ -581,3 +581,63 @@ fn for_joints_sets_the_sensor_settings_where_the_kind_has_them() {
         assert_eq!(has, if kind == Kind::Robust { SENSOR_SETTINGS.len() } else { 0 }, "{kind:?}");
     }
 }
+
+/// The tuning as a table: its defaults are [`JointParams::default`]'s, its ranges what
+/// [`Joints::new`] accepts, and `set_param` takes a value in range, refuses others (and
+/// unknown names) with nothing changed.
+#[test]
+fn the_parameter_table_is_the_tuning() {
+    let mut d = JointParams::default();
+    for (k, (spec, v)) in JOINT_PARAMS.iter().zip(d.fields_mut()).enumerate() {
+        assert_eq!(spec.id as usize, k);
+        assert_eq!(spec.default.to_bits(), v.to_bits(), "{}", spec.name);
+        assert!(spec.accepts(spec.default) && spec.min <= spec.max, "{}", spec.name);
+        assert_eq!(JOINT_PARAMS.iter().filter(|s| s.name == spec.name).count(), 1);
+    }
+    let mut joints = Joints::new(2, &[hinge(0, 1, X)], &[], JointParams::default()).unwrap();
+    for spec in &JOINT_PARAMS {
+        let before = joints.clone();
+        for bad in [spec.min - 1e-3 * spec.min.abs().max(1e-300), spec.max * 2.0, f64::NAN, f64::INFINITY] {
+            if spec.accepts(bad) {
+                continue;
+            }
+            assert!(matches!(joints.set_param(spec.name, bad), Err(JointError::ParamOutOfRange(_))));
+            assert_eq!(joints, before, "{}", spec.name);
+            let params = {
+                let mut p = JointParams::default();
+                *p.fields_mut()[spec.id as usize] = bad;
+                p
+            };
+            assert_eq!(Joints::new(2, &[hinge(0, 1, X)], &[], params).err(), Some(JointError::BadParams));
+        }
+        for good in [spec.min, spec.max, spec.default] {
+            joints.set_param(spec.name, good).unwrap();
+            assert_eq!(joints.param(spec.name), Some(good));
+        }
+        joints.set_param(spec.name, spec.default).unwrap();
+    }
+    assert_eq!(joints.set_param("no_such", 1.0), Err(JointError::UnknownParam));
+    assert_eq!(joints.param("no_such"), None);
+}
+
+/// Filters whose headings were never aligned: told how far they may be off
+/// (heading_std0 30 degrees, set before the first update, which applies it at once), a
+/// hinge finds its relative heading from motion, within a degree in a minute.
+#[test]
+fn unaligned_headings_are_found_with_a_wide_heading_std0() {
+    let dt = 0.01;
+    for offset_deg in [30.0f64, 15.0, -15.0, -30.0] {
+        let offset = offset_deg.to_radians();
+        let mut joints = Joints::new(2, &[hinge(0, 1, X)], &[], JointParams::default()).unwrap();
+        joints.set_param("heading_std0", 30f64.to_radians()).unwrap();
+        assert!((joints.heading_std(0) - 30f64.to_radians()).abs() < 1e-12);
+        let child_at = |t: f64| parent_at(t) * rot(X, flexion_at(t));
+        for i in 1..=6000 {
+            let (t0, t1) = ((i - 1) as f64 * dt, i as f64 * dt);
+            let (p0, p1, c0, c1) = (parent_at(t0), parent_at(t1), child_at(t0), child_at(t1));
+            joints.update(&[p1, rot(Z, offset) * c1], &[sample(p0, p1, dt), sample(c0, c1, dt)]).unwrap();
+        }
+        let e = joints.relative_heading(0) + offset;
+        assert!(e.abs() < 1f64.to_radians(), "{offset_deg} deg: {} deg off", e.to_degrees());
+    }
+}

@@ -282,6 +282,71 @@ static void config_for_joints(void) {
     CHECK(memcmp(&c, &before, sizeof c) == 0);
 }
 
+/* The joints' tuning: listed with its ranges, read and set by name; refusals change
+   nothing; an initial standard deviation set before the first update applies at once; a
+   blob saved with another tuning does not load. */
+static void joint_params(void) {
+    OrientJoint j = hinge_joint(0, 1);
+    OrientJoints *joints = NULL, *twin = NULL;
+    OrientParamInfo info;
+    uint32_t count = 0, i;
+    double v = 0.0, heading = 0.0, sigma = 0.0;
+    size_t size = 0, written = 0;
+    unsigned char *blob;
+    CHECK_STATUS(orient_joint_param_count(&count), ORIENT_STATUS_OK);
+    CHECK(count == 20);
+    CHECK_STATUS(orient_joint_param_count(NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_joints_new(&j, 1, 2, NULL, &joints), ORIENT_STATUS_OK);
+    for (i = 0; i < count; i++) {
+        CHECK_STATUS(orient_joint_param_info(i, &info), ORIENT_STATUS_OK);
+        CHECK(info.id == i && info.flags == 0 && info.name != NULL && info.unit != NULL);
+        CHECK(info.description != NULL && strlen(info.description) > 10);
+        CHECK(info.min <= info.default_value && info.default_value <= info.max);
+        CHECK_STATUS(orient_joints_get_param(joints, info.name, &v), ORIENT_STATUS_OK);
+        CHECK(bits(v) == bits(info.default_value));
+        /* Out of range (NaN included): refused, nothing changed. */
+        CHECK_STATUS(orient_joints_set_param(joints, info.name, info.max * 2.0), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+        CHECK_STATUS(orient_joints_set_param(joints, info.name, NAN), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+        CHECK_STATUS(orient_joints_get_param(joints, info.name, &v), ORIENT_STATUS_OK);
+        CHECK(bits(v) == bits(info.default_value));
+        /* Its range's ends are taken. */
+        CHECK_STATUS(orient_joints_set_param(joints, info.name, info.max), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_get_param(joints, info.name, &v), ORIENT_STATUS_OK);
+        CHECK(v == info.max);
+        CHECK_STATUS(orient_joints_set_param(joints, info.name, info.default_value), ORIENT_STATUS_OK);
+    }
+    CHECK_STATUS(orient_joint_param_info(count, &info), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_joint_param_info(0, NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_joints_get_param(joints, "beta", &v), ORIENT_STATUS_UNKNOWN_PARAM);
+    CHECK_STATUS(orient_joints_set_param(joints, "beta", 1.0), ORIENT_STATUS_UNKNOWN_PARAM);
+    CHECK_STATUS(orient_joints_get_param(joints, NULL, &v), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_joints_get_param(joints, "gate", NULL), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_joints_set_param(joints, NULL, 1.0), ORIENT_STATUS_NULL_POINTER);
+    CHECK_STATUS(orient_joints_get_param(sentinel_joints(), "gate", &v), ORIENT_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(orient_joints_set_param(sentinel_joints(), "gate", 1.0), ORIENT_STATUS_INVALID_HANDLE);
+
+    /* Before the first update, an initial standard deviation applies at once. */
+    CHECK_STATUS(orient_joints_set_param(joints, "heading_std0", 0.5), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, &sigma), ORIENT_STATUS_OK);
+    CHECK(heading == 0.0 && fabs(sigma - 0.5) < 1e-15);
+
+    /* Another tuning's blob is refused; the same tuning's loads. */
+    CHECK_STATUS(orient_joints_new(&j, 1, 2, NULL, &twin), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_state_size(joints, &size), ORIENT_STATUS_OK);
+    blob = (unsigned char *)malloc(size);
+    if (blob != NULL) {
+        CHECK_STATUS(orient_joints_save(joints, blob, size, &written), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_load(twin, blob, written), ORIENT_STATUS_INVALID_STATE);
+        CHECK_STATUS(orient_joints_set_param(twin, "heading_std0", 0.5), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_load(twin, blob, written), ORIENT_STATUS_OK);
+        free(blob);
+    } else {
+        CHECK(0);
+    }
+    orient_joints_free(twin);
+    orient_joints_free(joints);
+}
+
 static void joint_calls(void) {
     OrientJoint j = hinge_joint(0, 1);
     OrientJoints *joints = NULL, *gone = NULL;
@@ -295,6 +360,7 @@ static void joint_calls(void) {
     const int rows = 1500;
 
     joints_new_refusals();
+    joint_params();
     CHECK(strcmp(orient_status_message(ORIENT_STATUS_INVALID_JOINT), "unknown status code") != 0);
 
     filters[0] = new_filter(ORIENT_KIND_ROBUST);

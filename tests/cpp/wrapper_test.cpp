@@ -481,6 +481,12 @@ static void joints() {
     CHECK(twin.load(blob.data(), blob.size() - 1) == ORIENT_STATUS_INVALID_STATE);
     CHECK(joints.reset() == ORIENT_STATUS_OK);
     CHECK(joints.relative_heading(0, heading) == ORIENT_STATUS_OK && heading == 0.0);
+    // The tuning by name: read back when taken, unchanged when refused.
+    CHECK(joints.param("gate") == 3.0);
+    CHECK(joints.set_param("gate", 2.5) == ORIENT_STATUS_OK && joints.param("gate") == 2.5);
+    CHECK(joints.set_param("gate", -1.0) == ORIENT_STATUS_PARAM_OUT_OF_RANGE && joints.param("gate") == 2.5);
+    CHECK(joints.set_param("beta", 1.0) == ORIENT_STATUS_UNKNOWN_PARAM);
+    CHECK(std::isnan(joints.param("beta")));
 
     // Moves leave one owner; a bad rig is an Error naming the joint.
     orient::Joints moved = std::move(joints);

@@ -529,6 +529,14 @@ public static class OrientTests
             }
             joints.Reset();
             Check(joints.RelativeHeading(0, out sigma) == 0.0, "OrientJoints: reset");
+            var jp = OrientJoints.Parameters();
+            Check(jp.Count == 20 && jp[18].Name == "gate" && jp[18].Default == 3.0, "OrientJoints: the parameter table");
+            Check(joints["gate"] == 3.0, "OrientJoints: a parameter's default");
+            joints["gate"] = 2.5;
+            Check(joints["gate"] == 2.5, "OrientJoints: a parameter set");
+            Throws(Status.ParamOutOfRange, () => joints["gate"] = -1.0, "OrientJoints: out of range");
+            Check(joints["gate"] == 2.5, "OrientJoints: a refused value changes nothing");
+            Throws(Status.UnknownParam, () => joints["beta"].ToString(), "OrientJoints: an unknown name");
             Throws(Status.InvalidJoint, () => new OrientJoints(rig, new[] { OrientJoints.Hinge(0, 1, x, x), OrientJoints.Hinge(1, 0, x, x) }),
                 "OrientJoints: a cycle", "joint 1");
             Throws(Status.InvalidJoint, () => new OrientJoints(rig, new[] { OrientJoints.Hinge(0, 1, new Vec3(), x) }),

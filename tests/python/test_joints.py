@@ -155,3 +155,27 @@ def test_a_filter_for_joints_takes_the_sensor_settings():
     assert orient.Robust(for_joints=True, bias_walk=0.0)["bias_walk"] == 0.0
     m = orient.Madgwick(for_joints=True)
     assert m["beta_imu"] == orient.Madgwick()["beta_imu"]
+
+
+def test_the_joint_parameters_are_listed_read_and_set_by_name():
+    table = orient.joint_params()
+    assert len(table) == 20 and len({p.name for p in table}) == 20
+    x = [1.0, 0.0, 0.0]
+    with orient.Joints([("hinge", 0, 1, x, x)], 2, params={"heading_std0": 0.3}) as joints:
+        for p in table:
+            want = 0.3 if p.name == "heading_std0" else p.default
+            assert joints.get_param(p.name) == want and p.min <= p.default <= p.max
+        # Before the first update an initial standard deviation applies at once.
+        assert joints.relative_heading(0) == (0.0, pytest.approx(0.3, abs=1e-15))
+        joints.set_param("gate", 2.5)
+        assert joints.get_param("gate") == 2.5
+        for name, value, status in [("gate", -1.0, Status.PARAM_OUT_OF_RANGE),
+                                    ("gate", float("nan"), Status.PARAM_OUT_OF_RANGE),
+                                    ("beta", 1.0, Status.UNKNOWN_PARAM)]:
+            with pytest.raises(OrientError) as e:
+                joints.set_param(name, value)
+            assert e.value.status == status
+        assert joints.get_param("gate") == 2.5
+    with pytest.raises(OrientError) as e:
+        orient.Joints([("hinge", 0, 1, x, x)], 2, params={"max_rate": 0.0})
+    assert e.value.status == Status.PARAM_OUT_OF_RANGE

@@ -37,7 +37,7 @@ from ._filter import (
     version,
 )
 from ._joints import (SAMPLE_DTYPE, Joint, JointAxes, Joints, estimate_hinge_axes, estimate_two_dof_axes,
-                      run_rig)
+                      joint_params, run_rig)
 from ._native import (
     FLAG_ACCEL_REJECTED,
     FLAG_ACCEL_USED,
@@ -65,6 +65,7 @@ __all__ = [
     "JointAxes",
     "Joint",
     "Joints",
+    "joint_params",
     "run_rig",
     "SAMPLE_DTYPE",
     "calibrate_rig",

@@ -92,19 +92,22 @@ def params(kind: Union[str, int, Kind]) -> List[ParamInfo]:
     for i in range(count.value):
         info = n.OrientParamInfo()
         _check(lib.orient_param_info(k, i, byref(info)))
-        out.append(
-            ParamInfo(
-                name=info.name.decode(),
-                id=info.id,
-                unit=info.unit.decode(),
-                description=info.description.decode(),
-                default=info.default_value,
-                min=info.min,
-                max=info.max,
-                zero_off=bool(info.flags & n.PARAM_FLAG_ZERO_OFF),
-            )
-        )
+        out.append(_param_info(info))
     return out
+
+
+def _param_info(info: n.OrientParamInfo) -> ParamInfo:
+    """A parameter as the library describes it."""
+    return ParamInfo(
+        name=info.name.decode(),
+        id=info.id,
+        unit=info.unit.decode(),
+        description=info.description.decode(),
+        default=info.default_value,
+        min=info.min,
+        max=info.max,
+        zero_off=bool(info.flags & n.PARAM_FLAG_ZERO_OFF),
+    )
 
 
 def _param_id(kind: Kind, name: str) -> int:

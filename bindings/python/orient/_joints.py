@@ -4,14 +4,14 @@ magnetometer, and a whole rig recording in one call."""
 from __future__ import annotations
 
 import ctypes
-from ctypes import byref, c_double, c_size_t, c_uint8, c_void_p
+from ctypes import byref, c_double, c_size_t, c_uint8, c_uint32, c_void_p
 from dataclasses import dataclass
-from typing import Any, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import _native as n
-from ._filter import ArrayLike, Filter, _check, _ptr, _record_dtype, _vec3
+from ._filter import ArrayLike, Filter, ParamInfo, _check, _param_info, _ptr, _record_dtype, _vec3
 from ._native import lib
 
 _KINDS = {"hinge": n.JOINT_HINGE, "2dof": n.JOINT_TWO_DOF}
@@ -53,12 +53,14 @@ class Joint:
 class Joints:
     """A rig's joints over ``segments`` segments (segment i is the rig's filter i).
     ``mountings`` ((segments, 4) w, x, y, z, sensor to segment; None for the identity)
-    give the angles' zero: the reference pose, every segment's frame the same. Raises
+    give the angles' zero: the reference pose, every segment's frame the same. ``params``:
+    joint parameters by name (``joint_params()``), set before the first update. Raises
     OrientError (``Status.INVALID_JOINT`` names the joint) for a rig that is not a forest
-    or an axis that is zero or not finite."""
+    or an axis that is zero or not finite, ``Status.UNKNOWN_PARAM`` or
+    ``Status.PARAM_OUT_OF_RANGE`` for a parameter."""
 
     def __init__(self, joints: Sequence[Union[Joint, Tuple[Any, ...]]], segments: int,
-                 mountings: Optional[ArrayLike] = None) -> None:
+                 mountings: Optional[ArrayLike] = None, params: Optional[Mapping[str, float]] = None) -> None:
         self._h: Optional[int] = None
         js = [j if isinstance(j, Joint) else Joint(*j) for j in joints]
         arr = (n.OrientJoint * max(1, len(js)))(*[j._native() for j in js])
@@ -73,6 +75,25 @@ class Joints:
         self._h = h.value
         self.segments = int(segments)
         self.joints = js
+        try:
+            for name, value in (params or {}).items():
+                self.set_param(name, value)
+        except BaseException:
+            self.close()
+            raise
+
+    def get_param(self, name: str) -> float:
+        """The joint parameter called ``name`` (``joint_params()``), shared by every joint."""
+        v = c_double()
+        _check(lib.orient_joints_get_param(self._handle(), name.encode(), byref(v)))
+        return v.value
+
+    def set_param(self, name: str, value: float) -> None:
+        """Sets the joint parameter called ``name`` for every joint: taken from the next
+        update on (an initial standard deviation, ``*_std0``, at the next ``reset()``, or at
+        once before the first update). ``Status.UNKNOWN_PARAM`` or
+        ``Status.PARAM_OUT_OF_RANGE`` change nothing."""
+        _check(lib.orient_joints_set_param(self._handle(), name.encode(), float(value)))
 
     def close(self) -> None:
         if self._h is not None:
@@ -159,6 +180,19 @@ class Joints:
         data = bytes(blob)
         buf = (c_uint8 * max(len(data), 1)).from_buffer_copy(data or b"\0")
         _check(lib.orient_joints_load(self._handle(), buf, len(data)))
+
+
+def joint_params() -> List[ParamInfo]:
+    """The joint parameters (the tuning every joint of a rig shares), read from the
+    library's table: names for ``Joints.set_param``, units, meanings, defaults, ranges."""
+    count = c_uint32()
+    _check(lib.orient_joint_param_count(byref(count)))
+    out = []
+    for i in range(count.value):
+        info = n.OrientParamInfo()
+        _check(lib.orient_joint_param_info(i, byref(info)))
+        out.append(_param_info(info))
+    return out
 
 
 @dataclass

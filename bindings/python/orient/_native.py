@@ -1104,6 +1104,10 @@ PROTOTYPES = {
     "orient_joints_reset": (c_int32, [c_void_p]),
     "orient_joints_state_size": (c_int32, [c_void_p, POINTER(c_size_t)]),
     "orient_joints_save": (c_int32, [c_void_p, POINTER(c_uint8), c_size_t, POINTER(c_size_t)]),
+    "orient_joint_param_count": (c_int32, [POINTER(c_uint32)]),
+    "orient_joint_param_info": (c_int32, [c_uint32, POINTER(OrientParamInfo)]),
+    "orient_joints_get_param": (c_int32, [c_void_p, c_char_p, POINTER(c_double)]),
+    "orient_joints_set_param": (c_int32, [c_void_p, c_char_p, c_double]),
     "orient_joints_load": (c_int32, [c_void_p, POINTER(c_uint8), c_size_t]),
     "orient_estimate_hinge_axes": (
         c_int32,

@@ -137,27 +137,10 @@ fn filters(b: Base, n: usize, dt: f64, tuning: &[(String, f64)], under_joints: b
 fn set_param(p: &mut JointParams, kv: &str) {
     let (k, v) = kv.split_once('=').expect("--set KEY=VALUE");
     let v: f64 = v.parse().expect("a number");
-    match k {
-        "r_hinge" => p.r_hinge = v,
-        "r_2dof" => p.r_2dof = v,
-        "q_heading" => p.q_heading = v,
-        "q_rate" => p.q_rate = v,
-        "acc_rate_scale" => p.acc_rate_scale = v,
-        "acc_accel_scale" => p.acc_accel_scale = v,
-        "q_axis" => p.q_axis = v,
-        "heading_std0" => p.heading_std0 = v,
-        "rate_std0" => p.rate_std0 = v,
-        "axis_std0" => p.axis_std0 = v,
-        "max_rate" => p.max_rate = v,
-        "rest_gyro" => p.rest_gyro = v,
-        "rest_time" => p.rest_time = v,
-        "gate" => p.gate = v,
-        "tilt_std0" => p.tilt_std0 = v,
-        "q_tilt" => p.q_tilt = v,
-        "r_acc" => p.r_acc = v,
-        "lever_std0" => p.lever_std0 = v,
-        "q_lever" => p.q_lever = v,
-        _ => panic!("unknown parameter {k}"),
+    match p.set(k, v) {
+        Some(true) => {}
+        Some(false) => panic!("{k} = {v} is out of its range (orient::joints::JOINT_PARAMS)"),
+        None => panic!("unknown parameter {k}"),
     }
 }
 
