@@ -78,8 +78,17 @@ fn check_angle(a: f64) -> Result<(), Error> {
 }
 
 impl Host {
-    /// Recomputes the cached rotation; `up_z` is the frame's up vector's z (±1).
+    /// Recomputes the cached rotation; `up_z` is the frame's up vector's z (±1). A
+    /// negative zero in the mounting, heading or declination becomes +0 (`x + 0.0`;
+    /// every other value is kept bit for bit): the outputs are the same either way, and
+    /// a filter whose host frames equal the defaults saves the bytes a filter loaded from
+    /// its blob saves (a load keeps no host frames equal to the defaults, compared with
+    /// `==`, which does not tell the zeros apart).
     pub(crate) fn refresh(&mut self, up_z: f64) {
+        let m = self.mounting;
+        self.mounting = Quat::new(m.w + 0.0, m.x + 0.0, m.y + 0.0, m.z + 0.0);
+        self.heading += 0.0;
+        self.declination += 0.0;
         let angle = self.heading - up_z * self.declination;
         self.left = if angle == 0.0 { Quat::IDENTITY } else { rz(angle) };
         self.identity = self.mounting == Quat::IDENTITY && angle == 0.0;
