@@ -1294,7 +1294,8 @@ typedef struct OrientConfig {
  */
 typedef struct OrientParamInfo {
   /**
-   * Slot in OrientConfig.params.
+   * Slot in OrientConfig.params (a joint parameter's: its index,
+   * orient_joint_param_info).
    */
   uint32_t id;
   /**
@@ -1738,7 +1739,7 @@ OrientStatus orient_joints_free(struct OrientJoints *joints);
  * orient_joints_new), updates every joint from the filters' sensor orientations
  * (orient_filter_sensor_quaternion) and the samples' gyroscope and accelerometer
  * readings. A joint whose two samples do not both have both readings holds its estimate
- * this row; the child's dt is the joint's, and one outside (0, 1) s holds it too.
+ * this row; the child's dt is the joint's, and one outside [1e-9, 1) s holds it too.
  * Allocates nothing. Every handle and sample is checked before anything changes:
  * INVALID_ARGUMENT for an `n` that is not the rig's segment count or a sample with
  * unknown flag bits or a non-zero reserved field, NULL_POINTER for a NULL array or

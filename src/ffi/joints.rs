@@ -296,7 +296,7 @@ pub unsafe extern "C" fn orient_joints_free(joints: *mut OrientJoints) -> Orient
 /// orient_joints_new), updates every joint from the filters' sensor orientations
 /// (orient_filter_sensor_quaternion) and the samples' gyroscope and accelerometer
 /// readings. A joint whose two samples do not both have both readings holds its estimate
-/// this row; the child's dt is the joint's, and one outside (0, 1) s holds it too.
+/// this row; the child's dt is the joint's, and one outside [1e-9, 1) s holds it too.
 /// Allocates nothing. Every handle and sample is checked before anything changes:
 /// INVALID_ARGUMENT for an `n` that is not the rig's segment count or a sample with
 /// unknown flag bits or a non-zero reserved field, NULL_POINTER for a NULL array or

@@ -242,7 +242,8 @@ pub struct OrientConfig {
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct OrientParamInfo {
-    /// Slot in OrientConfig.params.
+    /// Slot in OrientConfig.params (a joint parameter's: its index,
+    /// orient_joint_param_info).
     pub id: u32,
     /// ORIENT_PARAM_FLAG_* bits.
     pub flags: u32,

@@ -62,6 +62,7 @@
 
 use super::JointKind;
 use crate::filters::params::ParamSpec;
+use crate::filters::MIN_DT;
 use crate::math::{Quat, Vec3};
 
 const UP: Vec3 = Vec3::new(0.0, 0.0, 1.0);
@@ -185,10 +186,10 @@ pub const JOINT_PARAMS: [ParamSpec; 20] = [
         "q_heading",
         "rad^2/s",
         "Random walk of the relative heading (what the two filters' headings do \
-        that no residual bias explains); default 3.046e-6 (0.1 deg/sqrt(s)).",
+        that no residual bias explains); default 3.046e-6 (0.1 deg/sqrt(s)) (orient: simulated gloves).",
         Q_HEADING,
         0.0,
-        1.0,
+        1e-2,
     ),
     spec(
         3,
@@ -198,17 +199,17 @@ pub const JOINT_PARAMS: [ParamSpec; 20] = [
         biases the filters leave move); default 6e-7 (orient: simulated gloves with drifting biases).",
         6e-7,
         0.0,
-        1.0,
+        1e-3,
     ),
     spec(
         4,
         "q_axis",
         "rad^2/s",
         "Random walk of each axis correction; default 0: the axes settle (with \
-        axis_std0 0 too, the given axes are kept).",
+        axis_std0 0 too, the given axes are kept) (orient: simulated gloves).",
         0.0,
         0.0,
-        1.0,
+        1e-2,
     ),
     spec(
         5,
@@ -217,7 +218,7 @@ pub const JOINT_PARAMS: [ParamSpec; 20] = [
         "Initial standard deviation of the relative heading, taken when the \
         estimate starts (the joints made, or reset): 1 deg by default, for filters whose headings were \
         aligned at a reference pose (orient_rig_align_heading); as far apart as they may be when they \
-        were not (a hinge finds 30 deg within a degree in a minute of motion).",
+        were not (a hinge finds 30 deg within a degree in a minute of motion) (orient: simulated gloves).",
         DEG,
         0.0,
         4.0,
@@ -227,37 +228,37 @@ pub const JOINT_PARAMS: [ParamSpec; 20] = [
         "rate_std0",
         "rad/s",
         "Initial standard deviation of each residual bias component, taken when \
-        the estimate starts; default 0.5 deg/s.",
+        the estimate starts; default 0.5 deg/s (orient: simulated gloves).",
         0.5 * DEG,
         0.0,
-        1.0,
+        0.1,
     ),
     spec(
         7,
         "axis_std0",
         "rad",
         "Initial standard deviation of each axis correction (how far off the \
-        given axes may be), taken when the estimate starts; default 0.09 (about 5 deg).",
+        given axes may be), taken when the estimate starts; default 0.09 (about 5 deg) (orient: simulated gloves).",
         0.09,
         0.0,
-        1.0,
+        0.5,
     ),
     spec(
         8,
         "max_rate",
         "rad/s",
         "The largest correction of a relative heading and tilt per second: the \
-        outputs never jump; default 5 deg/s.",
+        outputs never jump; default 5 deg/s (orient: simulated gloves).",
         5.0 * DEG,
         1e-6,
-        100.0,
+        1.0,
     ),
     spec(
         9,
         "rest_gyro",
         "rad/s",
         "Rest, when the joint holds: both gyroscopes below this norm for \
-        rest_time; default 0.15.",
+        rest_time; default 0.15 (orient: simulated gloves).",
         0.15,
         0.0,
         100.0,
@@ -267,7 +268,7 @@ pub const JOINT_PARAMS: [ParamSpec; 20] = [
         "rest_time",
         "s",
         "How long both gyroscopes stay below rest_gyro before the joint holds; \
-        default 0.3.",
+        default 0.3 (orient: simulated gloves).",
         0.3,
         0.0,
         1e3,
@@ -288,7 +289,7 @@ pub const JOINT_PARAMS: [ParamSpec; 20] = [
         "acc_rate_scale",
         "rad/s",
         "The angular rate (both sensors', summed in squares) at which \
-        r_acc has doubled; default 1.",
+        r_acc has doubled; default 1 (orient: simulated gloves).",
         1.0,
         1e-6,
         1e6,
@@ -298,7 +299,7 @@ pub const JOINT_PARAMS: [ParamSpec; 20] = [
         "acc_accel_scale",
         "rad/s^2",
         "The angular acceleration (both sensors', summed in squares) at \
-        which r_acc has doubled; default 20.",
+        which r_acc has doubled; default 20 (orient: simulated gloves).",
         20.0,
         1e-6,
         1e6,
@@ -308,43 +309,43 @@ pub const JOINT_PARAMS: [ParamSpec; 20] = [
         "lever_std0",
         "m",
         "Initial standard deviation of each lever-arm component (the joint centre \
-        in each sensor's frame), taken when the estimate starts; default 0.05.",
+        in each sensor's frame), taken when the estimate starts; default 0.05 (orient: simulated gloves).",
         0.05,
         0.0,
-        10.0,
+        1.0,
     ),
-    spec(15, "q_lever", "m^2/s", "Random walk of each lever-arm component; default 1e-10.", 1e-10, 0.0, 1.0),
+    spec(15, "q_lever", "m^2/s", "Random walk of each lever-arm component; default 1e-10 (orient: simulated gloves).", 1e-10, 0.0, 1e-4),
     spec(
         16,
         "tilt_std0",
         "rad",
         "Initial standard deviation of the child's tilt correction, taken when \
-        the estimate starts; default 0.",
+        the estimate starts; default 0 (orient: simulated gloves).",
         0.0,
         0.0,
-        1.0,
+        0.5,
     ),
     spec(
         17,
         "q_tilt",
         "rad^2/s",
         "Random walk of the child's tilt correction (what the two filters' \
-        inclinations do); default 3e-5.",
+        inclinations do); default 3e-5 (orient: simulated gloves).",
         3e-5,
         0.0,
-        1.0,
+        1e-2,
     ),
     spec(
         18,
         "gate",
         "1",
         "Innovations beyond this many standard deviations are down-weighted (Huber); \
-        default 3.",
+        default 3 (orient: simulated gloves).",
         3.0,
         0.1,
         1e3,
     ),
-    spec(19, "rating_tau", "s", "The rating's low-pass time constant; default 2.", 2.0, 1e-3, 1e3),
+    spec(19, "rating_tau", "s", "The rating's low-pass time constant; default 2 (orient: simulated gloves).", 2.0, 1e-3, 1e3),
 ];
 
 const DEG: f64 = core::f64::consts::PI / 180.0;
@@ -445,6 +446,19 @@ impl Axis {
         self.j = (self.j + self.b1 * u1 + self.b2 * u2).normalized();
         self.b1 = (self.b1 - self.j * self.j.dot(self.b1)).normalized();
         self.b2 = self.j.cross(self.b1);
+    }
+}
+
+/// The largest variance of state `i` (see [`JointEstimator::bound_variances`]): the square
+/// of the largest initial standard deviation [`JOINT_PARAMS`] accepts for its group.
+fn ceiling(i: usize) -> f64 {
+    let max = |k: usize| JOINT_PARAMS[k].max * JOINT_PARAMS[k].max;
+    match i {
+        0 => max(5),
+        _ if i < UP_ => max(6),
+        _ if i < OP => max(7),
+        _ if i < TX => max(14),
+        _ => max(16),
     }
 }
 
@@ -560,7 +574,8 @@ impl JointEstimator {
 
     /// One sample: the two sensors' orientations (sensor to earth, the child's without
     /// this joint's correction), their gyroscope (rad/s) and accelerometer (m/s²)
-    /// readings, and the interval `dt` (s). A `dt` outside (0, 1) s changes nothing.
+    /// readings, and the interval `dt` (s). A `dt` outside [`MIN_DT`, 1) s (1 ns, the
+    /// filters' smallest) changes nothing.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn update(
         &mut self,
@@ -573,14 +588,14 @@ impl JointEstimator {
         dt: f64,
     ) {
         let prm = self.params;
-        if !(dt > 0.0 && dt < 1.0) {
+        if !(MIN_DT..1.0).contains(&dt) {
             return;
         }
         let prev = self.prev_gyro.replace((gyro_p, gyro_c));
         let moving = gyro_p.norm_squared().max(gyro_c.norm_squared()) > prm.rest_gyro * prm.rest_gyro;
         self.still = if moving { 0.0 } else { self.still + dt };
         let alpha = dt / (prm.rating_tau + dt);
-        let rest = self.still >= prm.rest_time;
+        let rest = !moving && self.still >= prm.rest_time;
         for k in TX..N {
             self.p[k][k] += prm.q_tilt * dt;
         }
@@ -588,6 +603,7 @@ impl JointEstimator {
             self.g = [q_p.rotate_inverse(UP), q_c.rotate_inverse(UP)];
             self.predict(dt);
         }
+        self.bound_variances();
         let rz = self.correction();
         let tilt = |v: Vec3, h: &mut [f64; N], i: usize| {
             h[TX] = comp(Vec3::new(1.0, 0.0, 0.0).cross(v), i);
@@ -679,6 +695,32 @@ impl JointEstimator {
         }
         for k in TX..N {
             self.x[k] += dx[k];
+        }
+    }
+
+    /// A state nothing has told about for long (a vertical hinge for hours, a tilt at
+    /// rest) would see its variance grow without end, until a blob of it no longer loads
+    /// ([`JointEstimator::holds`]): each variance is held to the square of its initial
+    /// standard deviation's largest value in [`JOINT_PARAMS`] by `P ← D P D`,
+    /// `D_ii = min(1, √(c_i / P_ii))`, which keeps the correlations and `P` positive
+    /// semi-definite (and symmetric bit for bit: each entry is scaled by `D_ii D_kk`).
+    fn bound_variances(&mut self) {
+        let mut d = [1.0; N];
+        let mut any = false;
+        for i in 0..N {
+            let c = ceiling(i);
+            if self.p[i][i] > c {
+                d[i] = (c / self.p[i][i]).sqrt();
+                any = true;
+            }
+        }
+        if any {
+            for i in 0..N {
+                for k in 0..N {
+                    let s = d[i] * d[k];
+                    self.p[i][k] *= s;
+                }
+            }
         }
     }
 

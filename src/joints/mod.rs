@@ -167,8 +167,7 @@ pub enum JointError {
     BadAxis(usize),
     /// Mounting `s` is not a usable quaternion (zero or not finite).
     BadMounting(usize),
-    /// A parameter is not finite, negative, or zero where it divides or bounds (see
-    /// [`JointParams`]).
+    /// A parameter is outside its range in [`JOINT_PARAMS`] (not finite included).
     BadParams,
     /// A slice's length is not the number of segments (what it is).
     WrongLength(usize),

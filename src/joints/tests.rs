@@ -641,3 +641,127 @@ fn unaligned_headings_are_found_with_a_wide_heading_std0() {
         assert!(e.abs() < 1f64.to_radians(), "{offset_deg} deg: {} deg off", e.to_degrees());
     }
 }
+
+/// Each name reaches its own field: every field set by name to a value of its own, then
+/// read from the struct.
+#[test]
+fn each_parameter_name_sets_its_own_field() {
+    let mut p = JointParams::default();
+    for (k, spec) in JOINT_PARAMS.iter().enumerate() {
+        // A value in range that no other field gets: the minimum plus a step of its own.
+        let v = spec.min + (spec.max - spec.min) * (k as f64 + 1.0) / 64.0;
+        assert_eq!(p.set(spec.name, v), Some(true), "{}", spec.name);
+    }
+    let step = |k: usize| {
+        let s = &JOINT_PARAMS[k];
+        s.min + (s.max - s.min) * (k as f64 + 1.0) / 64.0
+    };
+    let got = [
+        p.r_hinge,
+        p.r_2dof,
+        p.q_heading,
+        p.q_rate,
+        p.q_axis,
+        p.heading_std0,
+        p.rate_std0,
+        p.axis_std0,
+        p.max_rate,
+        p.rest_gyro,
+        p.rest_time,
+        p.r_acc,
+        p.acc_rate_scale,
+        p.acc_accel_scale,
+        p.lever_std0,
+        p.q_lever,
+        p.tilt_std0,
+        p.q_tilt,
+        p.gate,
+        p.rating_tau,
+    ];
+    for (k, v) in got.iter().enumerate() {
+        assert_eq!(v.to_bits(), step(k).to_bits(), "{}", JOINT_PARAMS[k].name);
+    }
+    // Subnormal values are refused, even where the range starts at 0.
+    for spec in JOINT_PARAMS.iter().filter(|s| s.min == 0.0) {
+        assert_eq!(p.set(spec.name, 5e-324), Some(false), "{}", spec.name);
+    }
+}
+
+/// A setting taken after updates applies from the next update on (a rest threshold above
+/// any motion: the joint holds at once), and an initial standard deviation only when the
+/// estimate starts again.
+#[test]
+fn a_setting_applies_from_the_next_update_and_an_initial_one_at_the_reset() {
+    let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 20.0);
+    let child_at = |t: f64| parent_at(t) * rot(X, flexion_at(t));
+    let dt = 0.01;
+    let row = |joints: &mut Joints, i: usize| {
+        let (t0, t1) = (20.0 + (i - 1) as f64 * dt, 20.0 + i as f64 * dt);
+        let (p0, p1, c0, c1) = (parent_at(t0), parent_at(t1), child_at(t0), child_at(t1));
+        joints
+            .update(&[p1, rot(Z, 0.5f64.to_radians() * t1) * c1], &[sample(p0, p1, dt), sample(c0, c1, dt)])
+            .unwrap();
+    };
+    let sigma = joints.heading_std(0);
+    joints.set_param("heading_std0", 0.5).unwrap();
+    assert_eq!(joints.heading_std(0), sigma, "kept until the estimate starts again");
+    joints.set_param("rest_gyro", 100.0).unwrap();
+    joints.set_param("rest_time", 0.0).unwrap();
+    let heading = joints.relative_heading(0);
+    for i in 1..=100 {
+        row(&mut joints, i);
+    }
+    assert_eq!(joints.relative_heading(0), heading, "at rest by the new threshold, the joint holds");
+    joints.reset();
+    assert_eq!(joints.heading_std(0), 0.5);
+}
+
+/// A rest time of 0 holds the joint whenever both gyroscopes are below the threshold, not
+/// always: in motion it goes on estimating.
+#[test]
+fn a_zero_rest_time_still_estimates_in_motion() {
+    let dt = 0.01;
+    let drift = 0.5f64.to_radians();
+    let params = JointParams { rest_time: 0.0, ..JointParams::default() };
+    let mut joints = Joints::new(2, &[hinge(0, 1, X)], &[], params).unwrap();
+    let child_at = |t: f64| parent_at(t) * rot(X, flexion_at(t));
+    for i in 1..=6000 {
+        let (t0, t1) = ((i - 1) as f64 * dt, i as f64 * dt);
+        let (p0, p1, c0, c1) = (parent_at(t0), parent_at(t1), child_at(t0), child_at(t1));
+        joints.update(&[p1, rot(Z, drift * t1) * c1], &[sample(p0, p1, dt), sample(c0, c1, dt)]).unwrap();
+    }
+    assert!(
+        (joints.relative_heading(0) + drift * 60.0).abs() < 1f64.to_radians(),
+        "{}",
+        joints.relative_heading(0)
+    );
+    assert!(joints.rating(0) > 0.3);
+}
+
+/// A state nothing tells about (a vertical hinge, every random walk at its largest)
+/// keeps a covariance a blob of it loads with: each variance held to its ceiling.
+#[test]
+fn unobserved_states_keep_a_loadable_covariance() {
+    let dt = 0.01;
+    let mut params = JointParams::default();
+    for name in ["q_heading", "q_rate", "q_axis", "q_lever", "q_tilt", "rate_std0", "heading_std0"] {
+        let max = JOINT_PARAMS.iter().find(|s| s.name == name).unwrap().max;
+        assert_eq!(params.set(name, max), Some(true));
+    }
+    let mut joints = Joints::new(2, &[hinge(0, 1, Z)], &[], params).unwrap();
+    let p_at = |t: f64| rot(Z, 0.7 * libm::sin(0.9 * t));
+    let c_at = |t: f64| p_at(t) * rot(Z, 0.6 * libm::sin(1.7 * t));
+    for i in 1..=60_000 {
+        let (t0, t1) = ((i - 1) as f64 * dt, i as f64 * dt);
+        let (p0, p1, c0, c1) = (p_at(t0), p_at(t1), c_at(t0), c_at(t1));
+        joints.update(&[p1, c1], &[sample(p0, p1, dt), sample(c0, c1, dt)]).unwrap();
+    }
+    assert!(joints.heading_std(0) <= 4.0 + 1e-12, "{}", joints.heading_std(0));
+    let mut blob = vec![0u8; joints.state_size()];
+    joints.save(&mut blob).unwrap();
+    let mut twin = Joints::new(2, &[hinge(0, 1, Z)], &[], params).unwrap();
+    twin.load(&blob).unwrap();
+    let mut again = vec![0u8; twin.state_size()];
+    twin.save(&mut again).unwrap();
+    assert!(again == blob);
+}

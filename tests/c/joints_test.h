@@ -307,6 +307,7 @@ static void joint_params(void) {
         /* Out of range (NaN included): refused, nothing changed. */
         CHECK_STATUS(orient_joints_set_param(joints, info.name, info.max * 2.0), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
         CHECK_STATUS(orient_joints_set_param(joints, info.name, NAN), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
+        CHECK_STATUS(orient_joints_set_param(joints, info.name, 4.9e-324), ORIENT_STATUS_PARAM_OUT_OF_RANGE);
         CHECK_STATUS(orient_joints_get_param(joints, info.name, &v), ORIENT_STATUS_OK);
         CHECK(bits(v) == bits(info.default_value));
         /* Its range's ends are taken. */
@@ -510,10 +511,19 @@ static void joint_calls(void) {
         free(fblob[1]);
     }
 
-    /* Reset: no correction. */
+    /* After updates an initial standard deviation waits for the reset. */
+    {
+        double before_sigma = 0.0;
+        CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, &before_sigma), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_set_param(joints, "heading_std0", 0.25), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, &sigma), ORIENT_STATUS_OK);
+        CHECK(bits(sigma) == bits(before_sigma));
+    }
+
+    /* Reset: no correction, the initial standard deviation set. */
     CHECK_STATUS(orient_joints_reset(joints), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, &sigma), ORIENT_STATUS_OK);
-    CHECK(heading == 0.0);
+    CHECK(heading == 0.0 && sigma == 0.25);
 
     /* Handles: a filter is no joints handle, a joints handle no filter, a freed one nothing,
        nor a pointer two bytes on from a live one (a joints handle's registry key). */

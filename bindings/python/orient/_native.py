@@ -900,7 +900,8 @@ class OrientParamInfo(Structure):
     """
 
     _fields_ = [
-        # Slot in OrientConfig.params.
+        # Slot in OrientConfig.params (a joint parameter's: its index,
+        # orient_joint_param_info).
         ("id", c_uint32),
         # ORIENT_PARAM_FLAG_* bits.
         ("flags", c_uint32),
