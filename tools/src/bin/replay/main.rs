@@ -44,11 +44,11 @@ mod plot;
 
 use orient::filters::{diag, Diagnostics};
 use orient::{Config, Filter, Frame, Kind, Quat};
+use orient_tools::clock;
 use orient_tools::eval::{remove_heading_offset, score, Recording, Scores};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::exit;
-use std::time::Instant;
 
 const USAGE: &str = "usage: replay --filter NAME[,NAME...] [--offline] [--no-mag] [--frame enu|ned|nwu] \
                      [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv\n   or: replay --rig \
@@ -314,7 +314,7 @@ fn replay(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Samp
     let mut extras: Vec<Vec<f64>> = Vec::with_capacity(if args.out.is_some() { samples.len() } else { 0 });
     let mut rejected = 0usize;
     let mut first_rejection = None;
-    let start = Instant::now();
+    let start = clock::thread_cpu();
     for (i, s) in samples.iter().enumerate() {
         let accepted = match filter.update(s) {
             Ok(()) => true,
@@ -333,7 +333,7 @@ fn replay(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Samp
             extras.push(extra_values(&filter.diagnostics(), filter.diagnostic_fields()));
         }
     }
-    let elapsed = start.elapsed();
+    let elapsed = clock::thread_cpu().saturating_sub(start);
 
     if let Some(path) = &args.out {
         let write = || -> std::io::Result<()> {
@@ -354,7 +354,7 @@ fn replay(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Samp
 
     let dims = dims(args);
     say!(
-        "{} {dims}, frame {}, {} samples from {} in {:.1} ms ({:.0} ns/sample), {rejected} rejected",
+        "{} {dims}, frame {}, {} samples from {} in {:.1} ms of CPU time ({:.0} ns/sample), {rejected} rejected",
         kind.name(),
         args.frame.name(),
         samples.len(),
@@ -401,9 +401,9 @@ fn score_and_print(args: &Args, rec: &Recording, estimates: &[Quat]) -> Vec<Quat
 fn smooth(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Sample]) -> Run {
     let kind = config.kind();
     let mut estimates = vec![Quat::IDENTITY; samples.len()];
-    let start = Instant::now();
+    let start = clock::thread_cpu();
     let result = orient::offline::smooth_into(config, samples, &mut estimates[..]);
-    let elapsed = start.elapsed();
+    let elapsed = clock::thread_cpu().saturating_sub(start);
     match result {
         Ok(()) => {}
         Err(orient::offline::SmoothError::Sample { index, error }) => fail(format!(
@@ -436,7 +436,7 @@ fn smooth(args: &Args, config: &Config, rec: &Recording, samples: &[orient::Samp
         .and_then(|p| config.param(p.id).ok())
         .map_or(String::new(), |v| format!(", tau_mag {v} s"));
     say!(
-        "{} offline {}, frame {}{tau_mag}, {} samples from {} smoothed in {:.1} ms ({:.0} ns/sample), \
+        "{} offline {}, frame {}{tau_mag}, {} samples from {} smoothed in {:.1} ms of CPU time ({:.0} ns/sample), \
          at most {} bytes allocated",
         kind.name(),
         dims(args),

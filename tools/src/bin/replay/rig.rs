@@ -193,7 +193,7 @@ pub fn main(args: Vec<String>) {
     let name = args.kind.map_or("vqf", |k| k.name());
     let dims = if with_mag { "9D" } else { "6D" };
     say!(
-        "{name} {dims} ({stage}), {} sensors, {} joints, {} rows from {} in {:.1} ms, {} rejected, headings {}",
+        "{name} {dims} ({stage}), {} sensors, {} joints, {} rows from {} in {:.1} ms of CPU time, {} rejected, headings {}",
         spec.sensors.len(),
         spec.joints.len(),
         t.len(),
