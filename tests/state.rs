@@ -284,18 +284,17 @@ fn a_blob_relabelled_as_another_kind_is_refused() {
 }
 
 /// A host frame that equals the default but for the sign of a zero (a mounting of
-/// (1, -0, 0, 0), a heading of -0) saves the bytes a filter loaded from its blob saves:
+/// (1, -0, 0, 0), a declination of -0) saves the bytes a filter loaded from its blob saves:
 /// a load keeps no host frames equal (`==`) to the defaults, so such zeros are made +0
 /// when set (the outputs are the same either way). The fuzz target found it
 /// (fuzz/regressions/mounting-negative-zero).
 #[test]
 fn a_negative_zero_host_frame_saves_what_its_loaded_copy_saves() {
     for kind in Kind::ALL {
-        for set in 0..3 {
+        for set in 0..2 {
             let mut f = Filter::new(&Config::new(kind).unwrap()).unwrap();
             match set {
                 0 => f.set_mounting(Quat::new(1.0, -0.0, 0.0, 0.0)).unwrap(),
-                1 => f.set_mounting(Quat::new(0.0, 1.0, -0.0, -0.0)).unwrap(),
                 _ => f.set_declination(-0.0).unwrap(),
             }
             let mut a = vec![0u8; f.state_size()];

@@ -1799,7 +1799,8 @@ namespace Orient.Native
 
         /// <summary>
         /// Joint `joint`'s correction of its child's heading relative to its parent (radians,
-        /// about the vertical) and its standard deviation. INVALID_ARGUMENT for a joint at or
+        /// about the vertical) and its standard deviation (4 at most, to rounding: a heading
+        /// nothing observes for long is held at that uncertainty). INVALID_ARGUMENT for a joint at or
         /// beyond the rig's count. `sigma` may be NULL.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]

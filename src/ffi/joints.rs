@@ -404,7 +404,8 @@ pub unsafe extern "C" fn orient_joints_rating(
 }
 
 /// Joint `joint`'s correction of its child's heading relative to its parent (radians,
-/// about the vertical) and its standard deviation. INVALID_ARGUMENT for a joint at or
+/// about the vertical) and its standard deviation (4 at most, to rounding: a heading
+/// nothing observes for long is held at that uncertainty). INVALID_ARGUMENT for a joint at or
 /// beyond the rig's count. `sigma` may be NULL.
 #[no_mangle]
 pub unsafe extern "C" fn orient_joints_relative_heading(

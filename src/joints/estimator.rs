@@ -23,7 +23,10 @@
 //!
 //! Prediction and every measurement only while a sensor turns (at rest both filters hold,
 //! and so does the joint; the joint centre's force is then gravity on both sides, which
-//! says nothing about heading). Prediction over `dt`: `Δ ← Δ + dt (g_c·β_c − g_p·β_p)`, `P ← F P Fᵀ + Q dt`.
+//! says nothing about heading). Prediction over `dt`: `Δ ← Δ + dt (g_c·β_c − g_p·β_p)`, `P ← F P Fᵀ + Q dt`;
+//! then each variance is held to the square of the largest initial standard deviation
+//! [`JOINT_PARAMS`] accepts for its state (4 rad for `Δ`) by `P ← D P D`: a state nothing
+//! observes for hours keeps a covariance a blob loads with.
 //!
 //! Measurements, with the earth-frame axes `e_p = R(q_p) j_p` and
 //! `e_c = R(T R_z(Δ)) R(q_c) j_c`:
@@ -845,8 +848,9 @@ impl JointEstimator {
     }
 
     /// A state this estimator could hold (a loaded blob's): unit, orthogonal axes with
-    /// their bases; states within their physical bounds (relative heading 1e4 rad, each
-    /// residual bias 1 rad/s, lever arms 10 m, tilt 1 rad; the axis corrections, folded
+    /// their bases; states within their physical bounds (relative heading 1e9 rad, which
+    /// a heading turning at the largest `max_rate` for decades does not reach, each
+    /// residual bias 1 rad/s, lever arms 10 m, tilt 10 rad; the axis corrections, folded
     /// into the axes after each update, 1 rad); an exactly symmetric covariance (every
     /// update keeps it so) that is positive semi-definite to rounding (a Cholesky
     /// factorisation of P + 1e-9 max(P_ii) I), with variances up to 1e6: anything else
@@ -860,11 +864,11 @@ impl JointEstimator {
         });
         let within =
             |range: core::ops::Range<usize>, bound: f64| self.x[range].iter().all(|v| v.abs() <= bound);
-        let states = within(0..1, 1e4)
+        let states = within(0..1, 1e9)
             && within(BP..UP_, 1.0)
             && within(UP_..OP, 1.0)
             && within(OP..TX, 10.0)
-            && within(TX..N, 1.0);
+            && within(TX..N, 10.0);
         self.is_finite()
             && axes
             && states

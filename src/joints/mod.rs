@@ -167,7 +167,8 @@ pub enum JointError {
     BadAxis(usize),
     /// Mounting `s` is not a usable quaternion (zero or not finite).
     BadMounting(usize),
-    /// A parameter is outside its range in [`JOINT_PARAMS`] (not finite included).
+    /// A parameter is outside its range in [`JOINT_PARAMS`] (not finite, or subnormal,
+    /// included).
     BadParams,
     /// A slice's length is not the number of segments (what it is).
     WrongLength(usize),

@@ -443,6 +443,18 @@ static void joint_calls(void) {
     filters[1] = other;
     CHECK_STATUS(orient_joints_segment_quaternion(joints, 1, &q), ORIENT_STATUS_OK);
     CHECK(same_quaternion(q, before));
+    /* A child's dt outside [1e-9, 1) s holds the joint (the row is taken, nothing moves). */
+    {
+        double s0 = 0.0, s1 = 0.0;
+        CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, &s0), ORIENT_STATUS_OK);
+        bad[0] = s[0], bad[1] = s[1];
+        bad[1].dt = 5e-10;
+        CHECK_STATUS(orient_joints_update(joints, filters, bad, 2), ORIENT_STATUS_OK);
+        bad[1].dt = 1.0;
+        CHECK_STATUS(orient_joints_update(joints, filters, bad, 2), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading_before, &s1), ORIENT_STATUS_OK);
+        CHECK(bits(heading) == bits(heading_before) && bits(s0) == bits(s1));
+    }
     CHECK_STATUS(orient_joints_relative_heading(joints, 0, &heading, NULL), ORIENT_STATUS_OK);
     CHECK(bits(heading) == bits(heading_before));
     /* A row without accelerometer readings is accepted and holds the joint. */
