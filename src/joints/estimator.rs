@@ -161,7 +161,7 @@ impl Default for JointParams {
 /// Each [`JointParams`] field as a host sees it: the name, unit, meaning, default and
 /// accepted range, in the order of [`JointParams::fields_mut`] (and of a joint blob).
 /// The C ABI's `orient_joint_param_info`, `orient_joints_set_param` and the bindings
-/// read this table; a test holds its defaults to [`JointParams::default`].
+/// read this table, and [`JointParams::default`] takes its defaults.
 pub const JOINT_PARAMS: [ParamSpec; 20] = [
     spec(
         0,
