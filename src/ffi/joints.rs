@@ -515,7 +515,7 @@ pub unsafe extern "C" fn orient_joint_param_info(index: u32, info: *mut OrientPa
     })
 }
 
-/// The name as a joint parameter's index; UNKNOWN_PARAM for no such name.
+/// The table's name for the C string `name`; UNKNOWN_PARAM when no joint parameter has it.
 unsafe fn joint_param(name: *const c_char) -> Result<&'static str, OrientStatus> {
     let name = CStr::from_ptr(name).to_str().unwrap_or("");
     JOINT_PARAMS

@@ -114,9 +114,8 @@ fn a_vertical_hinge_says_nothing_and_the_heading_holds() {
     assert!(most < 0.5f64.to_radians(), "{} deg", most.to_degrees());
 }
 
-#[test]
-fn at_rest_the_estimate_holds_and_the_rating_falls() {
-    let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 30.0);
+/// `rows` rows of 10 ms of [`run_hinge`]'s rig lying still where it was at 30 s.
+fn lie_still(joints: &mut Joints, rows: usize) {
     let q = parent_at(30.0);
     let c = q * rot(X, flexion_at(30.0));
     let still = |q: Quat| Sample {
@@ -125,14 +124,18 @@ fn at_rest_the_estimate_holds_and_the_rating_falls() {
         accel: Some(q.rotate_inverse(Z * G)),
         mag: None,
     };
+    for _ in 0..rows {
+        joints.update(&[q, c], &[still(q), still(c)]).unwrap();
+    }
+}
+
+#[test]
+fn at_rest_the_estimate_holds_and_the_rating_falls() {
+    let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 30.0);
     // The rig stops (the rest detector needs `rest_time`), then lies still for 20 s.
-    for _ in 0..100 {
-        joints.update(&[q, c], &[still(q), still(c)]).unwrap();
-    }
+    lie_still(&mut joints, 100);
     let heading = joints.relative_heading(0);
-    for _ in 0..2000 {
-        joints.update(&[q, c], &[still(q), still(c)]).unwrap();
-    }
+    lie_still(&mut joints, 2000);
     assert_eq!(joints.relative_heading(0), heading);
     assert!(joints.rating(0) < 0.01, "{}", joints.rating(0));
 }
@@ -143,25 +146,12 @@ fn at_rest_the_estimate_holds_and_the_rating_falls() {
 #[test]
 fn at_rest_the_rating_decays_with_its_time_constant() {
     let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 30.0);
-    let q = parent_at(30.0);
-    let c = q * rot(X, flexion_at(30.0));
-    let still = |q: Quat| Sample {
-        dt: 0.01,
-        gyro: Some(Vec3::ZERO),
-        accel: Some(q.rotate_inverse(Z * G)),
-        mag: None,
-    };
     let prm = JointParams::default();
-    let rows_to_rest = (prm.rest_time / 0.01).ceil() as usize + 1;
-    for _ in 0..rows_to_rest {
-        joints.update(&[q, c], &[still(q), still(c)]).unwrap();
-    }
+    lie_still(&mut joints, (prm.rest_time / 0.01).ceil() as usize + 1);
     let r0 = joints.rating(0);
     assert!(r0 > 0.1, "{r0}");
     let rows = (prm.rating_tau / 0.01) as i32;
-    for _ in 0..rows {
-        joints.update(&[q, c], &[still(q), still(c)]).unwrap();
-    }
+    lie_still(&mut joints, rows as usize);
     let alpha = 0.01 / (prm.rating_tau + 0.01);
     let want = r0 * (1.0 - alpha).powi(rows);
     assert!((joints.rating(0) - want).abs() <= 1e-12 * r0, "{} vs {want}", joints.rating(0));
