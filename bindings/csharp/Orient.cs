@@ -703,14 +703,20 @@ namespace Orient
 
         internal static uint FindParameter(Kind kind, string name)
         {
-            if (name == null) throw new ArgumentNullException("name");
-            byte[] bytes = Encoding.UTF8.GetBytes(name + "\0");
+            byte[] bytes = NameBytes(name);
             uint id;
             fixed (byte* p = bytes)
             {
                 OrientException.Check(NativeMethods.orient_param_find((int)kind, p, &id));
             }
             return id;
+        }
+
+        /// <summary>A parameter's name as the C calls take it: NUL-terminated UTF-8.</summary>
+        internal static byte[] NameBytes(string name)
+        {
+            if (name == null) throw new ArgumentNullException("name");
+            return Encoding.UTF8.GetBytes(name + "\0");
         }
 
         /// <summary>Every parameter of a kind, for inspectors.</summary>
@@ -1168,7 +1174,7 @@ namespace Orient
         {
             get
             {
-                byte[] bytes = Utf8(name);
+                byte[] bytes = OrientFilter.NameBytes(name);
                 double v;
                 fixed (byte* p = bytes)
                 {
@@ -1179,19 +1185,13 @@ namespace Orient
             }
             set
             {
-                byte[] bytes = Utf8(name);
+                byte[] bytes = OrientFilter.NameBytes(name);
                 fixed (byte* p = bytes)
                 {
                     OrientException.Check(NativeMethods.orient_joints_set_param(H, p, value));
                 }
                 GC.KeepAlive(this);
             }
-        }
-
-        private static byte[] Utf8(string name)
-        {
-            if (name == null) throw new ArgumentNullException("name");
-            return Encoding.UTF8.GetBytes(name + "\0");
         }
 
         /// <summary>Every joint parameter with its unit, meaning, default and range, for

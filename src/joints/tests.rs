@@ -572,15 +572,13 @@ fn for_joints_sets_the_sensor_settings_where_the_kind_has_them() {
     }
 }
 
-/// The tuning as a table: its defaults are [`JointParams::default`]'s, its ranges what
-/// [`Joints::new`] accepts, and `set_param` takes a value in range, refuses others (and
-/// unknown names) with nothing changed.
+/// The tuning as a table: ids in order, one entry per name, each default in its range,
+/// its ranges what [`Joints::new`] accepts, and `set_param` takes a value in range, refuses
+/// others (and unknown names) with nothing changed.
 #[test]
 fn the_parameter_table_is_the_tuning() {
-    let mut d = JointParams::default();
-    for (k, (spec, v)) in JOINT_PARAMS.iter().zip(d.fields_mut()).enumerate() {
+    for (k, spec) in JOINT_PARAMS.iter().enumerate() {
         assert_eq!(spec.id as usize, k);
-        assert_eq!(spec.default.to_bits(), v.to_bits(), "{}", spec.name);
         assert!(spec.accepts(spec.default) && spec.min <= spec.max, "{}", spec.name);
         assert_eq!(JOINT_PARAMS.iter().filter(|s| s.name == spec.name).count(), 1);
     }
