@@ -56,6 +56,13 @@
 //! does, `(2f − f²) P hᵀ h P / S` (Joseph's form for any gain): the estimate stays as
 //! uncertain as the step it did not take and goes on at the bound.
 //!
+//! Input no rig gives (rates that disagree with the orientations, forces no joint centre
+//! feels), for minutes, must not leave a joint that good rows cannot bring back: each
+//! residual bias, lever-arm and tilt component is held within the largest initial standard
+//! deviation [`JOINT_PARAMS`] accepts for it, and while the innovations, low-passed over
+//! 10 s, are far beyond what the model's noise explains, every variance is held at least
+//! at its initial value, so that the estimate learns again as from a start.
+//!
 //! The observability rating is the information the constraints gave about `Δ`,
 //! `h_Δ² / R`, low-passed over `rating_tau` and scaled to [0, 1] by its value for a
 //! horizontal axis: 0 at rest and while a hinge's axis is vertical.
@@ -78,6 +85,12 @@ const UC: usize = 9;
 const OP: usize = 11;
 const OC: usize = 14;
 const TX: usize = 17;
+/// The consistency check ([`JointEstimator::reopen`]): the normalized innovations'
+/// low-pass time constant (s), the bound of each normalized innovation, and the limit of
+/// a low-passed one's square in units of its variance under the model.
+const CONSISTENCY_TAU: f64 = 10.0;
+const CONSISTENCY_MAX_NU: f64 = 1e3;
+const CONSISTENCY_LIMIT: f64 = 1000.0;
 
 /// The joint estimator's tuning: noise densities in continuous time, so that none depends
 /// on the sample rate. The defaults were chosen on simulated gloves (seeds 1-3 of the
@@ -452,10 +465,23 @@ impl Axis {
     }
 }
 
-/// The largest variance of state `i` (see [`JointEstimator::bound_variances`]): the square
-/// of the largest initial standard deviation [`JOINT_PARAMS`] accepts for its group.
-fn ceiling(i: usize) -> f64 {
-    let max = |k: usize| JOINT_PARAMS[k].max * JOINT_PARAMS[k].max;
+/// State `i`'s initial standard deviation in the tuning `p`.
+fn initial_std(p: &JointParams, i: usize) -> f64 {
+    match i {
+        0 => p.heading_std0,
+        _ if i < UP_ => p.rate_std0,
+        _ if i < OP => p.axis_std0,
+        _ if i < TX => p.lever_std0,
+        _ => p.tilt_std0,
+    }
+}
+
+/// The largest initial standard deviation [`JOINT_PARAMS`] accepts for state `i`'s group
+/// (the maximum of its `*_std0`): each variance is held to its square
+/// ([`JointEstimator::bound_variances`]), and each residual bias, lever-arm and tilt
+/// component to it ([`JointEstimator::bound_states`]).
+fn largest_std(i: usize) -> f64 {
+    let max = |k: usize| JOINT_PARAMS[k].max;
     match i {
         0 => max(5),
         _ if i < UP_ => max(6),
@@ -463,6 +489,13 @@ fn ceiling(i: usize) -> f64 {
         _ if i < TX => max(14),
         _ => max(16),
     }
+}
+
+/// The states [`JointEstimator::bound_states`] holds within [`largest_std`]: the residual
+/// biases, the lever arms and the tilt (the relative heading is free and the axis
+/// corrections are folded into the axes after every update).
+fn bounded(i: usize) -> bool {
+    (BP..UP_).contains(&i) || (OP..N).contains(&i)
 }
 
 fn comp(v: Vec3, i: usize) -> f64 {
@@ -491,22 +524,16 @@ pub(crate) struct JointEstimator {
     rating: f64,
     /// `h_Δ² / R` for a horizontal axis: the rating's scale.
     info_scale: f64,
+    /// Each channel's normalized innovation (the constraint's up to three components, then
+    /// the joint centre's three), low-passed ([`JointEstimator::reopen`]).
+    consistency: [f64; 6],
 }
 
 impl JointEstimator {
     pub(crate) fn new(kind: JointKind, axis_parent: Vec3, axis_child: Vec3, params: JointParams) -> Self {
         let mut p = [[0.0; N]; N];
-        let diag = [
-            (0..1, params.heading_std0),
-            (BP..UP_, params.rate_std0),
-            (UP_..OP, params.axis_std0),
-            (OP..TX, params.lever_std0),
-            (TX..N, params.tilt_std0),
-        ];
-        for (range, std) in diag {
-            for k in range {
-                p[k][k] = std * std;
-            }
+        for k in 0..N {
+            p[k][k] = initial_std(&params, k) * initial_std(&params, k);
         }
         JointEstimator {
             kind,
@@ -520,6 +547,7 @@ impl JointEstimator {
             prev_gyro: None,
             rating: 0.0,
             info_scale: 1.0,
+            consistency: [0.0; 6],
         }
     }
 
@@ -530,7 +558,7 @@ impl JointEstimator {
 
     /// Every state and covariance entry is finite.
     pub(crate) fn is_finite(&self) -> bool {
-        self.x.iter().chain(self.p.iter().flatten()).all(|v| v.is_finite())
+        self.x.iter().chain(self.p.iter().flatten()).chain(&self.consistency).all(|v| v.is_finite())
             && self.p_axis.j.is_finite()
             && self.c_axis.j.is_finite()
     }
@@ -619,6 +647,7 @@ impl JointEstimator {
         let mut dx = [0.0; N];
         let step = prm.max_rate * dt;
         let mut info = 0.0;
+        let (mut n, mut updates) = ([0.0; 6], 0u32);
         match (rest, self.kind) {
             (true, _) => {}
             (false, JointKind::Hinge) => {
@@ -634,7 +663,8 @@ impl JointEstimator {
                     h[UC + 1] = -comp(dc[1], i);
                     tilt(-e_c, &mut h, i);
                     info += h[0] * h[0] / rr;
-                    self.scalar_update(&h, -comp(r, i), rr, &mut dx, step);
+                    n[i] = self.scalar_update(&h, -comp(r, i), rr, &mut dx, step);
+                    updates |= 1 << i;
                 }
                 self.info_scale = 1.0 / rr;
             }
@@ -650,7 +680,8 @@ impl JointEstimator {
                 h[TX + 1] = e_p.dot(Vec3::new(0.0, 1.0, 0.0).cross(e_c));
                 let rr = prm.r_2dof / dt;
                 info += h[0] * h[0] / rr;
-                self.scalar_update(&h, -f, rr, &mut dx, step);
+                n[0] = self.scalar_update(&h, -f, rr, &mut dx, step);
+                updates |= 1;
                 self.info_scale = 1.0 / rr;
             }
         }
@@ -678,8 +709,12 @@ impl JointEstimator {
                     h[OC + k] = -comp(cc[k], i);
                 }
                 tilt(-fc, &mut h, i);
-                self.scalar_update(&h, -comp(r, i), rr, &mut dx, step);
+                n[3 + i] = self.scalar_update(&h, -comp(r, i), rr, &mut dx, step);
+                updates |= 8 << i;
             }
+        }
+        if self.inconsistent(&n, updates, dt) {
+            self.reopen();
         }
         // At rest `info` is 0: the rating decays with the low-pass's time constant.
         self.rating += alpha * ((info / self.info_scale).min(1.0) - self.rating);
@@ -699,6 +734,55 @@ impl JointEstimator {
         for k in TX..N {
             self.x[k] += dx[k];
         }
+        self.bound_states();
+    }
+
+    /// Low-passes each channel's normalized innovation `n = ν / √S` over
+    /// [`CONSISTENCY_TAU`] and tells whether the largest, squared, is beyond
+    /// [`CONSISTENCY_LIMIT`] times the variance it has under the model. The model's noise
+    /// is a density `r` (`R = r / dt`), so a consistent channel's low-passed `n` has
+    /// variance `dt / (2τ)`; on the simulated gloves and leg (`rig_joints`, seeds 1-6,
+    /// every case) its square stays below 300 times that (7 but for the biases to 3°/s and
+    /// the leg, while their filters learn the biases). Rows that contradict the estimate
+    /// for seconds (a sensor that slipped in its strap, readings no rig gives) pass the
+    /// limit, 1000, within a few rows.
+    fn inconsistent(&mut self, n: &[f64; 6], updates: u32, dt: f64) -> bool {
+        let a = dt / (CONSISTENCY_TAU + dt);
+        let mut worst: f64 = 0.0;
+        for c in 0..6 {
+            if updates & (1 << c) != 0 {
+                self.consistency[c] += a * (n[c] - self.consistency[c]);
+                worst = worst.max(self.consistency[c] * self.consistency[c]);
+            }
+        }
+        worst * 2.0 * CONSISTENCY_TAU / dt > CONSISTENCY_LIMIT
+    }
+
+    /// While the joint's rows contradict its estimate ([`JointEstimator::inconsistent`]),
+    /// each variance is held at least at its initial value, `P ← P + diag(max(0, σ₀ᵢ² −
+    /// Pᵢᵢ))` (positive semi-definite and symmetric as before): an estimate sure of a wrong
+    /// state (axes turned by contradicting rows, with `q_axis` 0 nothing widens them
+    /// again) would otherwise down-weight the good rows that follow and take hours to
+    /// come back; re-opened, it comes back as from a start (within 2 degrees in two
+    /// minutes, `contradicting_rows_leave_a_joint_good_rows_bring_back`).
+    fn reopen(&mut self) {
+        for i in 0..N {
+            let std0 = initial_std(&self.params, i);
+            self.p[i][i] = self.p[i][i].max(std0 * std0);
+        }
+    }
+
+    /// Input that no rig could give, for long (readings that contradict the orientations,
+    /// the joint's axes or each other), drives some states without end: a residual bias
+    /// of radians a second, a tilt that turns the child upside down, from which good rows
+    /// never bring the joint back and whose blob no longer loads. Each residual bias,
+    /// lever-arm and tilt component is held within the largest initial standard deviation
+    /// [`JOINT_PARAMS`] accepts for it (0.1 rad/s, 1 m, 0.5 rad): beyond every rig the
+    /// table describes, so a working rig never meets the bound.
+    fn bound_states(&mut self) {
+        for k in (0..N).filter(|&k| bounded(k)) {
+            self.x[k] = self.x[k].clamp(-largest_std(k), largest_std(k));
+        }
     }
 
     /// A state nothing has told about for long (a vertical hinge for hours, a tilt at
@@ -711,7 +795,7 @@ impl JointEstimator {
         let mut d = [1.0; N];
         let mut any = false;
         for i in 0..N {
-            let c = ceiling(i);
+            let c = largest_std(i) * largest_std(i);
             if self.p[i][i] > c {
                 d[i] = (c / self.p[i][i]).sqrt();
                 any = true;
@@ -765,7 +849,7 @@ impl JointEstimator {
     /// gain `f K`, and the covariance what that gain removes (Joseph's form,
     /// `P ← P − (2f − f²) P hᵀ h P / S`): the estimate stays as uncertain as the step it
     /// did not take, and goes on at the bound.
-    fn scalar_update(&mut self, h: &[f64; N], nu: f64, r: f64, dx: &mut [f64; N], step: f64) {
+    fn scalar_update(&mut self, h: &[f64; N], nu: f64, r: f64, dx: &mut [f64; N], step: f64) -> f64 {
         let mut ph = [0.0; N];
         for i in 0..N {
             ph[i] = (0..N).map(|k| self.p[i][k] * h[k]).sum();
@@ -778,8 +862,9 @@ impl JointEstimator {
             s = hph + r * nu * nu / (g2 * s);
         }
         if !(s.is_finite() && s > 0.0 && nu.is_finite()) {
-            return;
+            return 0.0;
         }
+        let normalized = (nu / (hph + r).sqrt()).clamp(-CONSISTENCY_MAX_NU, CONSISTENCY_MAX_NU);
         let mut f: f64 = 1.0;
         for k in [0, TX, TX + 1] {
             let change = ph[k] / s * nu;
@@ -802,6 +887,7 @@ impl JointEstimator {
         for i in 0..N {
             self.p[i][i] = self.p[i][i].max(0.0);
         }
+        normalized
     }
 }
 
@@ -828,6 +914,9 @@ impl JointEstimator {
         self.prev_gyro = moving.then_some((a, b));
         c.f64(&mut self.rating);
         c.f64(&mut self.info_scale);
+        for v in &mut self.consistency {
+            c.f64(v);
+        }
     }
 
     /// For tests: states no estimate could hold, each finite (so that only `holds`
@@ -848,27 +937,24 @@ impl JointEstimator {
     }
 
     /// A state this estimator could hold (a loaded blob's): unit, orthogonal axes with
-    /// their bases; states within their physical bounds (relative heading 1e9 rad, which
-    /// a heading turning at the largest `max_rate` for decades does not reach, each
-    /// residual bias 1 rad/s, lever arms 10 m, tilt 10 rad; the axis corrections, folded
-    /// into the axes after each update, 1 rad); an exactly symmetric covariance (every
+    /// their bases; states within their bounds (relative heading 1e9 rad, which a heading
+    /// turning at the largest `max_rate` for decades does not reach; the residual biases,
+    /// lever arms and tilt within those [`JointEstimator::bound_states`] holds them to;
+    /// the axis corrections, folded into the axes after each update, 1 rad); an exactly symmetric covariance (every
     /// update keeps it so) that is positive semi-definite to rounding (a Cholesky
     /// factorisation of P + 1e-9 max(P_ii) I), with variances up to 1e6: anything else
     /// could make an innovation's variance negative, and the joint skip every update; a
-    /// rating in [0, 1], a rest time not negative, a positive information scale, and a
-    /// finite correction.
+    /// rating in [0, 1], a rest time not negative, a positive information scale, the
+    /// low-passed normalized innovations within their bound ([`CONSISTENCY_MAX_NU`]), and
+    /// a finite correction.
     pub(crate) fn holds(&self) -> bool {
         let unit = |v: Vec3| (v.norm_squared() - 1.0).abs() < 1e-9;
         let axes = [self.p_axis, self.c_axis].iter().all(|a| {
             unit(a.j) && unit(a.b1) && unit(a.b2) && a.j.dot(a.b1).abs() < 1e-9 && a.j.dot(a.b2).abs() < 1e-9
         });
-        let within =
-            |range: core::ops::Range<usize>, bound: f64| self.x[range].iter().all(|v| v.abs() <= bound);
-        let states = within(0..1, 1e9)
-            && within(BP..UP_, 1.0)
-            && within(UP_..OP, 1.0)
-            && within(OP..TX, 10.0)
-            && within(TX..N, 10.0);
+        let states = self.x[0].abs() <= 1e9
+            && (UP_..OP).all(|k| self.x[k].abs() <= 1.0)
+            && (0..N).filter(|&k| bounded(k)).all(|k| self.x[k].abs() <= largest_std(k));
         self.is_finite()
             && axes
             && states
@@ -876,6 +962,7 @@ impl JointEstimator {
             && (0.0..=1.0).contains(&self.rating)
             && self.still >= 0.0
             && self.info_scale > 0.0
+            && self.consistency.iter().all(|c| c.abs() <= CONSISTENCY_MAX_NU)
             && self.correction().is_finite()
     }
 
