@@ -606,7 +606,8 @@ impl JointEstimator {
     /// One sample: the two sensors' orientations (sensor to earth, the child's without
     /// this joint's correction), their gyroscope (rad/s) and accelerometer (m/s²)
     /// readings, and the interval `dt` (s). A `dt` outside [`MIN_DT`, 1) s (1 ns, the
-    /// filters' smallest) changes nothing.
+    /// filters' smallest) holds the estimate, as a row without readings does
+    /// ([`JointEstimator::hold`]).
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn update(
         &mut self,
@@ -620,6 +621,7 @@ impl JointEstimator {
     ) {
         let prm = self.params;
         if !(MIN_DT..1.0).contains(&dt) {
+            self.hold();
             return;
         }
         let prev = self.prev_gyro.replace((gyro_p, gyro_c));

@@ -770,6 +770,21 @@ fn a_dt_outside_its_range_holds_the_joint() {
         joints.update(&[p1, c1], &[with_dt(p0, p1, dt), with_dt(c0, c1, dt)]).unwrap();
         assert_eq!((joints.relative_heading(0), joints.heading_std(0), joints.axes(0)), before, "dt {dt}");
     }
+    // The next row's angular acceleration is not taken across the held row: the same as
+    // after a row without readings.
+    let mut twin = joints.clone();
+    let bare = Sample { gyro: None, accel: None, ..sample(p0, p1, 0.01) };
+    twin.update(&[p1, c1], &[bare, bare]).unwrap();
+    let (p2, c2) = (parent_at(10.02), child_at(10.02));
+    for j in [&mut joints, &mut twin] {
+        j.update(&[p2, c2], &[sample(p1, p2, 0.01), sample(c1, c2, 0.01)]).unwrap();
+    }
+    let blob = |j: &Joints| {
+        let mut b = vec![0u8; j.state_size()];
+        j.save(&mut b).unwrap();
+        b
+    };
+    assert!(blob(&joints) == blob(&twin));
     // A dt of 1 ns moves it (the estimate takes the row).
     let before = joints.heading_std(0);
     joints.update(&[p1, c1], &[with_dt(p0, p1, 1e-9), with_dt(c0, c1, 1e-9)]).unwrap();
