@@ -21,9 +21,10 @@
 //! - `o_p`, `o_c`: the joint centre in each sensor's frame (m), the lever arms;
 //! - `φ`: the child's tilt correction about the earth's x and y (rad).
 //!
-//! Prediction and every measurement only while a sensor turns (at rest both filters hold,
-//! and so does the joint; the joint centre's force is then gravity on both sides, which
-//! says nothing about heading). Prediction over `dt`: `Δ ← Δ + dt (g_c·β_c − g_p·β_p)`, `P ← F P Fᵀ + Q dt`;
+//! Prediction and the constraints below only while a sensor turns: at rest the joint holds
+//! (the constraints' errors, laxity and soft tissue, are then the same row after row, and
+//! the joint centre's force is gravity on both sides, which says nothing about heading)
+//! and measures the filters' drift instead (the last item below). Prediction over `dt`: `Δ ← Δ + dt (g_c·β_c − g_p·β_p)`, `P ← F P Fᵀ + Q dt`;
 //! then each variance is held to the square of the largest initial standard deviation
 //! [`JOINT_PARAMS`] accepts for its state (4 rad for `Δ`) by `P ← D P D`: a state nothing
 //! observes for hours keeps a covariance a blob loads with.
@@ -43,7 +44,12 @@
 //!   whatever the axes' direction. Its residual's errors (soft tissue on the lever arms,
 //!   the laxity, the finite-difference `ω̇`) grow with the motion: its `r` is
 //!   `r_acc (1 + (|ω_p|² + |ω_c|²) / ω_s² + (|ω̇_p|² + |ω̇_c|²) / α_s²)`, `ω_s` =
-//!   `acc_rate_scale`, `α_s` = `acc_accel_scale`.
+//!   `acc_rate_scale`, `α_s` = `acc_accel_scale`;
+//! - at rest, the drift: each filter's heading then turns only at its residual bias,
+//!   `ψ̇ = −g·β`, so the difference of the two filters' heading rates (from their
+//!   orientations at consecutive rows) measures `g_p·β_p − g_c·β_c` with noise density
+//!   `r_drift`: the residual biases as the filters leave them after learning the biases
+//!   at rest, which they would otherwise carry into the next motion.
 //!
 //! Each scalar update: `S = h P hᵀ + R` with `R = r / dt` (the residuals' errors, laxity,
 //! soft tissue and the filters' inclination errors, are correlated over a fraction of a
@@ -137,6 +143,9 @@ pub struct JointParams {
     pub gate: f64,
     /// The rating's low-pass time constant (s).
     pub rating_tau: f64,
+    /// Noise density (rad²/s) of the two filters' relative heading drift measured at
+    /// rest; 0 leaves the measurement out.
+    pub r_drift: f64,
 }
 
 impl Default for JointParams {
@@ -163,6 +172,7 @@ impl Default for JointParams {
             q_tilt: 0.0,
             gate: 0.0,
             rating_tau: 0.0,
+            r_drift: 0.0,
         };
         for (spec, v) in JOINT_PARAMS.iter().zip(p.fields_mut()) {
             *v = spec.default;
@@ -175,7 +185,7 @@ impl Default for JointParams {
 /// accepted range, in the order of [`JointParams::fields_mut`] (and of a joint blob).
 /// The C ABI's `orient_joint_param_info`, `orient_joints_set_param` and the bindings
 /// read this table, and [`JointParams::default`] takes its defaults.
-pub const JOINT_PARAMS: [ParamSpec; 20] = [
+pub const JOINT_PARAMS: [ParamSpec; 21] = [
     spec(
         0,
         "r_hinge",
@@ -362,6 +372,18 @@ pub const JOINT_PARAMS: [ParamSpec; 20] = [
         1e3,
     ),
     spec(19, "rating_tau", "s", "The rating's low-pass time constant; default 2 (orient: simulated gloves).", 2.0, 1e-3, 1e3),
+    spec(
+        20,
+        "r_drift",
+        "rad^2/s",
+        "Noise density of the relative heading drift measured at rest (each filter's \
+        heading turns at its residual gyroscope bias while its sensor is still); 0 leaves the \
+        measurement out; default 1e-7 (orient: about a MEMS gyroscope's noise density squared, \
+        chosen on simulated gloves).",
+        1e-7,
+        0.0,
+        1.0,
+    ),
 ];
 
 const DEG: f64 = core::f64::consts::PI / 180.0;
@@ -381,7 +403,7 @@ const fn spec(
 
 impl JointParams {
     /// Every field in [`JOINT_PARAMS`]' order.
-    pub fn fields_mut(&mut self) -> [&mut f64; 20] {
+    pub fn fields_mut(&mut self) -> [&mut f64; 21] {
         let p = self;
         [
             &mut p.r_hinge,
@@ -404,6 +426,7 @@ impl JointParams {
             &mut p.q_tilt,
             &mut p.gate,
             &mut p.rating_tau,
+            &mut p.r_drift,
         ]
     }
 
@@ -521,6 +544,9 @@ pub(crate) struct JointEstimator {
     g: [Vec3; 2],
     /// The previous gyroscope readings (parent, child), for the angular accelerations.
     prev_gyro: Option<(Vec3, Vec3)>,
+    /// The two filters' orientations at the previous row (parent, child), for their
+    /// heading drift at rest.
+    prev_q: Option<(Quat, Quat)>,
     rating: f64,
     /// `h_Δ² / R` for a horizontal axis: the rating's scale.
     info_scale: f64,
@@ -545,6 +571,7 @@ impl JointEstimator {
             still: 0.0,
             g: [Vec3::ZERO; 2],
             prev_gyro: None,
+            prev_q: None,
             rating: 0.0,
             info_scale: 1.0,
             consistency: [0.0; 6],
@@ -567,6 +594,7 @@ impl JointEstimator {
     /// angular acceleration is not taken across the gap.
     pub(crate) fn hold(&mut self) {
         self.prev_gyro = None;
+        self.prev_q = None;
     }
 
     /// The relative heading `Δ` (rad).
@@ -651,7 +679,11 @@ impl JointEstimator {
         let mut info = 0.0;
         let (mut n, mut updates) = ([0.0; 6], 0u32);
         match (rest, self.kind) {
-            (true, _) => {}
+            (true, _) => {
+                if let (Some((qp0, qc0)), true) = (self.prev_q, prm.r_drift > 0.0) {
+                    self.drift_update(q_p, q_c, qp0, qc0, dt, &mut dx, step);
+                }
+            }
             (false, JointKind::Hinge) => {
                 let r = e_p - e_c;
                 let d_delta = -UP.cross(e_c);
@@ -737,6 +769,45 @@ impl JointEstimator {
             self.x[k] += dx[k];
         }
         self.bound_states();
+        self.prev_q = Some((q_p, q_c));
+    }
+
+    /// At rest each filter's heading turns only at its residual gyroscope bias, `ψ̇ =
+    /// −g·β` (sensor still: the gyroscope reads the bias, the filter turns by what it did
+    /// not subtract), so the difference of the two filters' heading rates measures the
+    /// relative drift: `ψ̇_c − ψ̇_p = g_p·β_p − g_c·β_c`, with noise density `r_drift`.
+    /// The rates come from the filters' orientations at this row and the last, `ψ̇ = 2
+    /// (q q₀*)_z / dt` (the vertical part of the earth-frame turn). A turn of the two
+    /// sensors together cancels; a difference faster than twice `rest_gyro` is no drift of
+    /// still sensors but the host turning a filter (a heading alignment) and is left out.
+    #[allow(clippy::too_many_arguments)]
+    fn drift_update(
+        &mut self,
+        q_p: Quat,
+        q_c: Quat,
+        qp0: Quat,
+        qc0: Quat,
+        dt: f64,
+        dx: &mut [f64; N],
+        step: f64,
+    ) {
+        let yaw_rate = |q: Quat, q0: Quat| {
+            let d = q * q0.conj();
+            2.0 * if d.w < 0.0 { -d.z } else { d.z } / dt
+        };
+        let measured = yaw_rate(q_c, qc0) - yaw_rate(q_p, qp0);
+        // (NaN cannot arise: the orientations are unit and dt at least 1 ns.)
+        if measured.abs() > 2.0 * self.params.rest_gyro {
+            return;
+        }
+        let (g_p, g_c) = (q_p.rotate_inverse(UP), q_c.rotate_inverse(UP));
+        let mut h = [0.0; N];
+        for k in 0..3 {
+            h[BP + k] = comp(g_p, k);
+            h[BC + k] = -comp(g_c, k);
+        }
+        let predicted: f64 = (0..N).map(|k| h[k] * self.x[k]).sum();
+        let _ = self.scalar_update(&h, measured - predicted, self.params.r_drift / dt, dx, step);
     }
 
     /// Low-passes each channel's normalized innovation `n = ν / √S` over
@@ -914,6 +985,12 @@ impl JointEstimator {
         c.vec3(&mut a);
         c.vec3(&mut b);
         self.prev_gyro = moving.then_some((a, b));
+        let mut had = self.prev_q.is_some();
+        c.bool(&mut had);
+        let (mut qp, mut qc) = self.prev_q.unwrap_or((Quat::IDENTITY, Quat::IDENTITY));
+        c.quat(&mut qp);
+        c.quat(&mut qc);
+        self.prev_q = had.then_some((qp, qc));
         c.f64(&mut self.rating);
         c.f64(&mut self.info_scale);
         for v in &mut self.consistency {
@@ -947,8 +1024,8 @@ impl JointEstimator {
     /// factorisation of P + 1e-9 max(P_ii) I), with variances up to 1e6: anything else
     /// could make an innovation's variance negative, and the joint skip every update; a
     /// rating in [0, 1], a rest time not negative, a positive information scale, the
-    /// low-passed normalized innovations within their bound ([`CONSISTENCY_MAX_NU`]), and
-    /// a finite correction.
+    /// low-passed normalized innovations within their bound ([`CONSISTENCY_MAX_NU`]), unit
+    /// previous orientations, and a finite correction.
     pub(crate) fn holds(&self) -> bool {
         let unit = |v: Vec3| (v.norm_squared() - 1.0).abs() < 1e-9;
         let axes = [self.p_axis, self.c_axis].iter().all(|a| {
@@ -965,6 +1042,7 @@ impl JointEstimator {
             && self.still >= 0.0
             && self.info_scale > 0.0
             && self.consistency.iter().all(|c| c.abs() <= CONSISTENCY_MAX_NU)
+            && self.prev_q.map_or(true, |(a, b)| [a, b].iter().all(|q| (q.norm_squared() - 1.0).abs() < 1e-9))
             && self.correction().is_finite()
     }
 

@@ -129,15 +129,85 @@ fn lie_still(joints: &mut Joints, rows: usize) {
     }
 }
 
+/// At rest the constraints are left out: without the drift measurement (`r_drift` 0)
+/// nothing moves; with it, the relative heading moves only by what the measured drift
+/// corrects in it, within `max_rate`.
 #[test]
 fn at_rest_the_estimate_holds_and_the_rating_falls() {
-    let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 30.0);
-    // The rig stops (the rest detector needs `rest_time`), then lies still for 20 s.
-    lie_still(&mut joints, 100);
-    let heading = joints.relative_heading(0);
-    lie_still(&mut joints, 2000);
-    assert_eq!(joints.relative_heading(0), heading);
-    assert!(joints.rating(0) < 0.01, "{}", joints.rating(0));
+    for r_drift in [0.0, JointParams::default().r_drift] {
+        let (mut joints, _) = run_hinge(X, 0.5f64.to_radians(), 30.0);
+        joints.set_param("r_drift", r_drift).unwrap();
+        // The rig stops (the rest detector needs `rest_time`), then lies still for 20 s.
+        lie_still(&mut joints, 100);
+        let mut heading = joints.relative_heading(0);
+        let start = heading;
+        for _ in 0..2000 {
+            lie_still(&mut joints, 1);
+            let step = (joints.relative_heading(0) - heading).abs();
+            assert!(step <= JointParams::default().max_rate * 0.01 * (1.0 + 1e-12), "{step}");
+            heading = joints.relative_heading(0);
+        }
+        if r_drift == 0.0 {
+            assert_eq!(joints.relative_heading(0), start);
+        }
+        assert!(joints.rating(0) < 0.01, "{}", joints.rating(0));
+    }
+}
+
+/// At rest each filter's heading turns at the gyroscope bias it leaves. Here the child's
+/// filter drifts at 0.5 deg/s while the rig moves and stops drifting at rest (as a filter
+/// that learns its bias at rest does): the joint measures that and goes into the next
+/// motion without the old drift; without the measurement (`r_drift` 0) it carries the old
+/// drift into the motion, where the constraints must undo it.
+#[test]
+fn at_rest_the_filters_drift_is_measured() {
+    let dt = 0.01;
+    let drift = 0.5f64.to_radians();
+    let child_at = |t: f64| parent_at(t) * rot(X, flexion_at(t));
+    // The rig moves from `from` to `to` s, the child's filter turned by `heading(t)`: the
+    // worst and the RMS relative error.
+    let moved = |joints: &mut Joints, from: f64, to: f64, heading: &dyn Fn(f64) -> f64| {
+        let (mut worst, mut sum, mut n) = (0.0f64, 0.0, 0.0);
+        for i in 1..=((to - from) / dt).round() as usize {
+            let (t0, t1) = (from + (i - 1) as f64 * dt, from + i as f64 * dt);
+            let (p0, p1, c0, c1) = (parent_at(t0), parent_at(t1), child_at(t0), child_at(t1));
+            joints
+                .update(&[p1, rot(Z, heading(t1)) * c1], &[sample(p0, p1, dt), sample(c0, c1, dt)])
+                .unwrap();
+            let e = relative_error(joints.sensor_quaternion(0), joints.sensor_quaternion(1), p1, c1);
+            worst = worst.max(e);
+            sum += e * e;
+            n += 1.0;
+        }
+        (worst, (sum / n).sqrt())
+    };
+    let run = |r_drift: f64| {
+        let params = JointParams { r_drift, ..JointParams::default() };
+        let mut joints = Joints::new(2, &[hinge(0, 1, X)], &[], params).unwrap();
+        moved(&mut joints, 0.0, 60.0, &|t| drift * t);
+        let learned = joints.drift(0);
+        // 10 s still at 60 s; the child's filter keeps the heading it had.
+        let (p, c) = (parent_at(60.0), child_at(60.0));
+        let still =
+            |q: Quat| Sample { dt, gyro: Some(Vec3::ZERO), accel: Some(q.rotate_inverse(Z * G)), mag: None };
+        for _ in 0..1000 {
+            joints.update(&[p, rot(Z, drift * 60.0) * c], &[still(p), still(c)]).unwrap();
+        }
+        let e_rest = relative_error(joints.sensor_quaternion(0), joints.sensor_quaternion(1), p, c);
+        let after_rest = joints.drift(0);
+        // The motion goes on from where it stopped, the child's filter no longer drifting.
+        let (worst, rms) = moved(&mut joints, 60.0, 70.0, &|_| drift * 60.0);
+        (learned, after_rest, e_rest, worst, rms)
+    };
+    let (learned, measured, _, _, rms_with) = run(JointParams::default().r_drift);
+    let (_, kept, _, _, rms_without) = run(0.0);
+    // The drift learned in motion: the child's filter's 0.5 deg/s, negated.
+    assert!((learned + drift).abs() < 0.1 * drift, "{learned}");
+    // Measured at rest: none left (0.0003 deg/s); without the measurement, kept.
+    assert!(measured.abs() < 0.01 * drift, "{measured}");
+    assert!((kept - learned).abs() < 0.01 * drift, "{kept}");
+    // And the next motion starts without it (RMS 1.06 deg against 1.20).
+    assert!(rms_with < 0.95 * rms_without, "{rms_with} {rms_without}");
 }
 
 /// The rating is a low-pass over `rating_tau` of what the constraints told: at rest they
@@ -695,6 +765,8 @@ fn a_setting_applies_from_the_next_update_and_an_initial_one_at_the_reset() {
     assert_eq!(joints.heading_std(0), sigma, "kept until the estimate starts again");
     joints.set_param("rest_gyro", 100.0).unwrap();
     joints.set_param("rest_time", 0.0).unwrap();
+    // (At rest only the drift measurement moves the estimate: off here.)
+    joints.set_param("r_drift", 0.0).unwrap();
     let heading = joints.relative_heading(0);
     for i in 1..=100 {
         row(&mut joints, i);
