@@ -1716,7 +1716,7 @@ OrientStatus orient_config_for_joints(struct OrientConfig *config);
  * `n_segments` 0; COUNT_TOO_LARGE for more than ORIENT_MAX_JOINTS joints or
  * ORIENT_MAX_SEGMENTS segments, or when the most handles the library holds are live; a
  * mounting is checked as orient_filter_set_quaternion checks its quaternion:
- * NON_FINITE, ZERO_VECTOR or TOO_LARGE. OUT_OF_MEMORY when the joints' memory (about 3.4
+ * NON_FINITE, ZERO_VECTOR or TOO_LARGE. OUT_OF_MEMORY when the joints' memory (about 3.7
  * KiB a joint) cannot be allocated.
  */
 OrientStatus orient_joints_new(const struct OrientJoint *joints,
@@ -1778,8 +1778,9 @@ OrientStatus orient_joints_angles(const struct OrientJoints *joints,
 /**
  * Joint `joint`'s observability rating in [0, 1]: how much its constraints told about
  * the child's heading relative to its parent over the last two seconds. Near 0 at rest
- * and while a hinge's axis is vertical, when the relative heading is held; near 1 for a
- * horizontal axis in motion. INVALID_ARGUMENT for a joint at or beyond the rig's count.
+ * (when only the filters' measured drift moves the relative heading) and while a hinge's
+ * axis is vertical (when it is held on the drift estimate); near 1 for a horizontal axis
+ * in motion. INVALID_ARGUMENT for a joint at or beyond the rig's count.
  */
 OrientStatus orient_joints_rating(const struct OrientJoints *joints, size_t joint, double *rating);
 

@@ -1735,7 +1735,7 @@ namespace Orient.Native
         /// `n_segments` 0; COUNT_TOO_LARGE for more than ORIENT_MAX_JOINTS joints or
         /// ORIENT_MAX_SEGMENTS segments, or when the most handles the library holds are live; a
         /// mounting is checked as orient_filter_set_quaternion checks its quaternion:
-        /// NON_FINITE, ZERO_VECTOR or TOO_LARGE. OUT_OF_MEMORY when the joints' memory (about 3.4
+        /// NON_FINITE, ZERO_VECTOR or TOO_LARGE. OUT_OF_MEMORY when the joints' memory (about 3.7
         /// KiB a joint) cannot be allocated.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
@@ -1791,8 +1791,9 @@ namespace Orient.Native
         /// <summary>
         /// Joint `joint`'s observability rating in [0, 1]: how much its constraints told about
         /// the child's heading relative to its parent over the last two seconds. Near 0 at rest
-        /// and while a hinge's axis is vertical, when the relative heading is held; near 1 for a
-        /// horizontal axis in motion. INVALID_ARGUMENT for a joint at or beyond the rig's count.
+        /// (when only the filters' measured drift moves the relative heading) and while a hinge's
+        /// axis is vertical (when it is held on the drift estimate); near 1 for a horizontal axis
+        /// in motion. INVALID_ARGUMENT for a joint at or beyond the rig's count.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_joints_rating(IntPtr joints, UIntPtr joint, double* rating);

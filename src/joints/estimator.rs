@@ -91,11 +91,11 @@ const UC: usize = 9;
 const OP: usize = 11;
 const OC: usize = 14;
 const TX: usize = 17;
-/// The consistency check ([`JointEstimator::reopen`]): the normalized innovations'
+/// The consistency check ([`JointEstimator::inconsistent`]): the normalized innovations'
 /// low-pass time constant (s), the bound of each normalized innovation, and the limit of
 /// a low-passed one's square in units of its variance under the model.
 const CONSISTENCY_TAU: f64 = 10.0;
-const CONSISTENCY_MAX_NU: f64 = 1e3;
+const CONSISTENCY_MAX_NU: f64 = 100.0;
 const CONSISTENCY_LIMIT: f64 = 1000.0;
 
 /// The joint estimator's tuning: noise densities in continuous time, so that none depends
@@ -283,7 +283,8 @@ pub const JOINT_PARAMS: [ParamSpec; 21] = [
         9,
         "rest_gyro",
         "rad/s",
-        "Rest, when the joint holds: both gyroscopes below this norm for \
+        "Rest, when the joint leaves its constraints out and measures the filters' drift \
+        instead (r_drift): both gyroscopes below this norm for \
         rest_time; default 0.15 (orient: simulated gloves).",
         0.15,
         0.0,
@@ -293,7 +294,7 @@ pub const JOINT_PARAMS: [ParamSpec; 21] = [
         10,
         "rest_time",
         "s",
-        "How long both gyroscopes stay below rest_gyro before the joint holds; \
+        "How long both gyroscopes stay below rest_gyro before the joint rests; \
         default 0.3 (orient: simulated gloves).",
         0.3,
         0.0,
@@ -377,9 +378,11 @@ pub const JOINT_PARAMS: [ParamSpec; 21] = [
         "r_drift",
         "rad^2/s",
         "Noise density of the relative heading drift measured at rest (each filter's \
-        heading turns at its residual gyroscope bias while its sensor is still); 0 leaves the \
-        measurement out; default 1e-7 (orient: about a MEMS gyroscope's noise density squared, \
-        chosen on simulated gloves).",
+        heading turns at its residual gyroscope bias while its sensor is still; rest is both \
+        gyroscopes below rest_gyro, so a slow relative turn within it is taken for drift, and \
+        so is a 9D filter's magnetometer correction); 0 leaves the measurement out; default \
+        1e-7 (orient: about a MEMS gyroscope's noise density squared, chosen on simulated \
+        gloves).",
         1e-7,
         0.0,
         1.0,
@@ -488,15 +491,22 @@ impl Axis {
     }
 }
 
+/// The [`JOINT_PARAMS`] index of state `i`'s initial standard deviation (`heading_std0`,
+/// `rate_std0`, `axis_std0`, `lever_std0`, `tilt_std0`).
+fn std0_param(i: usize) -> usize {
+    match i {
+        0 => 5,
+        _ if i < UP_ => 6,
+        _ if i < OP => 7,
+        _ if i < TX => 14,
+        _ => 16,
+    }
+}
+
 /// State `i`'s initial standard deviation in the tuning `p`.
 fn initial_std(p: &JointParams, i: usize) -> f64 {
-    match i {
-        0 => p.heading_std0,
-        _ if i < UP_ => p.rate_std0,
-        _ if i < OP => p.axis_std0,
-        _ if i < TX => p.lever_std0,
-        _ => p.tilt_std0,
-    }
+    let mut p = *p;
+    *p.fields_mut()[std0_param(i)]
 }
 
 /// The largest initial standard deviation [`JOINT_PARAMS`] accepts for state `i`'s group
@@ -504,14 +514,7 @@ fn initial_std(p: &JointParams, i: usize) -> f64 {
 /// ([`JointEstimator::bound_variances`]), and each residual bias, lever-arm and tilt
 /// component to it ([`JointEstimator::bound_states`]).
 fn largest_std(i: usize) -> f64 {
-    let max = |k: usize| JOINT_PARAMS[k].max;
-    match i {
-        0 => max(5),
-        _ if i < UP_ => max(6),
-        _ if i < OP => max(7),
-        _ if i < TX => max(14),
-        _ => max(16),
-    }
+    JOINT_PARAMS[std0_param(i)].max
 }
 
 /// The states [`JointEstimator::bound_states`] holds within [`largest_std`]: the residual
@@ -551,8 +554,10 @@ pub(crate) struct JointEstimator {
     /// `h_Δ² / R` for a horizontal axis: the rating's scale.
     info_scale: f64,
     /// Each channel's normalized innovation (the constraint's up to three components, then
-    /// the joint centre's three), low-passed ([`JointEstimator::reopen`]).
+    /// the joint centre's three), low-passed, and the variance the low-pass has under the
+    /// model ([`JointEstimator::inconsistent`]).
     consistency: [f64; 6],
+    consistency_var: [f64; 6],
 }
 
 impl JointEstimator {
@@ -575,6 +580,7 @@ impl JointEstimator {
             rating: 0.0,
             info_scale: 1.0,
             consistency: [0.0; 6],
+            consistency_var: [0.0; 6],
         }
     }
 
@@ -585,13 +591,18 @@ impl JointEstimator {
 
     /// Every state and covariance entry is finite.
     pub(crate) fn is_finite(&self) -> bool {
-        self.x.iter().chain(self.p.iter().flatten()).chain(&self.consistency).all(|v| v.is_finite())
+        self.x
+            .iter()
+            .chain(self.p.iter().flatten())
+            .chain(&self.consistency)
+            .chain(&self.consistency_var)
+            .all(|v| v.is_finite())
             && self.p_axis.j.is_finite()
             && self.c_axis.j.is_finite()
     }
 
-    /// A row without both sensors' readings: the estimate holds, and the next row's
-    /// angular acceleration is not taken across the gap.
+    /// A row without both sensors' readings: the estimate holds, and the next row takes
+    /// neither its angular acceleration nor the filters' drift across the gap.
     pub(crate) fn hold(&mut self) {
         self.prev_gyro = None;
         self.prev_q = None;
@@ -677,7 +688,7 @@ impl JointEstimator {
         let mut dx = [0.0; N];
         let step = prm.max_rate * dt;
         let mut info = 0.0;
-        let (mut n, mut updates) = ([0.0; 6], 0u32);
+        let mut n = [None; 6];
         match (rest, self.kind) {
             (true, _) => {
                 if let (Some((qp0, qc0)), true) = (self.prev_q, prm.r_drift > 0.0) {
@@ -698,7 +709,6 @@ impl JointEstimator {
                     tilt(-e_c, &mut h, i);
                     info += h[0] * h[0] / rr;
                     n[i] = self.scalar_update(&h, -comp(r, i), rr, &mut dx, step);
-                    updates |= 1 << i;
                 }
                 self.info_scale = 1.0 / rr;
             }
@@ -715,7 +725,6 @@ impl JointEstimator {
                 let rr = prm.r_2dof / dt;
                 info += h[0] * h[0] / rr;
                 n[0] = self.scalar_update(&h, -f, rr, &mut dx, step);
-                updates |= 1;
                 self.info_scale = 1.0 / rr;
             }
         }
@@ -744,10 +753,9 @@ impl JointEstimator {
                 }
                 tilt(-fc, &mut h, i);
                 n[3 + i] = self.scalar_update(&h, -comp(r, i), rr, &mut dx, step);
-                updates |= 8 << i;
             }
         }
-        if self.inconsistent(&n, updates, dt) {
+        if self.inconsistent(&n, dt) {
             self.reopen();
         }
         // At rest `info` is 0: the rating decays with the low-pass's time constant.
@@ -811,28 +819,33 @@ impl JointEstimator {
     }
 
     /// Low-passes each channel's normalized innovation `n = ν / √S` over
-    /// [`CONSISTENCY_TAU`] and tells whether the largest, squared, is beyond
-    /// [`CONSISTENCY_LIMIT`] times the variance it has under the model. The model's noise
-    /// is a density `r` (`R = r / dt`), so a consistent channel's low-passed `n` has
-    /// variance `dt / (2τ)`; on the simulated gloves and leg (`rig_joints`, seeds 1-6,
-    /// every case) its square stays below 300 times that (7 but for the biases to 3°/s and
-    /// the leg, while their filters learn the biases). Rows that contradict the estimate
-    /// for seconds (a sensor that slipped in its strap, readings no rig gives) pass the
-    /// limit, 1000, within a few rows.
-    fn inconsistent(&mut self, n: &[f64; 6], updates: u32, dt: f64) -> bool {
+    /// [`CONSISTENCY_TAU`] (`c ← c + a (n − c)`, `a = dt / (τ + dt)`), with the variance
+    /// `v` that `c` has under the model, where `n` has unit variance from row to row
+    /// (`v ← (1 − a)² v + a²`, about `dt / (2τ)`), and tells whether the largest `c² / v`
+    /// is beyond [`CONSISTENCY_LIMIT`]. The model's noise is a density (`R = r / dt`), so
+    /// `v` is what a consistent channel's `c²` stays near whatever the rows' `dt`: a short
+    /// row moves both little. On the simulated gloves and leg (`rig_joints`, seeds 1-6,
+    /// every case) `c² / v` stays below 300 (7 but for the biases to 3°/s and the leg,
+    /// while their filters learn the biases). Rows that contradict the estimate grossly (a
+    /// sensor that slipped in its strap, readings no rig gives) pass the limit, 1000,
+    /// within a few rows; a steady disagreement `e` when `e²` passes about `500 r / τ` (a
+    /// hinge's axes with the defaults: 14°).
+    fn inconsistent(&mut self, n: &[Option<f64>; 6], dt: f64) -> bool {
         let a = dt / (CONSISTENCY_TAU + dt);
         let mut worst: f64 = 0.0;
         for c in 0..6 {
-            if updates & (1 << c) != 0 {
-                self.consistency[c] += a * (n[c] - self.consistency[c]);
-                worst = worst.max(self.consistency[c] * self.consistency[c]);
+            if let Some(n) = n[c] {
+                self.consistency[c] += a * (n - self.consistency[c]);
+                self.consistency_var[c] = (1.0 - a) * (1.0 - a) * self.consistency_var[c] + a * a;
+                worst = worst.max(self.consistency[c] * self.consistency[c] / self.consistency_var[c]);
             }
         }
-        worst * 2.0 * CONSISTENCY_TAU / dt > CONSISTENCY_LIMIT
+        worst > CONSISTENCY_LIMIT
     }
 
     /// While the joint's rows contradict its estimate ([`JointEstimator::inconsistent`]),
-    /// each variance is held at least at its initial value, `P ← P + diag(max(0, σ₀ᵢ² −
+    /// each variance is held at least at its initial value in the current tuning (a
+    /// partial start: a `*_std0` set since applies here too), `P ← P + diag(max(0, σ₀ᵢ² −
     /// Pᵢᵢ))` (positive semi-definite and symmetric as before): an estimate sure of a wrong
     /// state (axes turned by contradicting rows, with `q_axis` 0 nothing widens them
     /// again) would otherwise down-weight the good rows that follow and take hours to
@@ -922,7 +935,7 @@ impl JointEstimator {
     /// gain `f K`, and the covariance what that gain removes (Joseph's form,
     /// `P ← P − (2f − f²) P hᵀ h P / S`): the estimate stays as uncertain as the step it
     /// did not take, and goes on at the bound.
-    fn scalar_update(&mut self, h: &[f64; N], nu: f64, r: f64, dx: &mut [f64; N], step: f64) -> f64 {
+    fn scalar_update(&mut self, h: &[f64; N], nu: f64, r: f64, dx: &mut [f64; N], step: f64) -> Option<f64> {
         let mut ph = [0.0; N];
         for i in 0..N {
             ph[i] = (0..N).map(|k| self.p[i][k] * h[k]).sum();
@@ -935,7 +948,7 @@ impl JointEstimator {
             s = hph + r * nu * nu / (g2 * s);
         }
         if !(s.is_finite() && s > 0.0 && nu.is_finite()) {
-            return 0.0;
+            return None;
         }
         let normalized = (nu / (hph + r).sqrt()).clamp(-CONSISTENCY_MAX_NU, CONSISTENCY_MAX_NU);
         let mut f: f64 = 1.0;
@@ -960,7 +973,7 @@ impl JointEstimator {
         for i in 0..N {
             self.p[i][i] = self.p[i][i].max(0.0);
         }
-        normalized
+        Some(normalized)
     }
 }
 
@@ -993,14 +1006,22 @@ impl JointEstimator {
         self.prev_q = had.then_some((qp, qc));
         c.f64(&mut self.rating);
         c.f64(&mut self.info_scale);
-        for v in &mut self.consistency {
+        for v in self.consistency.iter_mut().chain(&mut self.consistency_var) {
             c.f64(v);
         }
     }
 
+    /// For tests: the variance of state `i`.
+    #[cfg(test)]
+    pub(crate) fn variance(&self, i: usize) -> f64 {
+        self.p[i][i]
+    }
+
     /// For tests: states no estimate could hold, each finite (so that only `holds`
     /// refuses them): a negative variance, a tilt beyond its bound, an indefinite
-    /// covariance (a correlation of 1.004), an asymmetric one.
+    /// covariance (a correlation of 1.004), an asymmetric one, a residual bias, a
+    /// low-passed innovation and its variance just beyond their bounds, a previous
+    /// orientation that is not unit.
     #[cfg(test)]
     pub(crate) fn corrupt_for_test(&mut self, how: usize) {
         match how {
@@ -1011,7 +1032,12 @@ impl JointEstimator {
                 self.p[UP_][UP_ + 1] = c;
                 self.p[UP_ + 1][UP_] = c;
             }
-            _ => self.p[0][5] += 1e-9,
+            3 => self.p[0][5] += 1e-9,
+            // Just beyond the bounds `bound_states` and the consistency check keep.
+            4 => self.x[BP] = largest_std(BP) * (1.0 + 1e-15),
+            5 => self.consistency[3] = -CONSISTENCY_MAX_NU * (1.0 + 1e-15),
+            6 => self.consistency_var[0] = 1.0 + 1e-15,
+            _ => self.prev_q = Some((Quat::new(1.0, 1e-4, 0.0, 0.0), Quat::IDENTITY)),
         }
     }
 
@@ -1024,8 +1050,8 @@ impl JointEstimator {
     /// factorisation of P + 1e-9 max(P_ii) I), with variances up to 1e6: anything else
     /// could make an innovation's variance negative, and the joint skip every update; a
     /// rating in [0, 1], a rest time not negative, a positive information scale, the
-    /// low-passed normalized innovations within their bound ([`CONSISTENCY_MAX_NU`]), unit
-    /// previous orientations, and a finite correction.
+    /// low-passed normalized innovations within their bound ([`CONSISTENCY_MAX_NU`]) and
+    /// their variances in [0, 1], unit previous orientations, and a finite correction.
     pub(crate) fn holds(&self) -> bool {
         let unit = |v: Vec3| (v.norm_squared() - 1.0).abs() < 1e-9;
         let axes = [self.p_axis, self.c_axis].iter().all(|a| {
@@ -1042,6 +1068,7 @@ impl JointEstimator {
             && self.still >= 0.0
             && self.info_scale > 0.0
             && self.consistency.iter().all(|c| c.abs() <= CONSISTENCY_MAX_NU)
+            && self.consistency_var.iter().all(|v| (0.0..=1.0).contains(v))
             && self.prev_q.map_or(true, |(a, b)| [a, b].iter().all(|q| (q.norm_squared() - 1.0).abs() < 1e-9))
             && self.correction().is_finite()
     }

@@ -479,9 +479,10 @@ impl Joints {
     }
 
     /// Joint `k`'s observability rating in [0, 1]: how much its constraints told about
-    /// the relative heading over the last seconds (`rating_tau`). Near 0 at rest and while
-    /// a hinge's axis is vertical, when the relative heading is held; near 1 for a
-    /// horizontal axis in motion.
+    /// the relative heading over the last seconds (`rating_tau`). Near 0 at rest (when
+    /// only the filters' measured drift moves the relative heading) and while a hinge's
+    /// axis is vertical (when it is held on the drift estimate); near 1 for a horizontal
+    /// axis in motion.
     pub fn rating(&self, k: usize) -> f64 {
         self.estimators[k].rating()
     }
@@ -516,7 +517,9 @@ impl Joints {
 
     /// Sets the tuning's field called `name` ([`JOINT_PARAMS`]): every joint takes it from
     /// its next update on, and an initial standard deviation (`*_std0`) when its estimate
-    /// next starts ([`Joints::reset`]; before the first update, at once). The estimates
+    /// next starts ([`Joints::reset`]; before the first update, at once; and while rows
+    /// contradict a joint's estimate, which then widens its variances to the initial
+    /// ones again, as from a start). The estimates
     /// are kept. A blob saved with another tuning no longer loads. `UnknownParam` or
     /// `ParamOutOfRange` change nothing.
     pub fn set_param(&mut self, name: &str, value: f64) -> Result<(), JointError> {
