@@ -308,8 +308,9 @@ fn usable(h: *mut OrientFilter, what: &str) -> Result<(), String> {
     let copy = copy_of(kind_of(h), &blob(h), what);
     let s = good_sample(h);
     // An accelerometer model promises usable readings for standard gravity only
-    // (orient_filter_set_sensor_model); under a full scale too small to read it, the
-    // half-scale reading good_sample gives may be one the model sends to zero.
+    // (orient_filter_set_sensor_model); under a full scale below twice gravity,
+    // good_sample reads half the full scale, less than gravity, which the model may send
+    // to zero.
     let mut model = MaybeUninit::<OrientSensorModel>::uninit();
     let modelled =
         unsafe { orient_filter_sensor_model(copy, ORIENT_SENSOR_ACCEL, model.as_mut_ptr()) } == OrientStatus::Ok;
