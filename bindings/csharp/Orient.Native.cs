@@ -1868,7 +1868,8 @@ namespace Orient.Native
         /// them with their ranges) for every joint of the rig, the estimates kept: taken from the
         /// next orient_joints_update on, and an initial standard deviation (a name ending in
         /// `_std0`) when the estimates next start (orient_joints_reset; before the first update,
-        /// at once: for filters whose headings were not aligned, heading_std0 as far apart as they
+        /// at once; and while rows contradict a joint's estimate, which then widens its variances
+        /// to the initial ones again: for filters whose headings were not aligned, heading_std0 as far apart as they
         /// may be, and a hinge finds 30 degrees within a degree in a minute of motion; align
         /// larger offsets first, orient_rig_align_heading). A blob saved with
         /// another value no longer loads (orient_joints_load: INVALID_STATE). INVALID_HANDLE for

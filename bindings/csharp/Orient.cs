@@ -1167,8 +1167,9 @@ namespace Orient
 
         /// <summary>The joint parameter called `name` (see <see cref="Parameters"/>), shared
         /// by every joint of the rig. Setting it takes effect from the next update (an
-        /// initial standard deviation, a name ending in _std0, at the next Reset, or at once
-        /// before the first update); a name or value out of range throws OrientException
+        /// initial standard deviation, a name ending in _std0, at the next Reset, at once
+        /// before the first update, and while rows contradict a joint's estimate, which then
+        /// widens its variances to the initial ones again); a name or value out of range throws OrientException
         /// (UnknownParam, ParamOutOfRange) with nothing changed.</summary>
         public double this[string name]
         {

@@ -379,7 +379,8 @@ pub const JOINT_PARAMS: [ParamSpec; 21] = [
         "rad^2/s",
         "Noise density of the relative heading drift measured at rest (each filter's \
         heading turns at its residual gyroscope bias while its sensor is still; rest is both \
-        gyroscopes below rest_gyro, so a slow relative turn within it is taken for drift, and \
+        gyroscopes below rest_gyro, so a slow relative turn about the vertical within it is taken \
+        for drift, and \
         so is a 9D filter's magnetometer correction); 0 leaves the measurement out; default \
         1e-7 (orient: about a MEMS gyroscope's noise density squared, chosen on simulated \
         gloves).",
@@ -824,9 +825,11 @@ impl JointEstimator {
     /// (`v ← (1 − a)² v + a²`, about `dt / (2τ)`), and tells whether the largest `c² / v`
     /// is beyond [`CONSISTENCY_LIMIT`]. The model's noise is a density (`R = r / dt`), so
     /// `v` is what a consistent channel's `c²` stays near whatever the rows' `dt`: a short
-    /// row moves both little. On the simulated gloves and leg (`rig_joints`, seeds 1-6,
-    /// every case) `c² / v` stays below 300 (7 but for the biases to 3°/s and the leg,
-    /// while their filters learn the biases). Rows that contradict the estimate grossly (a
+    /// row moves both little. Once `v` has settled (after a few τ; then `c² / v` is
+    /// `c² 2τ / dt` within 0.1 % at 100 Hz), on the simulated gloves and leg
+    /// (`rig_joints`, seeds 1-6, every case) it stays below 300 (7 but for the biases to
+    /// 3°/s and the leg, while their filters learn the biases); in the first rows after a
+    /// start it is `n²` and larger, where a widening changes little. Rows that contradict the estimate grossly (a
     /// sensor that slipped in its strap, readings no rig gives) pass the limit, 1000,
     /// within a few rows; a steady disagreement `e` when `e²` passes about `500 r / τ` (a
     /// hinge's axes with the defaults: 14°).

@@ -874,8 +874,8 @@ fn a_dt_outside_its_range_holds_the_joint() {
 /// Rows that contradict themselves for minutes (rates that disagree with the
 /// orientations, forces no joint centre feels, orientations at random) drove the residual
 /// biases to radians a second and the tilt to turn the child upside down, so that the
-/// joint's own blob no longer loaded (with the random walks, the residual biases' and
-/// lever arms' initial deviations and max_rate at their maxima); and with the defaults
+/// joint's own blob no longer loaded (with the random walks but q_heading's, the residual
+/// biases', lever arms' and heading's initial deviations, and max_rate at their maxima); and with the defaults
 /// they turned the hinge's axes 60 deg, which good rows then moved back by a degree or two
 /// a minute (6 deg off after two minutes). Both hold now.
 #[test]
