@@ -525,6 +525,11 @@ fn bounded(i: usize) -> bool {
     (BP..UP_).contains(&i) || (OP..N).contains(&i)
 }
 
+/// A quaternion a blob may hold where the joints keep unit ones (a filter's orientation).
+pub(crate) fn is_unit(q: Quat) -> bool {
+    (q.norm_squared() - 1.0).abs() < 1e-9
+}
+
 fn comp(v: Vec3, i: usize) -> f64 {
     [v.x, v.y, v.z][i]
 }
@@ -1072,7 +1077,7 @@ impl JointEstimator {
             && self.info_scale > 0.0
             && self.consistency.iter().all(|c| c.abs() <= CONSISTENCY_MAX_NU)
             && self.consistency_var.iter().all(|v| (0.0..=1.0).contains(v))
-            && self.prev_q.map_or(true, |(a, b)| [a, b].iter().all(|q| (q.norm_squared() - 1.0).abs() < 1e-9))
+            && self.prev_q.map_or(true, |(a, b)| is_unit(a) && is_unit(b))
             && self.correction().is_finite()
     }
 

@@ -636,7 +636,7 @@ impl Joints {
         for s in 0..segments {
             let mut q = Quat::IDENTITY;
             r.quat(&mut q);
-            same &= (q.norm_squared() - 1.0).abs() < 1e-9;
+            same &= estimator::is_unit(q);
             if take {
                 self.raw[s] = q;
             }
