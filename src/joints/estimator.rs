@@ -24,8 +24,12 @@
 //! Prediction and the constraints below only while a sensor turns: at rest the joint holds
 //! (the constraints' errors, laxity and soft tissue, are then the same row after row, and
 //! the joint centre's force is gravity on both sides, which says nothing about heading)
-//! and measures the filters' drift instead (the last item below). Prediction over `dt`: `Δ ← Δ + dt (g_c·β_c − g_p·β_p)`, `P ← F P Fᵀ + Q dt`;
-//! then each variance is held to the square of the largest initial standard deviation
+//! and measures the filters' drift instead (the last item below). Prediction over `dt`:
+//! `Δ ← Δ + dt (g_c·β_c − g_p·β_p)`; each residual bias loses its horizontal part at the
+//! rate `λ` (`bias_learn_rate`) at which a filter learns that part of its own bias in
+//! motion from gravity (the inclination correction measures it), while the vertical part,
+//! which gravity does not show, stays: `β ← A β` with `A = I − λ dt (I − g gᵀ)`;
+//! `P ← F P Fᵀ + Q dt`; then each variance is held to the square of the largest initial standard deviation
 //! [`JOINT_PARAMS`] accepts for its state (4 rad for `Δ`) by `P ← D P D`: a state nothing
 //! observes for hours keeps a covariance a blob loads with.
 //!
@@ -146,6 +150,9 @@ pub struct JointParams {
     /// Noise density (rad²/s) of the two filters' relative heading drift measured at
     /// rest; 0 leaves the measurement out.
     pub r_drift: f64,
+    /// The rate (1/s) at which each sensor's filter learns the horizontal part of its
+    /// gyroscope bias in motion; 0 for filters that do not learn their bias in motion.
+    pub bias_learn_rate: f64,
 }
 
 impl Default for JointParams {
@@ -173,6 +180,7 @@ impl Default for JointParams {
             gate: 0.0,
             rating_tau: 0.0,
             r_drift: 0.0,
+            bias_learn_rate: 0.0,
         };
         for (spec, v) in JOINT_PARAMS.iter().zip(p.fields_mut()) {
             *v = spec.default;
@@ -185,7 +193,7 @@ impl Default for JointParams {
 /// accepted range, in the order of [`JointParams::fields_mut`] (and of a joint blob).
 /// The C ABI's `orient_joint_param_info`, `orient_joints_set_param` and the bindings
 /// read this table, and [`JointParams::default`] takes its defaults.
-pub const JOINT_PARAMS: [ParamSpec; 21] = [
+pub const JOINT_PARAMS: [ParamSpec; 22] = [
     spec(
         0,
         "r_hinge",
@@ -388,6 +396,19 @@ pub const JOINT_PARAMS: [ParamSpec; 21] = [
         0.0,
         1.0,
     ),
+    spec(
+        21,
+        "bias_learn_rate",
+        "1/s",
+        "The rate at which each sensor's filter learns the horizontal part of its own \
+        gyroscope bias in motion (the part gravity shows it): the joint's residual biases lose \
+        their horizontal part at this rate and keep their vertical part; 0 for filters that \
+        learn no bias in motion; default 0.05 (orient: chosen on simulated gloves with the \
+        recommended kind under orient_config_for_joints()).",
+        0.05,
+        0.0,
+        10.0,
+    ),
 ];
 
 const DEG: f64 = core::f64::consts::PI / 180.0;
@@ -407,7 +428,7 @@ const fn spec(
 
 impl JointParams {
     /// Every field in [`JOINT_PARAMS`]' order.
-    pub fn fields_mut(&mut self) -> [&mut f64; 21] {
+    pub fn fields_mut(&mut self) -> [&mut f64; 22] {
         let p = self;
         [
             &mut p.r_hinge,
@@ -431,6 +452,7 @@ impl JointParams {
             &mut p.gate,
             &mut p.rating_tau,
             &mut p.r_drift,
+            &mut p.bias_learn_rate,
         ]
     }
 
@@ -906,7 +928,8 @@ impl JointEstimator {
     }
 
     /// `Δ ← Δ + dt fᵀx`, `P ← F P Fᵀ + Q dt` with `F = I + dt e₀ fᵀ`,
-    /// `f = [0, −g_p, g_c, 0 …]`.
+    /// `f = [0, −g_p, g_c, 0 …]`, the filters' learning ([`JointEstimator::learn`]) between
+    /// the two.
     fn predict(&mut self, dt: f64) {
         let prm = self.params;
         let mut f = [0.0; N];
@@ -926,6 +949,12 @@ impl JointEstimator {
             self.p[k][0] += dt * v[k];
         }
         self.p[0][0] += dt * dt * fpf + prm.q_heading * dt;
+        if prm.bias_learn_rate > 0.0 {
+            // The share learned over dt, exactly: 1 − e^(−λ dt), in [0, 1) for any rate.
+            let l = -libm::expm1(-prm.bias_learn_rate * dt);
+            self.learn(BP, self.g[0], l);
+            self.learn(BC, self.g[1], l);
+        }
         for k in BP..UP_ {
             self.p[k][k] += prm.q_rate * dt;
         }
@@ -934,6 +963,39 @@ impl JointEstimator {
         }
         for k in OP..TX {
             self.p[k][k] += prm.q_lever * dt;
+        }
+    }
+
+    /// A filter's learning over one step for the residual bias at `o`, `g` the vertical in
+    /// its sensor's frame and `l = 1 − e^(−λ dt)` the share learned: `β ← A β`, `P ← T P Tᵀ` with `T` the identity but
+    /// for `A = I − l (I − g gᵀ)` on the bias's three states.
+    fn learn(&mut self, o: usize, g: Vec3, l: f64) {
+        let mut a = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                let id = if i == j { 1.0 } else { 0.0 };
+                a[i][j] = id - l * (id - comp(g, i) * comp(g, j));
+            }
+        }
+        let times_a =
+            |v: [f64; 3]| -> [f64; 3] { core::array::from_fn(|i| (0..3).map(|j| a[i][j] * v[j]).sum()) };
+        let beta = times_a([self.x[o], self.x[o + 1], self.x[o + 2]]);
+        self.x[o..o + 3].copy_from_slice(&beta);
+        for c in 0..N {
+            let col = times_a([self.p[o][c], self.p[o + 1][c], self.p[o + 2][c]]);
+            for i in 0..3 {
+                self.p[o + i][c] = col[i];
+            }
+        }
+        for row in self.p.iter_mut() {
+            let r = times_a([row[o], row[o + 1], row[o + 2]]);
+            row[o..o + 3].copy_from_slice(&r);
+        }
+        // The block's own entries rounded differently on the two sides: symmetric again.
+        for i in o..o + 3 {
+            for c in 0..N {
+                self.p[c][i] = self.p[i][c];
+            }
         }
     }
 
@@ -1144,5 +1206,74 @@ mod tests {
         }
         // Most of the heading's variance is left: the next samples go on at the bound.
         assert!(e.p[0][0] > 0.98 * before.p[0][0], "{} of {}", e.p[0][0], before.p[0][0]);
+    }
+
+    /// The filters' learning in the prediction, term by term: each residual bias keeps
+    /// its vertical part `g (g·β)` and loses `1 − e^(−λ dt)` of its horizontal part, and
+    /// the covariance is `T P Tᵀ` with `A = I − l (I − g gᵀ)` on each bias's block; the
+    /// relative heading moves with the biases before the step, as without the learning.
+    #[test]
+    fn the_prediction_takes_the_filters_learning_of_their_horizontal_bias() {
+        let x = Vec3::new(1.0, 0.0, 0.0);
+        let (lambda, dt) = (0.5, 0.01);
+        let run = |bias_learn_rate: f64| {
+            let params = JointParams { bias_learn_rate, ..JointParams::default() };
+            let mut e = JointEstimator::new(JointKind::Hinge, x, x, params);
+            let b = [Vec3::new(0.01, -0.02, 0.03), Vec3::new(-0.004, 0.005, 0.006)];
+            for (o, v) in [(BP, b[0]), (BC, b[1])] {
+                e.x[o..o + 3].copy_from_slice(&[v.x, v.y, v.z]);
+            }
+            // A full covariance: every entry coupled to the biases.
+            for i in 0..N {
+                for k in 0..N {
+                    e.p[i][k] += 1e-6 * (1.0 + ((i * k) % 7) as f64) * if i == k { 10.0 } else { 0.1 };
+                }
+            }
+            e.g = [Vec3::new(0.3, -0.4, 0.5).normalized(), Vec3::new(-0.6, 0.0, 0.8)];
+            let before = e.clone();
+            e.predict(dt);
+            (before, e)
+        };
+        let (b0, plain) = run(0.0);
+        let (before, e) = run(lambda);
+        let l = 1.0 - (-lambda * dt).exp();
+        // T, the readable form: the identity but for A on each bias's block.
+        let mut t = [[0.0; N]; N];
+        for i in 0..N {
+            t[i][i] = 1.0;
+        }
+        for (o, g) in [(BP, before.g[0]), (BC, before.g[1])] {
+            let beta = Vec3::new(before.x[o], before.x[o + 1], before.x[o + 2]);
+            let vertical = g * g.dot(beta);
+            let want = vertical + (beta - vertical) * (1.0 - l);
+            for i in 0..3 {
+                assert!((e.x[o + i] - comp(want, i)).abs() <= 1e-17, "β[{}]", o + i);
+                for j in 0..3 {
+                    let id = if i == j { 1.0 } else { 0.0 };
+                    t[o + i][o + j] = id - l * (id - comp(g, i) * comp(g, j));
+                }
+            }
+        }
+        assert!(e.covariance_holds());
+        // Without the learning the prediction leaves the biases; Δ moves the same.
+        assert_eq!(plain.x[BP..UP_], b0.x[BP..UP_]);
+        assert_eq!(e.x[0].to_bits(), plain.x[0].to_bits());
+        // P after the heading's step (the prediction without learning, less the biases'
+        // random walk, which comes after the learning), then T P Tᵀ, then the walk.
+        let walk = JointParams::default().q_rate * dt;
+        let mut q = plain.p;
+        for k in BP..UP_ {
+            q[k][k] -= walk;
+        }
+        for i in 0..N {
+            for k in 0..N {
+                let mut want: f64 =
+                    (0..N).map(|a| (0..N).map(|c| t[i][a] * q[a][c] * t[k][c]).sum::<f64>()).sum();
+                if i == k && (BP..UP_).contains(&i) {
+                    want += walk;
+                }
+                assert!((e.p[i][k] - want).abs() <= 1e-18, "P[{i}][{k}]: {} vs {want}", e.p[i][k]);
+            }
+        }
     }
 }

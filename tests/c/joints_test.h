@@ -294,7 +294,7 @@ static void joint_params(void) {
     size_t size = 0, written = 0;
     unsigned char *blob;
     CHECK_STATUS(orient_joint_param_count(&count), ORIENT_STATUS_OK);
-    CHECK(count == 21);
+    CHECK(count == 22);
     CHECK_STATUS(orient_joint_param_count(NULL), ORIENT_STATUS_NULL_POINTER);
     CHECK_STATUS(orient_joints_new(&j, 1, 2, NULL, &joints), ORIENT_STATUS_OK);
     for (i = 0; i < count; i++) {

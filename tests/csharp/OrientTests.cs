@@ -530,7 +530,7 @@ public static class OrientTests
             joints.Reset();
             Check(joints.RelativeHeading(0, out sigma) == 0.0, "OrientJoints: reset");
             var jp = OrientJoints.Parameters();
-            Check(jp.Count == 21 && jp[18].Name == "gate" && jp[18].Default == 3.0, "OrientJoints: the parameter table");
+            Check(jp.Count == 22 && jp[18].Name == "gate" && jp[18].Default == 3.0, "OrientJoints: the parameter table");
             Check(joints["gate"] == 3.0, "OrientJoints: a parameter's default");
             joints["gate"] = 2.5;
             Check(joints["gate"] == 2.5, "OrientJoints: a parameter set");

@@ -159,7 +159,7 @@ def test_a_filter_for_joints_takes_the_sensor_settings():
 
 def test_the_joint_parameters_are_listed_read_and_set_by_name():
     table = orient.joint_params()
-    assert len(table) == 21 and len({p.name for p in table}) == 21
+    assert len(table) == 22 and len({p.name for p in table}) == 22
     x = [1.0, 0.0, 0.0]
     with orient.Joints([("hinge", 0, 1, x, x)], 2, params={"heading_std0": 0.3}) as joints:
         for p in table:
