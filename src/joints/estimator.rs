@@ -28,8 +28,9 @@
 //! `Δ ← Δ + dt (g_c·β_c − g_p·β_p)`; each residual bias loses its horizontal part at the
 //! rate `λ` (`bias_learn_rate`) at which a filter learns that part of its own bias in
 //! motion from gravity (the inclination correction measures it), while the vertical part,
-//! which gravity does not show, stays: `β ← A β` with `A = I − λ dt (I − g gᵀ)`;
-//! `P ← F P Fᵀ + Q dt`; then each variance is held to the square of the largest initial standard deviation
+//! which gravity does not show, stays: `β ← A β` with `A = I − l (I − g gᵀ)`, `l = 1 −
+//! e^(−λ dt)` the share learned over `dt`; `P ← T F P Fᵀ Tᵀ + Q dt` (`F` moves `Δ` with the
+//! biases before the step, `T` is `A` on each bias's block); then each variance is held to the square of the largest initial standard deviation
 //! [`JOINT_PARAMS`] accepts for its state (4 rad for `Δ`) by `P ← D P D`: a state nothing
 //! observes for hours keeps a covariance a blob loads with.
 //!
@@ -403,8 +404,9 @@ pub const JOINT_PARAMS: [ParamSpec; 22] = [
         "The rate at which each sensor's filter learns the horizontal part of its own \
         gyroscope bias in motion (the part gravity shows it): the joint's residual biases lose \
         their horizontal part at this rate and keep their vertical part; 0 for filters that \
-        learn no bias in motion; default 0.05 (orient: chosen on simulated gloves with the \
-        recommended kind under orient_config_for_joints()).",
+        learn no bias in motion (Madgwick, Mahony without its integral gain, the complementary \
+        filter and GMVDK learn theirs at rest or not at all); default 0.05 (orient: fitted on \
+        simulated gloves with the recommended kind under orient_config_for_joints()).",
         0.05,
         0.0,
         10.0,
@@ -950,7 +952,8 @@ impl JointEstimator {
         }
         self.p[0][0] += dt * dt * fpf + prm.q_heading * dt;
         if prm.bias_learn_rate > 0.0 {
-            // The share learned over dt, exactly: 1 − e^(−λ dt), in [0, 1) for any rate.
+            // The share learned over dt, exactly: 1 − e^(−λ dt), in [0, 1) for every rate
+            // and step the table and the update accept (λ ≤ 10, dt < 1 s).
             let l = -libm::expm1(-prm.bias_learn_rate * dt);
             self.learn(BP, self.g[0], l);
             self.learn(BC, self.g[1], l);
@@ -1247,7 +1250,7 @@ mod tests {
             let vertical = g * g.dot(beta);
             let want = vertical + (beta - vertical) * (1.0 - l);
             for i in 0..3 {
-                assert!((e.x[o + i] - comp(want, i)).abs() <= 1e-17, "β[{}]", o + i);
+                assert!((e.x[o + i] - comp(want, i)).abs() <= 1e-15 * beta.norm(), "β[{}]", o + i);
                 for j in 0..3 {
                     let id = if i == j { 1.0 } else { 0.0 };
                     t[o + i][o + j] = id - l * (id - comp(g, i) * comp(g, j));

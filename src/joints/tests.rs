@@ -192,10 +192,10 @@ fn at_rest_the_filters_drift_is_measured() {
         }
         (sum / n).sqrt()
     };
-    let run = |r_drift: f64| {
-        // A drift that stays whatever the sensor turns: the joint that expects it
-        // (bias_learn_rate 0, as in the test above).
-        let params = JointParams { r_drift, bias_learn_rate: 0.0, ..JointParams::default() };
+    // A drift that stays whatever the sensor turns: the joint that expects it
+    // (bias_learn_rate 0, as in the test above).
+    let steady = JointParams { bias_learn_rate: 0.0, ..JointParams::default() };
+    let run = |params: JointParams| {
         let mut joints = Joints::new(2, &[hinge(0, 1, X)], &[], params).unwrap();
         moved(&mut joints, 0.0, 60.0, &|t| drift * t);
         let learned = joints.drift(0);
@@ -211,8 +211,11 @@ fn at_rest_the_filters_drift_is_measured() {
         let rms = moved(&mut joints, 60.0, 70.0, &|_| drift * 60.0);
         (learned, after_rest, rms)
     };
-    let (learned, measured, rms_with) = run(JointParams::default().r_drift);
-    let (_, kept, rms_without) = run(0.0);
+    let (learned, measured, rms_with) = run(steady);
+    let (_, kept, rms_without) = run(JointParams { r_drift: 0.0, ..steady });
+    // With every default the rest measures what the motion left just as well.
+    let (_, measured_default, _) = run(JointParams::default());
+    assert!(measured_default.abs() < 0.01 * drift, "{measured_default}");
     // The drift learned in motion: the child's filter's 0.5 deg/s, negated.
     assert!((learned + drift).abs() < 0.1 * drift, "{learned}");
     // Measured at rest: none left (0.0003 deg/s); without the measurement, kept.
