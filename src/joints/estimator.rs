@@ -405,8 +405,9 @@ pub const JOINT_PARAMS: [ParamSpec; 22] = [
         gyroscope bias in motion (the part gravity shows it): the joint's residual biases lose \
         their horizontal part at this rate and keep their vertical part; 0 for filters that \
         learn no bias in motion (Madgwick, Mahony without its integral gain, the complementary \
-        filter and GMVDK learn theirs at rest or not at all); default 0.05 (orient: fitted on \
-        simulated gloves with the recommended kind under orient_config_for_joints()).",
+        filter and GMVDK learn theirs at rest, in still runs, or not at all; the recommended \
+        kind and the EKF learn in motion); default 0.05 (orient: fitted on simulated gloves \
+        and a leg with the recommended kind under orient_config_for_joints()).",
         0.05,
         0.0,
         10.0,
