@@ -30,9 +30,10 @@
 //! motion from gravity (the inclination correction measures it), while the vertical part,
 //! which gravity does not show, stays: `β ← A β` with `A = I − l (I − g gᵀ)`, `l = 1 −
 //! e^(−λ dt)` the share learned over `dt`; `P ← T F P Fᵀ Tᵀ + Q dt` (`F` moves `Δ` with the
-//! biases before the step, `T` is `A` on each bias's block); then each variance is held to the square of the largest initial standard deviation
-//! [`JOINT_PARAMS`] accepts for its state (4 rad for `Δ`) by `P ← D P D`: a state nothing
-//! observes for hours keeps a covariance a blob loads with.
+//! biases before the step, `T` is `A` on each bias's block); then each variance is held to
+//! the square of the largest initial standard deviation [`JOINT_PARAMS`] accepts for its
+//! state (4 rad for `Δ`) by `P ← D P D`: a state nothing observes for hours keeps a
+//! covariance a blob loads with.
 //!
 //! Measurements, with the earth-frame axes `e_p = R(q_p) j_p` and
 //! `e_c = R(T R_z(Δ)) R(q_c) j_c`:
@@ -971,8 +972,9 @@ impl JointEstimator {
     }
 
     /// A filter's learning over one step for the residual bias at `o`, `g` the vertical in
-    /// its sensor's frame and `l = 1 − e^(−λ dt)` the share learned: `β ← A β`, `P ← T P Tᵀ` with `T` the identity but
-    /// for `A = I − l (I − g gᵀ)` on the bias's three states.
+    /// its sensor's frame and `l = 1 − e^(−λ dt)` the share learned: `β ← A β`,
+    /// `P ← T P Tᵀ` with `T` the identity but for `A = I − l (I − g gᵀ)` on the bias's
+    /// three states.
     fn learn(&mut self, o: usize, g: Vec3, l: f64) {
         let mut a = [[0.0; 3]; 3];
         for i in 0..3 {
