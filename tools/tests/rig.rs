@@ -296,20 +296,32 @@ fn replay_rig_scores_what_a_direct_computation_gives() {
     assert!(joints.lines().next().unwrap().contains("index_mcp_1,index_mcp_2,index_pip"));
     // The default is the joints; --no-joints every sensor alone, further apart.
     assert!(stdout.contains("robust 6D (joints)"), "{stdout}");
-    let alone = Command::new(env!("CARGO_BIN_EXE_replay"))
-        .args(["--rig", dir.join("in/rig.json").to_str().unwrap(), "--out-dir"])
-        .arg(dir.join("alone"))
-        .args(["--no-mag", "--no-joints"])
-        .output()
-        .unwrap();
-    let alone = String::from_utf8_lossy(&alone.stdout);
+    // Each sensor's estimate as replay writes it into OUT/NAME with `extra`, and stdout.
+    let replay = |name: &str, extra: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_replay"))
+            .args(["--rig", dir.join("in/rig.json").to_str().unwrap(), "--out-dir"])
+            .arg(dir.join(name))
+            .arg("--no-mag")
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let est: Vec<_> = spec
+            .sensors
+            .iter()
+            .map(|s| read_quats(&dir.join(name).join(format!("{}.csv", s.name)), q).1)
+            .collect();
+        (String::from_utf8_lossy(&o.stdout).into_owned(), est)
+    };
+    let (alone, est) = replay("alone", &["--no-joints"]);
     assert!(alone.contains("robust 6D (every sensor alone)"), "{alone}");
-    let mut est = Vec::new();
-    for s in &spec.sensors {
-        est.push(read_quats(&dir.join("alone").join(format!("{}.csv", s.name)), q).1);
-    }
     let apart = direct_scores(spec, &t, &est, &truth);
     assert!(direct.0 < 0.5 * apart.0, "joints {direct:?}, alone {apart:?}");
+    // --joint-set reaches the joints: corrections bounded to 1e-6 rad/s leave the
+    // segments nearly as far apart as alone.
+    let (_, est) = replay("held", &["--joint-set", "max_rate=1e-6"]);
+    let held = direct_scores(spec, &t, &est, &truth);
+    assert!(held.0 > 2.0 * direct.0, "held {held:?}, joints {direct:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -353,6 +365,13 @@ fn replay_rig_refuses_bad_descriptions_and_arguments_with_status_2() {
         (rig(&hinge("a", "b"), "b.csv"), vec![], "--out-dir"),
         (rig(&hinge("a", "b"), "b.csv"), vec!["--out-dir", out, "--kind", "kalman"], "unknown kind"),
         (rig(&hinge("a", "b"), "b.csv"), vec!["--out-dir", out, "--svg", "x.svg"], "no truth"),
+        (
+            rig(&hinge("a", "b"), "b.csv"),
+            vec!["--out-dir", out, "--joint-set", "beta=1"],
+            "no joint parameter",
+        ),
+        (rig(&hinge("a", "b"), "b.csv"), vec!["--out-dir", out, "--joint-set", "gate=0"], "outside [0.1"),
+        (rig(&hinge("a", "b"), "b.csv"), vec!["--out-dir", out, "--joint-set", "gate"], "KEY=VALUE"),
     ] {
         let o = run(&json, &extra);
         let err = String::from_utf8_lossy(&o.stderr);

@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! replay --rig DIR/rig.json --out-dir OUT [--no-mag] [--kind KIND] [--set KEY=VALUE]...
-//!     [--no-align] [--no-joints] [--svg FILE]
+//!     [--joint-set KEY=VALUE]... [--no-align] [--no-joints] [--svg FILE]
 //! ```
 //!
 //! - KIND: one of orient's kinds (default robust), or `vqf` (vqf-rs, its defaults) to
@@ -10,7 +10,8 @@
 //! - Headings are aligned once, at the last row of the reference pose (every segment
 //!   turned to the segments' mean heading, `Filter::align_rig_heading`), unless
 //!   `--no-align` or the description has no reference pose.
-//! - The joints (`orient::joints`, default tuning) then hold every child to its parent:
+//! - The joints (`orient::joints`, default tuning, `--joint-set` changes a parameter of
+//!   `orient::joints::JOINT_PARAMS` by name; repeatable) then hold every child to its parent:
 //!   each child's heading relative to its parent from the joint constraints, from the
 //!   alignment on (from the first row without one). The joints run on 6D estimates: every
 //!   magnetometer is left out, and the rig's common heading is the reference pose's (the
@@ -34,6 +35,7 @@
 //! `JointStage` (`orient_tools::joints`).
 
 use super::{fail, plot};
+use orient::joints::JOINT_PARAMS;
 use orient::{Config, Filter, Kind};
 use orient_tools::joints::{JointParams, Joints};
 use orient_tools::rig::{
@@ -45,7 +47,8 @@ use std::path::{Path, PathBuf};
 use std::process::exit;
 
 pub const USAGE: &str = "usage: replay --rig DIR/rig.json --out-dir OUT [--no-mag] [--kind KIND] \
-                         [--set KEY=VALUE]... [--no-align] [--no-joints] [--svg FILE]";
+                         [--set KEY=VALUE]... [--joint-set KEY=VALUE]... [--no-align] [--no-joints] \
+                         [--svg FILE]";
 
 struct Args {
     rig: PathBuf,
@@ -54,6 +57,8 @@ struct Args {
     /// None: VQF.
     kind: Option<Kind>,
     sets: Vec<(String, f64)>,
+    /// The joints' tuning: the defaults with each `--joint-set` applied.
+    joint_params: JointParams,
     align: bool,
     joints: bool,
     svg: Option<PathBuf>,
@@ -63,6 +68,7 @@ fn parse(args: Vec<String>) -> Args {
     let (mut rig, mut out_dir, mut no_mag, mut kind, mut sets, mut align, mut svg) =
         (None, None, false, Some(Kind::Robust), Vec::new(), true, None);
     let mut joints = true;
+    let mut joint_params = JointParams::default();
     let mut it = args.into_iter();
     while let Some(arg) = it.next() {
         let mut value =
@@ -83,15 +89,23 @@ fn parse(args: Vec<String>) -> Args {
                     })),
                 };
             }
-            "--set" => {
-                let v = value("--set");
-                let (key, val) =
-                    v.split_once('=').unwrap_or_else(|| fail(format!("--set wants KEY=VALUE, got '{v}'")));
-                let val: f64 = val
-                    .trim()
-                    .parse()
-                    .unwrap_or_else(|_| fail(format!("--set {key}: '{val}' is not a number")));
-                sets.push((key.trim().to_string(), val));
+            "--set" => sets.push(key_value("--set", &value("--set"))),
+            "--joint-set" => {
+                let (key, val) = key_value("--joint-set", &value("--joint-set"));
+                match joint_params.set(&key, val) {
+                    None => {
+                        let names: Vec<&str> = JOINT_PARAMS.iter().map(|p| p.name).collect();
+                        fail(format!(
+                            "--joint-set: no joint parameter '{key}' (one of: {})",
+                            names.join(", ")
+                        ))
+                    }
+                    Some(false) => {
+                        let p = JOINT_PARAMS.iter().find(|p| p.name == key).expect("set found it");
+                        fail(format!("--joint-set {key}={val}: outside [{}, {}] {}", p.min, p.max, p.unit))
+                    }
+                    Some(true) => {}
+                }
             }
             "--svg" => svg = Some(PathBuf::from(value("--svg"))),
             s => fail(format!("unknown argument '{s}' in rig mode\n{USAGE}")),
@@ -103,10 +117,20 @@ fn parse(args: Vec<String>) -> Args {
         no_mag,
         kind,
         sets,
+        joint_params,
         align,
         joints,
         svg,
     }
+}
+
+/// `KEY=VALUE` of `option`, the value a number.
+fn key_value(option: &str, v: &str) -> (String, f64) {
+    let (key, val) =
+        v.split_once('=').unwrap_or_else(|| fail(format!("{option} wants KEY=VALUE, got '{v}'")));
+    let val: f64 =
+        val.trim().parse().unwrap_or_else(|_| fail(format!("{option} {key}: '{val}' is not a number")));
+    (key.trim().to_string(), val)
 }
 
 fn write_csv(path: &Path, header: &str, rows: impl Iterator<Item = String>) -> std::io::Result<()> {
@@ -152,7 +176,7 @@ pub fn main(args: Vec<String>) {
     }
     let run = if args.joints && !spec.joints.is_empty() {
         let start = if args.align { reference_row(spec, rec.t()).unwrap_or(0) } else { 0 };
-        run_rig(&rec, &mut filters, &mut Joints::new(spec, start, JointParams::default()), args.align)
+        run_rig(&rec, &mut filters, &mut Joints::new(spec, start, args.joint_params), args.align)
     } else {
         run_rig(&rec, &mut filters, &mut Alone, args.align)
     };
