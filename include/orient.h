@@ -1738,8 +1738,10 @@ OrientStatus orient_joints_free(struct OrientJoints *joints);
  * orient_filters_update), for each of the `n` segments (`n` as given to
  * orient_joints_new), updates every joint from the filters' sensor orientations
  * (orient_filter_sensor_quaternion) and the samples' gyroscope and accelerometer
- * readings. A joint whose two samples do not both have both readings holds its estimate
- * this row; the child's dt is the joint's, and one outside [1e-9, 1) s holds it too.
+ * readings, and whether each filter learns its gyroscope bias in motion (by its kind and
+ * settings: the joint parameter bias_learn_rate). A joint whose two samples do not both
+ * have both readings holds its estimate this row; the child's dt is the joint's, and one
+ * outside [1e-9, 1) s holds it too.
  * Allocates nothing. Every handle and sample is checked before anything changes:
  * INVALID_ARGUMENT for an `n` that is not the rig's segment count or a sample with
  * unknown flag bits or a non-zero reserved field, NULL_POINTER for a NULL array or

@@ -153,7 +153,8 @@ pub struct JointParams {
     /// rest; 0 leaves the measurement out.
     pub r_drift: f64,
     /// The rate (1/s) at which each sensor's filter learns the horizontal part of its
-    /// gyroscope bias in motion; 0 for filters that do not learn their bias in motion.
+    /// gyroscope bias in motion, for the filters that do ([`crate::Filter::learns_bias_in_motion`]);
+    /// 0 for none.
     pub bias_learn_rate: f64,
 }
 
@@ -404,10 +405,11 @@ pub const JOINT_PARAMS: [ParamSpec; 22] = [
         "1/s",
         "The rate at which each sensor's filter learns the horizontal part of its own \
         gyroscope bias in motion (the part gravity shows it): the joint's residual biases lose \
-        their horizontal part at this rate and keep their vertical part; 0 for filters that \
-        learn no bias in motion (Madgwick, Mahony without its integral gain, the complementary \
-        filter and GMVDK learn theirs at rest, in still runs, or not at all; the recommended \
-        kind and the EKF learn in motion); default 0.05 (orient: fitted on simulated gloves \
+        their horizontal part at this rate and keep their vertical part. Applied to the filters \
+        whose kind, with their settings, learns in motion (the recommended kind unless its \
+        bias_sigma_motion is 0, the EKF, Mahony with ki above 0; Madgwick, the complementary \
+        filter and GMVDK learn theirs at rest, in still runs, or not at all): orient_joints_update \
+        reads it from each filter; 0 for none; default 0.05 (orient: fitted on simulated gloves \
         and a leg with the recommended kind under orient_config_for_joints()).",
         0.05,
         0.0,
@@ -689,6 +691,7 @@ impl JointEstimator {
         acc_p: Vec3,
         acc_c: Vec3,
         dt: f64,
+        learns: [bool; 2],
     ) {
         let prm = self.params;
         if !(MIN_DT..1.0).contains(&dt) {
@@ -705,7 +708,7 @@ impl JointEstimator {
         }
         if !rest {
             self.g = [q_p.rotate_inverse(UP), q_c.rotate_inverse(UP)];
-            self.predict(dt);
+            self.predict(dt, learns);
         }
         self.bound_variances();
         let rz = self.correction();
@@ -934,7 +937,7 @@ impl JointEstimator {
     /// `Δ ← Δ + dt fᵀx`, `P ← F P Fᵀ + Q dt` with `F = I + dt e₀ fᵀ`,
     /// `f = [0, −g_p, g_c, 0 …]`, the filters' learning ([`JointEstimator::learn`]) between
     /// the two.
-    fn predict(&mut self, dt: f64) {
+    fn predict(&mut self, dt: f64, learns: [bool; 2]) {
         let prm = self.params;
         let mut f = [0.0; N];
         for k in 0..3 {
@@ -957,8 +960,12 @@ impl JointEstimator {
             // The share learned over dt, exactly: 1 − e^(−λ dt), in [0, 1) for every rate
             // and step the table and the update accept (λ ≤ 10, dt < 1 s).
             let l = -libm::expm1(-prm.bias_learn_rate * dt);
-            self.learn(BP, self.g[0], l);
-            self.learn(BC, self.g[1], l);
+            if learns[0] {
+                self.learn(BP, self.g[0], l);
+            }
+            if learns[1] {
+                self.learn(BC, self.g[1], l);
+            }
         }
         for k in BP..UP_ {
             self.p[k][k] += prm.q_rate * dt;
@@ -1237,7 +1244,7 @@ mod tests {
             }
             e.g = [Vec3::new(0.3, -0.4, 0.5).normalized(), Vec3::new(-0.6, 0.0, 0.8)];
             let before = e.clone();
-            e.predict(dt);
+            e.predict(dt, [true, true]);
             (before, e)
         };
         let (b0, plain) = run(0.0);

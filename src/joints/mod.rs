@@ -231,9 +231,29 @@ pub struct Joints {
     /// Per joint: the angles at the last update.
     angles: Vec<[f64; 2]>,
     /// Per segment: [`Joints::update_each`]'s buffers.
-    scratch: Vec<Quat>,
-    scratch_samples: Vec<Sample>,
+    scratch: Scratch,
     params: JointParams,
+}
+
+/// [`Joints::update_each`]'s buffers, one entry per segment: no state, so two joints
+/// compare equal and print alike whatever they hold.
+#[derive(Clone, Default)]
+struct Scratch {
+    sensors: Vec<Quat>,
+    samples: Vec<Sample>,
+    learns: Vec<bool>,
+}
+
+impl PartialEq for Scratch {
+    fn eq(&self, _: &Scratch) -> bool {
+        true
+    }
+}
+
+impl core::fmt::Debug for Scratch {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("Scratch")
+    }
 }
 
 impl Joints {
@@ -334,8 +354,11 @@ impl Joints {
             raw: filled(segments, Quat::IDENTITY)?,
             sensors: filled(segments, Quat::IDENTITY)?,
             updated: false,
-            scratch: filled(segments, Quat::IDENTITY)?,
-            scratch_samples: filled(segments, Sample::default())?,
+            scratch: Scratch {
+                sensors: filled(segments, Quat::IDENTITY)?,
+                samples: filled(segments, Sample::default())?,
+                learns: filled(segments, true)?,
+            },
             params,
         })
     }
@@ -380,8 +403,22 @@ impl Joints {
     /// this row's sample: [`Filter::sensor_quaternion`]) and the sample that filter took.
     /// A joint whose two samples do not both have gyroscope and accelerometer readings
     /// holds its estimate this row; the child's `dt` is the joint's. `WrongLength` or
-    /// `NonFinite` (a quaternion or reading) change nothing.
+    /// `NonFinite` (a quaternion or reading) change nothing. Every sensor's filter is
+    /// taken to learn its bias in motion at [`JointParams::bias_learn_rate`] (the
+    /// recommended kind does); [`Joints::update_from`] and [`Joints::update_each`] take
+    /// that from each filter.
     pub fn update(&mut self, sensors: &[Quat], samples: &[Sample]) -> Result<(), JointError> {
+        self.step(sensors, samples, |_| true)
+    }
+
+    /// [`Joints::update`] with `learns(s)` saying whether segment `s`'s filter learns its
+    /// gyroscope bias in motion ([`Filter::learns_bias_in_motion`]).
+    fn step(
+        &mut self,
+        sensors: &[Quat],
+        samples: &[Sample],
+        learns: impl Fn(usize) -> bool,
+    ) -> Result<(), JointError> {
         let n = self.segments();
         for len in [sensors.len(), samples.len()] {
             if len != n {
@@ -407,7 +444,7 @@ impl Joints {
             let est = &mut self.estimators[k];
             if let (Some(gp), Some(gc), Some(ap), Some(ac)) = (sp.gyro, sc.gyro, sp.accel, sc.accel) {
                 let (qp, qc) = (sensors[j.parent].normalized(), sensors[j.child].normalized());
-                est.update(qp, qc, gp, gc, ap, ac, sc.dt);
+                est.update(qp, qc, gp, gc, ap, ac, sc.dt, [learns(j.parent), learns(j.child)]);
                 if !(est.is_finite() && est.correction().is_finite()) {
                     // Finite inputs keep the state finite; should rounding ever not, the
                     // joint starts over rather than stay stuck.
@@ -426,7 +463,9 @@ impl Joints {
         Ok(())
     }
 
-    /// [`Joints::update`] from the filters themselves (`filters[s]` took `samples[s]`).
+    /// [`Joints::update`] from the filters themselves (`filters[s]` took `samples[s]`): a
+    /// filter that learns no bias in motion ([`Filter::learns_bias_in_motion`]) leaves
+    /// its residual bias's horizontal part to the joints.
     pub fn update_from(&mut self, filters: &[&Filter], samples: &[Sample]) -> Result<(), JointError> {
         if filters.len() != self.segments() {
             return Err(JointError::WrongLength(filters.len()));
@@ -434,20 +473,25 @@ impl Joints {
         if samples.len() != self.segments() {
             return Err(JointError::WrongLength(samples.len()));
         }
-        self.update_each(|s| (filters[s].sensor_quaternion(), samples[s]))
+        self.update_each(|s| (filters[s].sensor_quaternion(), samples[s], filters[s].learns_bias_in_motion()))
     }
 
-    /// [`Joints::update`] with each segment's orientation and sample from `row(s)`, for
-    /// a host whose rows are not two slices; into buffers made with the joints, so that
-    /// nothing is allocated here.
-    pub fn update_each(&mut self, mut row: impl FnMut(usize) -> (Quat, Sample)) -> Result<(), JointError> {
-        let (mut sensors, mut samples) =
-            (core::mem::take(&mut self.scratch), core::mem::take(&mut self.scratch_samples));
-        for (s, (q, x)) in sensors.iter_mut().zip(samples.iter_mut()).enumerate() {
-            (*q, *x) = row(s);
+    /// [`Joints::update`] with each segment's orientation, sample and whether its filter
+    /// learns its bias in motion ([`Filter::learns_bias_in_motion`]) from `row(s)`, for a
+    /// host whose rows are not slices; into buffers made with the joints, so that nothing
+    /// is allocated here.
+    pub fn update_each(
+        &mut self,
+        mut row: impl FnMut(usize) -> (Quat, Sample, bool),
+    ) -> Result<(), JointError> {
+        let mut b = core::mem::take(&mut self.scratch);
+        for (s, ((q, x), l)) in
+            b.sensors.iter_mut().zip(b.samples.iter_mut()).zip(b.learns.iter_mut()).enumerate()
+        {
+            (*q, *x, *l) = row(s);
         }
-        let result = self.update(&sensors, &samples);
-        (self.scratch, self.scratch_samples) = (sensors, samples);
+        let result = self.step(&b.sensors, &b.samples, |s| b.learns[s]);
+        self.scratch = b;
         result
     }
 

@@ -348,6 +348,54 @@ static void joint_params(void) {
     orient_joints_free(joints);
 }
 
+/* Whether the filters learn their bias in motion: the joints apply bias_learn_rate only to
+ * those that do. Two joint handles on the same filters, one with bias_learn_rate 0:
+ * bit for bit the same where the filters learn none in motion, apart where they do.
+ * Returns 1 when the two handles' relative headings are the same bits. */
+static int same_as_without_learning(int32_t kind, uint32_t param, double value) {
+    OrientJoint j = hinge_joint(0, 1);
+    OrientJoints *with = NULL, *without = NULL;
+    OrientFilter *filters[2];
+    OrientSample s[2];
+    double a = 0.0, b = 1.0, dt = 0.01;
+    int i, k;
+    for (k = 0; k < 2; k++) {
+        filters[k] = new_filter(kind);
+        if (param != UINT32_MAX) CHECK_STATUS(orient_filter_set_param(filters[k], param, value), ORIENT_STATUS_OK);
+    }
+    CHECK_STATUS(orient_joints_new(&j, 1, 2, NULL, &with), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_new(&j, 1, 2, NULL, &without), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_set_param(without, "bias_learn_rate", 0.0), ORIENT_STATUS_OK);
+    /* 3 s still (the complementary filter and GMVDK start from a still period), then the
+     * hinge turning. */
+    for (i = 1; i <= 800; i++) {
+        double t0 = i <= 300 ? 0.0 : (i - 301) * dt, t1 = i < 300 ? 0.0 : (i - 300) * dt;
+        s[0] = moving(parent_at(t0), parent_at(t1), dt);
+        s[1] = moving(child_at(t0), child_at(t1), dt);
+        CHECK_STATUS(orient_filters_update(filters, s, 2, NULL, NULL), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_update(with, filters, s, 2), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_joints_update(without, filters, s, 2), ORIENT_STATUS_OK);
+    }
+    CHECK_STATUS(orient_joints_relative_heading(with, 0, &a, NULL), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_relative_heading(without, 0, &b, NULL), ORIENT_STATUS_OK);
+    orient_joints_free(with);
+    orient_joints_free(without);
+    orient_filter_free(filters[0]);
+    orient_filter_free(filters[1]);
+    return bits(a) == bits(b);
+}
+
+static void learning_by_kind(void) {
+    CHECK(same_as_without_learning(ORIENT_KIND_MADGWICK, UINT32_MAX, 0.0));
+    CHECK(same_as_without_learning(ORIENT_KIND_COMPLEMENTARY, UINT32_MAX, 0.0));
+    CHECK(same_as_without_learning(ORIENT_KIND_GMVDK, UINT32_MAX, 0.0));
+    CHECK(same_as_without_learning(ORIENT_KIND_MAHONY, UINT32_MAX, 0.0));
+    CHECK(!same_as_without_learning(ORIENT_KIND_MAHONY, ORIENT_PARAM_MAHONY_KI, 0.3));
+    CHECK(!same_as_without_learning(ORIENT_KIND_EKF, UINT32_MAX, 0.0));
+    CHECK(!same_as_without_learning(ORIENT_KIND_ROBUST, UINT32_MAX, 0.0));
+    CHECK(same_as_without_learning(ORIENT_KIND_ROBUST, ORIENT_PARAM_ROBUST_BIAS_SIGMA_MOTION, 0.0));
+}
+
 static void joint_calls(void) {
     OrientJoint j = hinge_joint(0, 1);
     OrientJoints *joints = NULL, *gone = NULL;
@@ -595,4 +643,5 @@ static void joint_calls(void) {
     free(gc);
     two_dof_axes();
     config_for_joints();
+    learning_by_kind();
 }

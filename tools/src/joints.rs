@@ -39,13 +39,13 @@ impl Joints {
 }
 
 impl JointStage for Joints {
-    fn update(&mut self, row: usize, samples: &[Sample], sensors: &mut [Quat]) {
+    fn update(&mut self, row: usize, samples: &[Sample], learns: &[bool], sensors: &mut [Quat]) {
         if row < self.start {
             return;
         }
         // A row the library refuses (a reading that is not finite) leaves the last
         // corrections in place.
-        let _ = self.joints.update(sensors, samples);
+        let _ = self.joints.update_each(|s| (sensors[s], samples[s], learns[s]));
         for (s, q) in sensors.iter_mut().enumerate() {
             *q = (self.joints.correction(s) * *q).normalized();
         }

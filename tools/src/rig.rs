@@ -475,6 +475,15 @@ impl SensorFilter {
     }
 
     /// The sensor's orientation (sensor to earth, ENU) before any heading alignment.
+    /// Whether the filter learns its gyroscope bias in motion
+    /// ([`Filter::learns_bias_in_motion`]; VQF's motion bias estimation does).
+    pub fn learns_bias_in_motion(&self) -> bool {
+        match self {
+            SensorFilter::Orient(f) => f.learns_bias_in_motion(),
+            SensorFilter::Vqf { .. } => true,
+        }
+    }
+
     pub fn sensor_quaternion(&self) -> Quat {
         match self {
             SensorFilter::Orient(f) => f.sensor_quaternion(),
@@ -488,14 +497,16 @@ impl SensorFilter {
 /// orientations (sensor to earth, headings aligned at the reference pose), which it may
 /// correct in place; what it leaves there is the run's output for the row.
 pub trait JointStage {
-    fn update(&mut self, row: usize, samples: &[Sample], sensors: &mut [Quat]);
+    /// `learns[s]`: sensor `s`'s filter learns its gyroscope bias in motion
+    /// ([`SensorFilter::learns_bias_in_motion`]).
+    fn update(&mut self, row: usize, samples: &[Sample], learns: &[bool], sensors: &mut [Quat]);
 }
 
 /// No joint estimation: every sensor alone.
 pub struct Alone;
 
 impl JointStage for Alone {
-    fn update(&mut self, _: usize, _: &[Sample], _: &mut [Quat]) {}
+    fn update(&mut self, _: usize, _: &[Sample], _: &[bool], _: &mut [Quat]) {}
 }
 
 /// A rig run's output.
@@ -543,6 +554,8 @@ pub fn run_rig(
     let mut offsets = vec![Quat::IDENTITY; n];
     let mut row_samples = vec![Sample { dt: 0.0, gyro: None, accel: None, mag: None }; n];
     let mut q = vec![Quat::IDENTITY; n];
+    // A filter's settings do not change during a run.
+    let learns: Vec<bool> = filters.iter().map(SensorFilter::learns_bias_in_motion).collect();
     let mut rejected = 0;
     let start = crate::clock::thread_cpu();
     for i in 0..rows {
@@ -558,7 +571,7 @@ pub fn run_rig(
         for ((q, f), o) in q.iter_mut().zip(filters.iter()).zip(&offsets) {
             *q = *o * f.sensor_quaternion();
         }
-        stage.update(i, &row_samples, &mut q);
+        stage.update(i, &row_samples, &learns, &mut q);
         for (out, q) in out.iter_mut().zip(&q) {
             out.push(*q);
         }

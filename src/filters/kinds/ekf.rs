@@ -869,6 +869,12 @@ mod estimator_impl {
             self.settings.rest_rate_std > 0.0 && Ekf::at_rest(self)
         }
 
+        fn learns_bias_in_motion(&self) -> bool {
+            // The drift δ is part of the state the gravity measurement corrects (drift_std
+            // is above zero by its range).
+            true
+        }
+
         fn uncertainty(&self) -> crate::filters::Uncertainty {
             let (heading, inclination) = self.attitude_sigmas();
             crate::filters::Uncertainty { heading: Some(heading), inclination: Some(inclination) }

@@ -372,5 +372,10 @@ mod estimator_impl {
         fn at_rest(&self) -> bool {
             self.settings.rest_bias_tau > 0.0 && Mahony::at_rest(self)
         }
+
+        fn learns_bias_in_motion(&self) -> bool {
+            // The integral term; the rest learner learns at rest only.
+            self.settings.ki > 0.0
+        }
     });
 }

@@ -751,5 +751,10 @@ mod estimator_impl {
         fn mag_disturbed(&self) -> bool {
             Robust::mag_disturbed(self)
         }
+
+        fn learns_bias_in_motion(&self) -> bool {
+            // The motion bias filter; bias_sigma_motion 0 turns it off.
+            self.settings.bias_sigma_motion > 0.0
+        }
     });
 }

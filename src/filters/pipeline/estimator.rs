@@ -114,6 +114,13 @@ pub(crate) trait Estimator: Clone + core::fmt::Debug + PartialEq + Send + Sync +
     fn at_rest(&self) -> bool {
         false
     }
+    /// True when the kind, with its settings, learns its gyroscope bias in motion: the
+    /// horizontal part, which its inclination correction measures (the joints' prediction
+    /// takes that learning: [`crate::joints::JointParams::bias_learn_rate`]). A kind that
+    /// learns its bias only at rest, or not at all, says false (the default).
+    fn learns_bias_in_motion(&self) -> bool {
+        false
+    }
     /// True when the kind counts the magnetic field as disturbed now
     /// ([`crate::filters::flags::MAG_DISTURBED`]).
     fn mag_disturbed(&self) -> bool {

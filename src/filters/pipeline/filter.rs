@@ -310,6 +310,15 @@ impl Filter {
         each!(&self.0, r => r.uncertainty())
     }
 
+    /// True when this filter, with its settings, learns its gyroscope bias in motion (the
+    /// horizontal part, which its inclination correction measures): the recommended kind
+    /// unless `bias_sigma_motion` is 0, the EKF, and Mahony with `ki` above 0. Madgwick,
+    /// the complementary filter and GMVDK learn theirs at rest, in a still start, or not
+    /// at all. The joints read it ([`crate::joints::Joints::update_from`]).
+    pub fn learns_bias_in_motion(&self) -> bool {
+        each!(&self.0, r => r.learns_bias_in_motion())
+    }
+
     /// The [`crate::filters::diagnostics::diag`] bits of the [`Diagnostics`] fields this filter reports with its
     /// settings: [`Kind::diagnostics`] less those of an option that is off (Madgwick's bias
     /// and rest, Mahony's and the EKF's rest without their rest options). GMVDK's μ values

@@ -468,6 +468,11 @@ impl<E: Estimator> Runner<E> {
         self.core.uncertainty()
     }
 
+    /// [`Estimator::learns_bias_in_motion`] with the settings as they are.
+    pub(crate) fn learns_bias_in_motion(&self) -> bool {
+        self.core.learns_bias_in_motion()
+    }
+
     /// The configuration and state fields of a snapshot, in order (see [`state`]).
     fn codec(&mut self, c: &mut dyn Codec) {
         let mut head = ConfigFields::of(&self.config());

@@ -40,7 +40,7 @@ struct Oracle<'a> {
 }
 
 impl JointStage for Oracle<'_> {
-    fn update(&mut self, row: usize, _: &[Sample], sensors: &mut [Quat]) {
+    fn update(&mut self, row: usize, _: &[Sample], _: &[bool], sensors: &mut [Quat]) {
         if row < self.start {
             return;
         }
@@ -77,7 +77,7 @@ struct Trace<'a> {
 }
 
 impl JointStage for Trace<'_> {
-    fn update(&mut self, row: usize, samples: &[Sample], sensors: &mut [Quat]) {
+    fn update(&mut self, row: usize, samples: &[Sample], learns: &[bool], sensors: &mut [Quat]) {
         use std::io::Write;
         if self.truth_input {
             let t = self.rec.t()[row];
@@ -87,7 +87,7 @@ impl JointStage for Trace<'_> {
             }
         }
         let raw: Vec<Quat> = sensors.to_vec();
-        self.joints.update(row, samples, sensors);
+        self.joints.update(row, samples, learns, sensors);
         let spec = &self.rec.spec;
         let _ = write!(self.out, "{:.3},{:.3}", self.rec.t()[row], samples[0].gyro.unwrap().norm());
         for (k, j) in spec.joints.iter().enumerate() {

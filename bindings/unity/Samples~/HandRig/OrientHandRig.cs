@@ -202,11 +202,6 @@ public class OrientHandRig : MonoBehaviour
         }
         if (joints != null) joints.Dispose();
         joints = list.Count > 0 ? new OrientJoints(rig, list.ToArray(), mountings) : null;
-        // The joints expect each filter to learn the horizontal part of its gyroscope bias in
-        // motion, as the recommended kind and the EKF do; the others, with this sample's
-        // settings, learn theirs at rest or not at all (the parameter's documentation).
-        Kind running = filters[0].Kind;
-        if (joints != null && running != Kind.Robust && running != Kind.Ekf) joints["bias_learn_rate"] = 0.0;
     }
 
     /// <summary>The wrist and finger joints of a Humanoid avatar that the avatar maps.</summary>
