@@ -648,7 +648,7 @@ typedef struct OrientFilter OrientFilter;
  * filter lets a learned bias go (its process noise) and the heading uncertainty grows
  * with it (eq. H1); larger follows a drifting bias sooner and takes more of a fast
  * motion's scale errors for bias; 0 learns the bias at rest only; default 1.745e-4 (0.01
- * deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); three times it
+ * deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); five times it
  * under joints (orient_config_for_joints()).
  *
  * Unit rad/s/sqrt(s); range 0 to 10; default 0.00017453292519943296.
@@ -1685,8 +1685,8 @@ double orient_madgwick_beta(double gyro_error);
 
 /**
  * Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_ROBUST
- * the gyroscope bias random walk (ORIENT_PARAM_ROBUST_BIAS_WALK) at 5.236e-4
- * rad/s/sqrt(s) (0.03 deg/s/sqrt(s), three times its default), so a drifting bias is
+ * the gyroscope bias random walk (ORIENT_PARAM_ROBUST_BIAS_WALK) at 8.727e-4
+ * rad/s/sqrt(s) (0.05 deg/s/sqrt(s), five times its default), so a drifting bias is
  * followed more closely, and the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
  * 0.0698 rad/s (4 deg/s); other kinds have neither and `config` is left as it was. Call
  * it after orient_config_default() for each sensor of a rig whose joints hold its

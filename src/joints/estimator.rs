@@ -409,9 +409,9 @@ pub const JOINT_PARAMS: [ParamSpec; 22] = [
         whose kind, with their settings, learns in motion (the recommended kind unless its \
         bias_sigma_motion is 0, the EKF, Mahony with ki above 0; Madgwick, the complementary \
         filter and GMVDK learn theirs at rest, in still runs, or not at all): orient_joints_update \
-        reads it from each filter; 0 for none; default 0.05 (orient: fitted on simulated gloves \
+        reads it from each filter; 0 for none; default 0.1 (orient: fitted on simulated gloves \
         and a leg with the recommended kind under orient_config_for_joints()).",
-        0.05,
+        0.1,
         0.0,
         10.0,
     ),

@@ -68,14 +68,14 @@ pub const MAX_JOINTS: usize = 64;
 pub const MAX_SEGMENTS: usize = 256;
 
 /// The settings a sensor's filter takes under joints ([`Config::for_joints`]), by the
-/// recommended kind's parameter names: the gyroscope bias random walk at 0.03 °/s/√s,
-/// three times the default, so the motion bias filter follows a drifting bias more
+/// recommended kind's parameter names: the gyroscope bias random walk at 0.05 °/s/√s,
+/// five times the default, so the motion bias filter follows a drifting bias more
 /// closely (the joints hold the relative heading that a faster bias estimate would
 /// otherwise let wander), and the motion estimate's bound at 4 °/s,
 /// so a glove's bias up to 3 °/s per axis is learned whole. Measured on simulated gloves
 /// and a leg (docs/ACCURACY.md); alone, on BROAD's real trials, the defaults stay better.
 pub const SENSOR_SETTINGS: [(&str, f64); 2] =
-    [("bias_walk", 5.235_987_755_982_989e-4), ("bias_limit", 0.069_813_170_079_773_18)];
+    [("bias_walk", 8.726_646_259_971_648e-4), ("bias_limit", 0.069_813_170_079_773_18)];
 
 impl Config {
     /// Sets [`SENSOR_SETTINGS`], the settings a sensor's filter runs with under joints,

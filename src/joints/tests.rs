@@ -90,9 +90,9 @@ fn a_hinge_holds_the_child_to_its_parent_while_its_heading_drifts() {
     // The correction's drift is the child's heading drift, undone: within 10 % by a joint
     // that expects no learning (bias_learn_rate 0). This filter's drift stays whatever its
     // sensor turns, which no bias a filter learns from gravity does (the part of it that
-    // turns into the horizontal would be learned): the default expects less and settles
-    // within 20 %.
-    assert!((joints.drift(0) + drift).abs() < 0.2 * drift, "{}", joints.drift(0));
+    // turns into the horizontal would be learned): the default (0.1/s) expects less and
+    // settles within 30 %.
+    assert!((joints.drift(0) + drift).abs() < 0.3 * drift, "{}", joints.drift(0));
     let steady = JointParams { bias_learn_rate: 0.0, ..JointParams::default() };
     let (j0, worst0) = run_hinge_with(X, drift, 60.0, steady);
     assert!(worst0 < 1f64.to_radians(), "{} deg", worst0.to_degrees());
@@ -215,7 +215,7 @@ fn at_rest_the_filters_drift_is_measured() {
     let (_, kept, rms_without) = run(JointParams { r_drift: 0.0, ..steady });
     // With every default the rest measures what the motion left just as well.
     let (learned_default, measured_default, _) = run(JointParams::default());
-    assert!((learned_default + drift).abs() < 0.2 * drift, "{learned_default}");
+    assert!((learned_default + drift).abs() < 0.3 * drift, "{learned_default}");
     assert!(measured_default.abs() < 0.01 * drift, "{measured_default}");
     // The drift learned in motion: the child's filter's 0.5 deg/s, negated.
     assert!((learned + drift).abs() < 0.1 * drift, "{learned}");
@@ -1034,8 +1034,9 @@ fn the_joints_apply_the_learning_to_the_filters_that_learn_in_motion() {
         assert_ne!(with.drift(0).to_bits(), without.drift(0).to_bits(), "{kind:?} {set:?}");
     }
     // The parent's filter learning, the child's not (its heading drifts at a steady rate,
-    // as run_hinge's child's does): the joint told so finds that drift within 10 %, as one
-    // that expects no learning at all does, and closer than the default told both learn.
+    // as run_hinge's child's does): the joint told so finds that drift within 15 % (one
+    // that expects no learning at all, within 10 %), closer than the default told both
+    // learn.
     let drift = 0.5f64.to_radians();
     let mut told = Joints::new(2, &[hinge(0, 1, X)], &[], JointParams::default()).unwrap();
     let dt = 0.01;
@@ -1049,6 +1050,6 @@ fn the_joints_apply_the_learning_to_the_filters_that_learn_in_motion() {
     }
     let (both, _) = run_hinge(X, drift, 60.0);
     let error = |j: &Joints| (j.drift(0) + drift).abs();
-    assert!(error(&told) < 0.1 * drift, "{}", told.drift(0));
+    assert!(error(&told) < 0.15 * drift, "{}", told.drift(0));
     assert!(error(&told) < error(&both), "{} {}", told.drift(0), both.drift(0));
 }

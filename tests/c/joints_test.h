@@ -239,7 +239,7 @@ static void config_for_joints(void) {
     CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &c), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_config_for_joints(&c), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_config_get_param(&c, ORIENT_PARAM_ROBUST_BIAS_WALK, &walk), ORIENT_STATUS_OK);
-    CHECK(fabs(walk - 0.03 * DEGREE) < 1e-15);
+    CHECK(fabs(walk - 0.05 * DEGREE) < 1e-15);
     CHECK_STATUS(orient_config_get_param(&c, ORIENT_PARAM_ROBUST_BIAS_LIMIT, &limit), ORIENT_STATUS_OK);
     CHECK(fabs(limit - 4.0 * DEGREE) < 1e-15);
     /* Nothing else: the default with those two set is the same struct. */

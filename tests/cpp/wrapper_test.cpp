@@ -516,7 +516,7 @@ static void joints() {
     // A sensor's configuration under joints: the two settings, other kinds unchanged.
     orient::Config under = orient::Config::defaults(orient::Kind::Robust).value();
     CHECK(under.for_joints() == ORIENT_STATUS_OK);
-    CHECK(std::fabs(under.get(ORIENT_PARAM_ROBUST_BIAS_WALK) - 0.03 * 0.017453292519943295) < 1e-15);
+    CHECK(std::fabs(under.get(ORIENT_PARAM_ROBUST_BIAS_WALK) - 0.05 * 0.017453292519943295) < 1e-15);
     CHECK(std::fabs(under.get(ORIENT_PARAM_ROBUST_BIAS_LIMIT) - 4.0 * 0.017453292519943295) < 1e-15);
     orient::Config other = orient::Config::defaults(orient::Kind::Madgwick).value();
     CHECK(other.for_joints() == ORIENT_STATUS_OK);

@@ -309,7 +309,7 @@ settings! {
                  learned bias go (its process noise) and the heading uncertainty grows with it \
                  (eq. H1); larger follows a drifting bias sooner and takes more of a fast motion's \
                  scale errors for bias; 0 learns the bias at rest only; default 1.745e-4 (0.01 \
-                 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); three times it under \
+                 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); five times it under \
                  joints (orient_config_for_joints()).",
         },
         mag_heading_sigma: f64 = ROBUST_MAG_HEADING_SIGMA 97 {
