@@ -323,6 +323,11 @@ fn replay_rig_scores_what_a_direct_computation_gives() {
     let (_, other) = replay("other", &["--joint-set", "gate=1"]);
     let (_, joints) = replay("joints", &[]);
     assert!(same == joints && other != joints);
+    // Without the alignment the joints start with the headings unknown: heading_std0 π.
+    let (_, unaligned) = replay("unaligned", &["--no-align"]);
+    let (_, pi) = replay("pi", &["--no-align", "--joint-set", "heading_std0=3.141592653589793"]);
+    let (_, one) = replay("one", &["--no-align", "--joint-set", "heading_std0=0.017453292519943295"]);
+    assert!(unaligned == pi && unaligned != one);
     let _ = std::fs::remove_dir_all(&dir);
 }
 
