@@ -394,6 +394,7 @@ static void learning_by_kind(void) {
     CHECK(!same_as_without_learning(ORIENT_KIND_EKF, UINT32_MAX, 0.0));
     CHECK(!same_as_without_learning(ORIENT_KIND_ROBUST, UINT32_MAX, 0.0));
     CHECK(same_as_without_learning(ORIENT_KIND_ROBUST, ORIENT_PARAM_ROBUST_BIAS_SIGMA_MOTION, 0.0));
+    CHECK(same_as_without_learning(ORIENT_KIND_ROBUST, ORIENT_PARAM_ROBUST_BIAS_WALK, 0.0));
 }
 
 static void joint_calls(void) {

@@ -474,7 +474,6 @@ impl SensorFilter {
         }
     }
 
-    /// The sensor's orientation (sensor to earth, ENU) before any heading alignment.
     /// Whether the filter learns its gyroscope bias in motion
     /// ([`Filter::learns_bias_in_motion`]; VQF's motion bias estimation does).
     pub fn learns_bias_in_motion(&self) -> bool {
@@ -484,6 +483,7 @@ impl SensorFilter {
         }
     }
 
+    /// The sensor's orientation (sensor to earth, ENU) before any heading alignment.
     pub fn sensor_quaternion(&self) -> Quat {
         match self {
             SensorFilter::Orient(f) => f.sensor_quaternion(),

@@ -753,8 +753,10 @@ mod estimator_impl {
         }
 
         fn learns_bias_in_motion(&self) -> bool {
-            // The motion bias filter; bias_sigma_motion 0 turns it off.
-            self.settings.bias_sigma_motion > 0.0
+            // The motion bias filter: bias_sigma_motion 0 turns it off, a bias_walk of 0
+            // learns at rest only and a bias_sigma of 0 leaves it nothing to learn.
+            let s = &self.settings;
+            s.bias_sigma_motion > 0.0 && s.bias_walk > 0.0 && s.bias_sigma > 0.0
         }
     });
 }

@@ -312,7 +312,8 @@ impl Filter {
 
     /// True when this filter, with its settings, learns its gyroscope bias in motion (the
     /// horizontal part, which its inclination correction measures): the recommended kind
-    /// unless `bias_sigma_motion` is 0, the EKF, and Mahony with `ki` above 0. Madgwick,
+    /// unless `bias_sigma_motion`, `bias_walk` or `bias_sigma` is 0, the EKF, and Mahony
+    /// with `ki` above 0. Madgwick, Mahony without `ki` (its rest learner learns at rest),
     /// the complementary filter and GMVDK learn theirs at rest, in a still start, or not
     /// at all. The joints read it ([`crate::joints::Joints::update_from`]).
     pub fn learns_bias_in_motion(&self) -> bool {
