@@ -205,7 +205,8 @@ fn main() {
             motion(13, 300, |_| marg),
         ),
         // The motion bias filter: it learns from two accelerometer time constants on (1 s
-        // here), with the walk and the bound under joints (orient_config_for_joints).
+        // here), with three times the default walk and the bound under joints (the walk
+        // of orient_config_for_joints when this case was made; it is five times now).
         case(
             "robust_imu_enu_motion_bias",
             Kind::Robust,
