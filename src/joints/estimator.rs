@@ -25,9 +25,10 @@
 //! (the constraints' errors, laxity and soft tissue, are then the same row after row, and
 //! the joint centre's force is gravity on both sides, which says nothing about heading)
 //! and measures the filters' drift instead (the last item below). Prediction over `dt`:
-//! `Δ ← Δ + dt (g_c·β_c − g_p·β_p)`; each residual bias loses its horizontal part at the
-//! rate `λ` (`bias_learn_rate`) at which a filter learns that part of its own bias in
-//! motion from gravity (the inclination correction measures it), while the vertical part,
+//! `Δ ← Δ + dt (g_c·β_c − g_p·β_p)`; the residual bias of each filter that learns its bias
+//! in motion ([`crate::Filter::learns_bias_in_motion`]) loses its horizontal part at the
+//! rate `λ` (`bias_learn_rate`) at which the filter learns that part of its own bias
+//! from gravity (the inclination correction measures it), while the vertical part,
 //! which gravity does not show, stays: `β ← A β` with `A = I − l (I − g gᵀ)`, `l = 1 −
 //! e^(−λ dt)` the share learned over `dt`; `P ← T F P Fᵀ Tᵀ + Q dt` (`F` moves `Δ` with the
 //! biases before the step, `T` is `A` on each bias's block); then each variance is held to
@@ -66,7 +67,11 @@
 //! drift): the heading never jumps. An update the bound cuts to a fraction `f` of its
 //! step takes the gain `f K` in every state and removes from `P` only what that gain
 //! does, `(2f − f²) P hᵀ h P / S` (Joseph's form for any gain): the estimate stays as
-//! uncertain as the step it did not take and goes on at the bound.
+//! uncertain as the step it did not take and goes on at the bound. A joint started with
+//! its headings unknown (`heading_std0` above 45°: not aligned at a reference pose, up
+//! to 180° apart) takes the bound at [`ACQUIRE_RATE`] instead for its first
+//! [`ACQUIRE_TIME`] seconds of motion: the joint centre's acceleration and the axes then
+//! bring a heading 150° off within a degree in seconds, where `max_rate` took minutes.
 //!
 //! Input no rig gives (rates that disagree with the orientations, forces no joint centre
 //! feels), for minutes, must not leave a joint that good rows cannot bring back: each
@@ -97,6 +102,16 @@ const UC: usize = 9;
 const OP: usize = 11;
 const OC: usize = 14;
 const TX: usize = 17;
+/// A joint started with its relative heading unknown, `heading_std0` above
+/// [`ACQUIRE_STD`] (45°; the headings were not aligned at a reference pose), corrects it
+/// at up to [`ACQUIRE_RATE`] (rad/s, or `max_rate` when larger) for its first
+/// [`ACQUIRE_TIME`] seconds of motion, then within `max_rate`: it acquires a heading up to
+/// 180° off within about a minute instead of several (orient: simulated gloves without a
+/// reference pose, docs/ACCURACY.md).
+pub(crate) const ACQUIRE_STD: f64 = core::f64::consts::FRAC_PI_4;
+pub(crate) const ACQUIRE_RATE: f64 = 1.0;
+pub(crate) const ACQUIRE_TIME: f64 = 60.0;
+
 /// The consistency check ([`JointEstimator::inconsistent`]): the normalized innovations'
 /// low-pass time constant (s), the bound of each normalized innovation, and the limit of
 /// a low-passed one's square in units of its variance under the model.
@@ -255,7 +270,9 @@ pub const JOINT_PARAMS: [ParamSpec; 22] = [
         "Initial standard deviation of the relative heading, taken when the \
         estimate starts (the joints made, or reset): 1 deg by default, for filters whose headings were \
         aligned at a reference pose (orient_rig_align_heading); as far apart as they may be when they \
-        were not (a hinge finds 30 deg within a degree in a minute of motion) (orient: simulated gloves).",
+        were not (a hinge finds 30 deg within a degree in a minute of motion); above 45 deg (pi: \
+        unknown) the joint corrects at up to 1 rad/s, max_rate when larger, for its first 60 s of \
+        motion (orient: simulated gloves).",
         DEG,
         0.0,
         4.0,
@@ -285,7 +302,8 @@ pub const JOINT_PARAMS: [ParamSpec; 22] = [
         "max_rate",
         "rad/s",
         "The largest correction of a relative heading and tilt per second: the \
-        outputs never jump; default 5 deg/s (orient: simulated gloves).",
+        outputs never jump (but while a joint started with heading_std0 above 45 deg acquires its \
+        heading: 1 rad/s for its first 60 s of motion); default 5 deg/s (orient: simulated gloves).",
         5.0 * DEG,
         1e-6,
         1.0,
@@ -407,8 +425,9 @@ pub const JOINT_PARAMS: [ParamSpec; 22] = [
         gyroscope bias in motion (the part gravity shows it): the joint's residual biases lose \
         their horizontal part at this rate and keep their vertical part. Applied to the filters \
         whose kind, with their settings, learns in motion (the recommended kind unless its \
-        bias_sigma_motion is 0, the EKF, Mahony with ki above 0; Madgwick, the complementary \
-        filter and GMVDK learn theirs at rest, in still runs, or not at all): orient_joints_update \
+        bias_sigma_motion, bias_walk or bias_sigma is 0, the EKF, Mahony with ki above 0; \
+        Madgwick, Mahony without ki, the complementary filter and GMVDK learn theirs at rest, in \
+        still runs, or not at all): orient_joints_update \
         reads it from each filter; 0 for none; default 0.1 (orient: fitted on simulated gloves \
         and a leg with the recommended kind under orient_config_for_joints()).",
         0.1,
@@ -592,6 +611,8 @@ pub(crate) struct JointEstimator {
     /// model ([`JointEstimator::inconsistent`]).
     consistency: [f64; 6],
     consistency_var: [f64; 6],
+    /// Seconds of motion left with the acquisition's step bound ([`ACQUIRE_TIME`]).
+    acquiring: f64,
 }
 
 impl JointEstimator {
@@ -607,6 +628,7 @@ impl JointEstimator {
             x: [0.0; N],
             p,
             params,
+            acquiring: if params.heading_std0 > ACQUIRE_STD { ACQUIRE_TIME } else { 0.0 },
             still: 0.0,
             g: [Vec3::ZERO; 2],
             prev_gyro: None,
@@ -721,7 +743,11 @@ impl JointEstimator {
         let dp = [q_p.rotate(self.p_axis.b1), q_p.rotate(self.p_axis.b2)];
         let dc = [rz.rotate(q_c.rotate(self.c_axis.b1)), rz.rotate(q_c.rotate(self.c_axis.b2))];
         let mut dx = [0.0; N];
-        let step = prm.max_rate * dt;
+        let rate = if self.acquiring > 0.0 && !rest { prm.max_rate.max(ACQUIRE_RATE) } else { prm.max_rate };
+        let step = rate * dt;
+        if !rest {
+            self.acquiring = (self.acquiring - dt).max(0.0);
+        }
         let mut info = 0.0;
         let mut n = [None; 6];
         match (rest, self.kind) {
@@ -1073,6 +1099,7 @@ impl JointEstimator {
             c.f64(v);
         }
         c.f64(&mut self.still);
+        c.f64(&mut self.acquiring);
         c.vec3(&mut self.g[0]);
         c.vec3(&mut self.g[1]);
         let mut moving = self.prev_gyro.is_some();
@@ -1120,6 +1147,7 @@ impl JointEstimator {
             4 => self.x[BP] = largest_std(BP) * (1.0 + 1e-15),
             5 => self.consistency[3] = -CONSISTENCY_MAX_NU * (1.0 + 1e-15),
             6 => self.consistency_var[0] = 1.0 + 1e-15,
+            7 => self.acquiring = ACQUIRE_TIME * (1.0 + 1e-15),
             _ => self.prev_q = Some((Quat::new(1.0, 1e-4, 0.0, 0.0), Quat::IDENTITY)),
         }
     }
@@ -1149,6 +1177,7 @@ impl JointEstimator {
             && self.covariance_holds()
             && (0.0..=1.0).contains(&self.rating)
             && self.still >= 0.0
+            && (0.0..=ACQUIRE_TIME).contains(&self.acquiring)
             && self.info_scale > 0.0
             && self.consistency.iter().all(|c| c.abs() <= CONSISTENCY_MAX_NU)
             && self.consistency_var.iter().all(|v| (0.0..=1.0).contains(v))

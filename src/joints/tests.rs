@@ -572,7 +572,7 @@ fn a_snapshot_continues_bit_for_bit_and_bad_blobs_change_nothing() {
     f.save(&mut fb).unwrap();
     refused(&fb, StateError::Kind(1));
     // States no estimate could hold, sealed with a good checksum.
-    for how in 0..8 {
+    for how in 0..9 {
         let mut bad = joints.clone();
         bad.estimators[0].corrupt_for_test(how);
         let mut b3 = vec![0u8; bad.state_size()];
@@ -631,6 +631,46 @@ fn a_large_offset_is_taken_up_without_a_jump() {
     let (last, at_4s) = take_up(wide, offset, 20.0, 4.0);
     assert!((last + offset).abs() < 1f64.to_radians(), "{} deg", last.to_degrees());
     assert!(at_4s < -15f64.to_radians(), "{} deg after 4 s", at_4s.to_degrees());
+}
+
+#[test]
+fn headings_not_aligned_are_acquired_within_a_minute() {
+    use estimator::{ACQUIRE_RATE, ACQUIRE_STD, ACQUIRE_TIME};
+    // Told that the headings are unknown (heading_std0 above 45 degrees, here 180), a
+    // joint whose child's filter is 150 or 179 degrees off corrects at up to 1 rad/s for
+    // its first minute of motion, then within max_rate, and is within a degree in 30 s.
+    // The joint centre accelerates horizontally (both sensors sit on it), as a hand does.
+    let dt = 0.01;
+    let lin = |t: f64| Vec3::new(2.0 * libm::sin(1.3 * t), 1.5 * libm::cos(0.9 * t), 0.0);
+    let at = |q0: Quat, q1: Quat, t: f64| Sample {
+        accel: Some(q1.rotate_inverse(Z * G + lin(t))),
+        ..sample(q0, q1, dt)
+    };
+    let child_at = |t: f64| parent_at(t) * rot(X, flexion_at(t));
+    let unknown = JointParams { heading_std0: core::f64::consts::PI, ..JointParams::default() };
+    assert!(unknown.heading_std0 > ACQUIRE_STD && ACQUIRE_RATE > unknown.max_rate);
+    for offset in [150f64.to_radians(), 179f64.to_radians()] {
+        let mut joints = Joints::new(2, &[hinge(0, 1, X)], &[], unknown).unwrap();
+        let mut last = 0.0;
+        for i in 1..=9000 {
+            let (t0, t1) = ((i - 1) as f64 * dt, i as f64 * dt);
+            let (p0, p1, c0, c1) = (parent_at(t0), parent_at(t1), child_at(t0), child_at(t1));
+            joints.update(&[p1, rot(Z, offset) * c1], &[at(p0, p1, t1), at(c0, c1, t1)]).unwrap();
+            let h = joints.relative_heading(0);
+            let rate = if t1 <= ACQUIRE_TIME + 0.5 * dt { ACQUIRE_RATE } else { unknown.max_rate };
+            assert!((h - last).abs() <= (rate + 1.1 * joints.drift(0).abs()) * dt, "row {i}: {last} -> {h}");
+            last = h;
+            if t1 >= 30.0 {
+                // The correction turns the child back by the offset, either way round.
+                let e = libm::remainder(h + offset, 2.0 * core::f64::consts::PI);
+                assert!(e.abs() < 1f64.to_radians(), "{} deg at {t1} s", h.to_degrees());
+            }
+        }
+    }
+    // 45 degrees or less: the bound is max_rate from the start
+    // (a_large_offset_is_taken_up_without_a_jump).
+    let wide = JointParams { heading_std0: ACQUIRE_STD, ..JointParams::default() };
+    take_up(wide, 40f64.to_radians(), 20.0, 0.0);
 }
 
 /// `for_joints` sets the table's values on the recommended kind, in range, and nothing
@@ -1001,6 +1041,8 @@ fn the_joints_apply_the_learning_to_the_filters_that_learn_in_motion() {
         (Kind::Gmvdk, None, false),
         (Kind::Robust, None, true),
         (Kind::Robust, Some(("bias_sigma_motion", 0.0)), false),
+        (Kind::Robust, Some(("bias_walk", 0.0)), false),
+        (Kind::Robust, Some(("bias_sigma", 0.0)), false),
     ] {
         let mut f = [filter(kind, set), filter(kind, set)];
         assert_eq!(f[0].learns_bias_in_motion(), learns, "{kind:?} {set:?}");
