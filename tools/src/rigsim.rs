@@ -21,7 +21,8 @@
 //! Readings: the gyroscope gives the rotation vector of each sample interval divided by
 //! its length, `log(q(t−dt)⁻¹ q(t))/dt` (what a strapdown integration recovers exactly),
 //! plus a per-sensor bias (each axis uniform within ±0.8 of [`SimConfig::bias_deg_s`],
-//! drifting slowly by up to ±0.2 of it, so no axis exceeds the bound) and white noise; the accelerometer the specific force at the sensor's position (second
+//! drifting slowly by up to ±0.2 of it, so no axis exceeds the bound), optionally scale and
+//! axis errors ([`SimConfig::gyro_scale_pct`]), and white noise; the accelerometer the specific force at the sensor's position (second
 //! difference of the position, so the lever arms' tangential and centripetal terms are
 //! in it) plus noise; the magnetometer the earth's field, optionally with a dipole under
 //! the desk and a hard-iron offset per sensor (the glove's electronics), plus noise. The
@@ -237,6 +238,11 @@ pub struct SimConfig {
     pub axial_play_deg: f64,
     /// Soft-tissue wobble of each sensor on its segment (bound per axis), degrees.
     pub wobble_deg: f64,
+    /// Gyroscope scale and axis errors (percent): each sensor's reading is `(I + E) ω`
+    /// with `E`'s diagonal uniform within ± this and its other entries within ± half of
+    /// it (a MEMS gyroscope's sensitivity tolerance and cross-axis sensitivity, 1-2 %
+    /// after soldering); 0 for none, the presets' value.
+    pub gyro_scale_pct: f64,
     /// White noise standard deviations: gyroscope rad/s, accelerometer m/s², magnetometer µT.
     pub gyro_noise: f64,
     pub accel_noise: f64,
@@ -273,6 +279,7 @@ impl SimConfig {
             laxity_deg: 3.0,
             axial_play_deg: 4.0,
             wobble_deg: 1.5,
+            gyro_scale_pct: 0.0,
             gyro_noise: 0.1f64.to_radians(),
             accel_noise: 0.05,
             mag_noise: 0.5,
@@ -794,6 +801,23 @@ impl Simulation {
         let rows = (c.duration_s * c.rate_hz).round() as usize;
         let n = self.segments.len();
         let mut noise = Rng::new(c.seed ^ 0x7e57_0001);
+        // Each sensor's scale and axis errors, from a stream of their own so that the
+        // rest of a seed's recording does not depend on them.
+        let mut scale_rng = Rng::new(c.seed ^ 0x5ca1_e000);
+        let pct = c.gyro_scale_pct / 100.0;
+        let scale: Vec<[[f64; 3]; 3]> = (0..n)
+            .map(|_| {
+                core::array::from_fn(|i| {
+                    core::array::from_fn(|j| {
+                        if i == j {
+                            scale_rng.range(-pct, pct)
+                        } else {
+                            scale_rng.range(-0.5 * pct, 0.5 * pct)
+                        }
+                    })
+                })
+            })
+            .collect();
         let (spec, true_axes) = self.spec();
         let mut sensors: Vec<Recording> = (0..n)
             .map(|_| Recording {
@@ -826,7 +850,13 @@ impl Simulation {
                 let f = q.rotate_inverse(acc + Vec3::new(0.0, 0.0, G));
                 let m = q.rotate_inverse(self.field_at(now.positions[s])) + self.segments[s].hard_iron;
                 r.t.push(t);
-                r.gyro.push(omega + b + noise.gauss3(c.gyro_noise));
+                let e = &scale[s];
+                let scaled = Vec3::new(
+                    e[0][0] * omega.x + e[0][1] * omega.y + e[0][2] * omega.z,
+                    e[1][0] * omega.x + e[1][1] * omega.y + e[1][2] * omega.z,
+                    e[2][0] * omega.x + e[2][1] * omega.y + e[2][2] * omega.z,
+                );
+                r.gyro.push(omega + scaled + b + noise.gauss3(c.gyro_noise));
                 r.accel.push(f + noise.gauss3(c.accel_noise));
                 r.mag.push(m + noise.gauss3(c.mag_noise));
                 r.truth.push(q);

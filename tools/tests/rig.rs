@@ -148,6 +148,33 @@ fn the_gyroscope_integrates_to_the_truth_within_noise() {
     assert!(log(exp(Vec3::new(0.3, -0.2, 0.1))).norm() - Vec3::new(0.3, -0.2, 0.1).norm() < 1e-15);
 }
 
+/// Scale and axis errors: the reading less the bias is `(I + E) ω` plus the same noise,
+/// `E`'s entries within their bounds and some near them; everything else about the
+/// recording is the same as without them.
+#[test]
+fn gyroscope_scale_errors_are_within_their_bounds() {
+    let plain = Simulation::new(short(12, 20.0, 60.0)).run();
+    let scaled = Simulation::new(SimConfig { gyro_scale_pct: 2.0, ..short(12, 20.0, 60.0) }).run();
+    let dt = 1.0 / 60.0;
+    let mut largest: f64 = 0.0;
+    for (s, (a, b)) in plain.recording.sensors.iter().zip(&scaled.recording.sensors).enumerate() {
+        assert_eq!(a.truth, b.truth);
+        assert_eq!(a.accel, b.accel);
+        for i in 1..a.len() {
+            // ω of the interval, as the simulator takes it; E ω is what scaling added.
+            let omega = log(a.truth[i - 1].conj() * a.truth[i]) * (1.0 / dt);
+            let added = b.gyro[i] - a.gyro[i];
+            assert_eq!(plain.bias[s][i], scaled.bias[s][i]);
+            // |E ω| ≤ (0.02 + 2 · 0.01) |ω| per component.
+            assert!(added.max_abs() <= 0.04 * omega.norm() + 1e-12, "{added:?} {omega:?}");
+            if omega.norm() > 1.0 {
+                largest = largest.max(added.norm() / omega.norm());
+            }
+        }
+    }
+    assert!(largest > 0.01, "{largest}");
+}
+
 #[test]
 fn rig_json_reads_what_it_writes_and_refuses_what_is_not_a_tree() {
     let sim = Simulation::new(short(2, 1.0, 60.0)).run();

@@ -3,7 +3,7 @@
 //! over several seeds, beside every sensor alone. RIG-FORMAT.md's scores, degrees.
 //!
 //! ```text
-//! cargo run --release -p orient-tools --bin rig_joints [-- --seeds A-B] [--minutes M]
+//! cargo run --release -p orient-tools --bin rig_joints [-- --seeds A-B] [--minutes M] [--gyro-scale PCT]
 //!     [--cases a,b,..] [--filters robust,vqf] [--set KEY=VALUE].. [--oracle] [--cost]
 //!     [--debias true|initial] [--filter-set NAME=VALUE].. [--plain]
 //! ```
@@ -147,6 +147,7 @@ fn set_param(p: &mut JointParams, kv: &str) {
 fn main() {
     let (mut s0, mut s1) = (1u64, 3u64);
     let mut minutes = 10.0;
+    let mut gyro_scale = 0.0;
     let mut cases: Vec<String> =
         ["100hz", "60hz-vigorous", "palm-sideways", "bias-3dps", "axes-5deg-off"].map(String::from).to_vec();
     let mut bases = vec![Base::Robust, Base::Vqf];
@@ -162,6 +163,7 @@ fn main() {
         match a.as_str() {
             "--seeds" => (s0, s1) = seed_range(&val()),
             "--minutes" => minutes = val().parse().unwrap(),
+            "--gyro-scale" => gyro_scale = val().parse().unwrap(),
             "--cases" => cases = val().split(',').map(String::from).collect(),
             "--filters" => {
                 bases = val().split(',').map(|f| if f == "vqf" { Base::Vqf } else { Base::Robust }).collect()
@@ -192,6 +194,7 @@ fn main() {
         for seed in s0..=s1 {
             let mut config = SimConfig::preset(case, seed).expect("a preset");
             config.duration_s = minutes * 60.0;
+            config.gyro_scale_pct = gyro_scale;
             let mut sim = Simulation::new(config).run();
             for (s, bias) in sim.recording.sensors.iter_mut().zip(&sim.bias) {
                 s.mag.clear();

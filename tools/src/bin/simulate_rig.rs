@@ -6,7 +6,7 @@
 //!     [--seed N] [--body glove|glove-dip|leg] [--rate HZ] [--duration S] [--rest S]
 //!     [--vigorous] [--sideways FRACTION] [--bias DEG_S] [--axis-error DEG]
 //!     [--mounting-error DEG] [--laxity DEG] [--axial-play DEG] [--wobble DEG]
-//!     [--no-magnet]
+//!     [--gyro-scale PCT] [--no-magnet]
 //! ```
 //!
 //! - `--preset`: one of 100hz (default), 60hz-vigorous, palm-sideways, bias-3dps,
@@ -50,7 +50,7 @@ fn main() {
             "--out" => out = Some(PathBuf::from(value("--out"))),
             "--vigorous" | "--no-magnet" => changes.push((a.clone(), String::new())),
             "--body" | "--rate" | "--duration" | "--rest" | "--sideways" | "--bias" | "--axis-error"
-            | "--mounting-error" | "--laxity" | "--axial-play" | "--wobble" => {
+            | "--mounting-error" | "--laxity" | "--axial-play" | "--wobble" | "--gyro-scale" => {
                 let v = value(&a);
                 changes.push((a.clone(), v));
             }
@@ -92,6 +92,7 @@ fn main() {
             "--laxity" => c.laxity_deg = num(),
             "--axial-play" => c.axial_play_deg = num(),
             "--wobble" => c.wobble_deg = num(),
+            "--gyro-scale" => c.gyro_scale_pct = num(),
             _ => unreachable!(),
         }
     }
