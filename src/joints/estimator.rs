@@ -69,9 +69,9 @@
 //! does, `(2f − f²) P hᵀ h P / S` (Joseph's form for any gain): the estimate stays as
 //! uncertain as the step it did not take and goes on at the bound. A joint started with
 //! its headings unknown (`heading_std0` above 45°: not aligned at a reference pose, up
-//! to 180° apart) takes the bound at [`ACQUIRE_RATE`] instead for its first
-//! [`ACQUIRE_TIME`] seconds of motion: the joint centre's acceleration and the axes then
-//! bring a heading 150° off within a degree in seconds, where `max_rate` took minutes.
+//! to 180° apart) takes the bound at 1 rad/s instead for its first
+//! 60 seconds of motion: the joint centre's acceleration and the axes then
+//! bring a heading 150° off within a degree within 30 s, where `max_rate` took minutes.
 //!
 //! Input no rig gives (rates that disagree with the orientations, forces no joint centre
 //! feels), for minutes, must not leave a joint that good rows cannot bring back: each
@@ -104,10 +104,11 @@ const OC: usize = 14;
 const TX: usize = 17;
 /// A joint started with its relative heading unknown, `heading_std0` above
 /// [`ACQUIRE_STD`] (45°; the headings were not aligned at a reference pose), corrects it
-/// at up to [`ACQUIRE_RATE`] (rad/s, or `max_rate` when larger) for its first
-/// [`ACQUIRE_TIME`] seconds of motion, then within `max_rate`: it acquires a heading up to
-/// 180° off within about a minute instead of several (orient: simulated gloves without a
-/// reference pose, docs/ACCURACY.md).
+/// and its tilt at up to [`ACQUIRE_RATE`] (rad/s, the largest `max_rate` accepts) for
+/// its first [`ACQUIRE_TIME`] seconds of motion (rest does not count), then within
+/// `max_rate`: it acquires a heading up to 180° off within about a minute instead of
+/// several (orient: simulated gloves without a reference pose, docs/ACCURACY.md). A joint
+/// that reopens its variances (rows that contradict it for long) acquires again.
 pub(crate) const ACQUIRE_STD: f64 = core::f64::consts::FRAC_PI_4;
 pub(crate) const ACQUIRE_RATE: f64 = 1.0;
 pub(crate) const ACQUIRE_TIME: f64 = 60.0;
@@ -271,7 +272,7 @@ pub const JOINT_PARAMS: [ParamSpec; 22] = [
         estimate starts (the joints made, or reset): 1 deg by default, for filters whose headings were \
         aligned at a reference pose (orient_rig_align_heading); as far apart as they may be when they \
         were not (a hinge finds 30 deg within a degree in a minute of motion); above 45 deg (pi: \
-        unknown) the joint corrects at up to 1 rad/s, max_rate when larger, for its first 60 s of \
+        unknown) the joint corrects its heading and tilt at up to 1 rad/s for its first 60 s of \
         motion (orient: simulated gloves).",
         DEG,
         0.0,
@@ -919,6 +920,10 @@ impl JointEstimator {
             let std0 = initial_std(&self.params, i);
             self.p[i][i] = self.p[i][i].max(std0 * std0);
         }
+        // As from a start: with the headings unknown, acquired again.
+        if self.params.heading_std0 > ACQUIRE_STD {
+            self.acquiring = ACQUIRE_TIME;
+        }
     }
 
     /// Input that no rig could give, for long (readings that contradict the orientations,
@@ -1130,8 +1135,14 @@ impl JointEstimator {
     /// For tests: states no estimate could hold, each finite (so that only `holds`
     /// refuses them): a negative variance, a tilt beyond its bound, an indefinite
     /// covariance (a correlation of 1.004), an asymmetric one, a residual bias, a
-    /// low-passed innovation and its variance just beyond their bounds, a previous
-    /// orientation that is not unit.
+    /// low-passed innovation and its variance just beyond their bounds, more acquisition
+    /// time left than [`ACQUIRE_TIME`], a previous orientation that is not unit.
+    /// Seconds of motion left with the acquisition's bound.
+    #[cfg(test)]
+    pub(crate) fn acquiring(&self) -> f64 {
+        self.acquiring
+    }
+
     #[cfg(test)]
     pub(crate) fn corrupt_for_test(&mut self, how: usize) {
         match how {
@@ -1160,7 +1171,8 @@ impl JointEstimator {
     /// update keeps it so) that is positive semi-definite to rounding (a Cholesky
     /// factorisation of P + 1e-9 max(P_ii) I), with variances up to 1e6: anything else
     /// could make an innovation's variance negative, and the joint skip every update; a
-    /// rating in [0, 1], a rest time not negative, a positive information scale, the
+    /// rating in [0, 1], a rest time not negative, acquisition time left within [0,
+    /// [`ACQUIRE_TIME`]], a positive information scale, the
     /// low-passed normalized innovations within their bound ([`CONSISTENCY_MAX_NU`]) and
     /// their variances in [0, 1], unit previous orientations, and a finite correction.
     pub(crate) fn holds(&self) -> bool {

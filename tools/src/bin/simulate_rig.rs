@@ -26,7 +26,7 @@ use std::time::Instant;
 
 const USAGE: &str = "usage: simulate_rig --out DIR [--preset NAME] [--seed N] [--body glove|glove-dip|leg] \
                      [--rate HZ] [--duration S] [--rest S] [--vigorous] [--sideways F] [--bias DEG_S] [--axis-error DEG] \
-                     [--mounting-error DEG] [--laxity DEG] [--axial-play DEG] [--wobble DEG] [--no-magnet]";
+                     [--mounting-error DEG] [--laxity DEG] [--axial-play DEG] [--wobble DEG] [--gyro-scale PCT] [--no-magnet]";
 
 fn fail(message: impl std::fmt::Display) -> ! {
     eprintln!("simulate_rig: {message}");
