@@ -1132,17 +1132,17 @@ impl JointEstimator {
         self.p[i][i]
     }
 
-    /// For tests: states no estimate could hold, each finite (so that only `holds`
-    /// refuses them): a negative variance, a tilt beyond its bound, an indefinite
-    /// covariance (a correlation of 1.004), an asymmetric one, a residual bias, a
-    /// low-passed innovation and its variance just beyond their bounds, more acquisition
-    /// time left than [`ACQUIRE_TIME`], a previous orientation that is not unit.
     /// Seconds of motion left with the acquisition's bound.
     #[cfg(test)]
     pub(crate) fn acquiring(&self) -> f64 {
         self.acquiring
     }
 
+    /// For tests: states no estimate could hold, each finite (so that only `holds`
+    /// refuses them): a negative variance, a tilt beyond its bound, an indefinite
+    /// covariance (a correlation of 1.004), an asymmetric one, a residual bias, a
+    /// low-passed innovation and its variance just beyond their bounds, more acquisition
+    /// time left than [`ACQUIRE_TIME`], a previous orientation that is not unit.
     #[cfg(test)]
     pub(crate) fn corrupt_for_test(&mut self, how: usize) {
         match how {
