@@ -8,12 +8,17 @@
 //!     [--set KEY=VALUE]..
 //! ```
 //!
-//! - `--seeds N` (default 3): seeds 1..=N per case; `--minutes M` (default 10); `--rest S`
-//!   the mean still time of the rests (the simulator's default unless given).
+//! - `--seeds N` (default 3): seeds 1..=N per case, or `--seeds A-B` seeds A..=B;
+//!   `--minutes M` (default 10); `--rest S` the mean still time of the rests (the
+//!   simulator's default unless given).
 //! - `--6d`: only the 6D rows (robust and VQF without magnetometer); otherwise the 9D
 //!   rows too (with the simulator's magnet under the desk).
 //! - `--set KEY=VALUE`: a robust parameter (by its name, `bias_sigma_motion` say) for the
 //!   robust rows.
+//!
+//! Below the tables, issue 42's item 7: each glove sensor's own 6D estimate on the 60 Hz
+//! vigorous glove, one heading offset removed as FORMAT.md scores BROAD, robust against
+//! VQF, with the mean over sensors and how many sensors each kind leads.
 //!
 //! Runs in memory (`orient_tools::rigsim`, `orient_tools::rig::run_rig`); nothing is
 //! written. A benchmark, not a test: it asserts nothing.
@@ -22,7 +27,7 @@ use orient::{Config, Filter, Kind};
 use orient_tools::clock;
 use orient_tools::eval::{self, remove_heading_offset};
 use orient_tools::rig::{joint_errors, run_rig, score_rig, Alone, RigRecording, RigScores, SensorFilter};
-use orient_tools::rigsim::{vertical_hinge_fraction, SimConfig, Simulation};
+use orient_tools::rigsim::{seed_range, vertical_hinge_fraction, SimConfig, Simulation};
 
 const CASES: [(&str, &str); 5] = [
     ("100hz", "100 Hz"),
@@ -93,7 +98,7 @@ fn score(rec: &RigRecording, row: Row, robust: &Config) -> (RigScores, Vec<(f64,
 }
 
 fn main() {
-    let mut seeds = 3u64;
+    let (mut first, mut seeds) = (1u64, 3u64);
     let mut minutes = 10.0;
     let mut only6 = false;
     let mut rest = None;
@@ -101,7 +106,12 @@ fn main() {
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         match a.as_str() {
-            "--seeds" => seeds = it.next().and_then(|v| v.parse().ok()).expect("--seeds N"),
+            "--seeds" => {
+                let v = it.next().expect("--seeds N or A-B");
+                (first, seeds) =
+                    if v.contains('-') { seed_range(&v) } else { (1, v.parse().expect("--seeds N")) };
+                assert!(first <= seeds, "--seeds A-B with A <= B");
+            }
             "--minutes" => minutes = it.next().and_then(|v| v.parse().ok()).expect("--minutes M"),
             "--rest" => rest = Some(it.next().and_then(|v| v.parse().ok()).expect("--rest S")),
             "--6d" => only6 = true,
@@ -127,26 +137,28 @@ fn main() {
     // [row][case] -> per-seed scores.
     let mut results: Vec<Vec<Vec<RigScores>>> = vec![vec![Vec::new(); CASES.len()]; rows.len()];
     let mut vertical = vec![0.0; CASES.len()];
+    let n_seeds = (seeds - first + 1) as f64;
     // Issue 42 item 7: per sensor, heading offset removed, on the 60 Hz vigorous glove.
-    const OWN: [&str; 3] = ["hand", "index_proximal", "index_middle"];
-    let mut own = [[(0.0, 0.0); OWN.len()]; 2];
+    let mut own_names: Vec<String> = Vec::new();
+    let mut own: [Vec<(f64, f64)>; 2] = [Vec::new(), Vec::new()];
     let (mut sim_time, mut filter_time) = (0.0, 0.0);
     for (c, (preset, _)) in CASES.iter().enumerate() {
-        for seed in 1..=seeds {
+        for seed in first..=seeds {
             let mut config = SimConfig::preset(preset, seed).unwrap();
             config.duration_s = minutes * 60.0;
             config.rest_s = rest.unwrap_or(config.rest_s);
             let (sim, t) = clock::time(|| Simulation::new(config).run());
             sim_time += t.as_secs_f64();
-            vertical[c] += vertical_hinge_fraction(&sim, 60.0) / seeds as f64;
+            vertical[c] += vertical_hinge_fraction(&sim, 60.0) / n_seeds;
             let t0 = clock::thread_cpu();
             for (r, row) in rows.iter().enumerate() {
                 let (s, per_sensor) = score(&sim.recording, *row, &robust);
                 if *preset == "60hz-vigorous" && r < 2 {
-                    for (k, name) in OWN.iter().enumerate() {
-                        let (t, i) = per_sensor[sim.recording.spec.sensor(name).unwrap()];
-                        own[r][k].0 += t / seeds as f64;
-                        own[r][k].1 += i / seeds as f64;
+                    own_names = sim.recording.spec.sensors.iter().map(|s| s.name.clone()).collect();
+                    own[r].resize(per_sensor.len(), (0.0, 0.0));
+                    for (sum, (t, i)) in own[r].iter_mut().zip(&per_sensor) {
+                        sum.0 += t / n_seeds;
+                        sum.1 += i / n_seeds;
                     }
                 }
                 eprintln!(
@@ -169,7 +181,7 @@ fn main() {
     };
     println!(
         "\nEvery sensor alone, headings aligned once at the reference pose; RMSE of each child \
-         segment relative to its parent over all joints, deg; mean of seeds 1..={seeds}, {minutes} min each, rests of {} s.\n",
+         segment relative to its parent over all joints, deg; mean of seeds {first}..={seeds}, {minutes} min each, rests of {} s.\n",
         rest.unwrap_or(SimConfig::glove(0).rest_s)
     );
     let head: Vec<String> = CASES
@@ -208,11 +220,21 @@ fn main() {
          [deg], mean of seeds (issue: hand 4.66 vs VQF 3.34, index proximal 4.02 vs 2.28, index middle \
          1.38 vs 0.82; inclination 0.4 against 0.33-0.36):\n"
     );
-    for (r, row) in rows.iter().take(2).enumerate() {
-        let cells: Vec<String> =
-            OWN.iter().zip(&own[r]).map(|(n, (t, i))| format!("{n} {t:.2} / {i:.2}")).collect();
-        println!("  {:<10} {}", row.label(), cells.join(",  "));
+    println!("| sensor | {} | {} |", rows[0].label(), rows[1].label());
+    println!("|---|---|---|");
+    for (k, name) in own_names.iter().enumerate() {
+        let ((tr, ir), (tv, iv)) = (own[0][k], own[1][k]);
+        println!("| {name} | {tr:.2} / {ir:.2} | {tv:.2} / {iv:.2} |");
     }
+    let n = own_names.len().max(1) as f64;
+    let mean_of = |r: usize| own[r].iter().map(|v| v.0).sum::<f64>() / n;
+    let leads = own[0].iter().zip(&own[1]).filter(|(a, b)| a.0 <= b.0).count();
+    println!(
+        "| mean (robust leads on {leads} of {}) | {:.2} | {:.2} |",
+        own_names.len(),
+        mean_of(0),
+        mean_of(1)
+    );
     println!(
         "\nhinge axes > 60 deg from horizontal: {} % of the time (per case); thread CPU time on {}: \
          simulation {sim_time:.1} s, filters and scoring {filter_time:.1} s",
