@@ -518,7 +518,7 @@ typedef struct OrientFilter OrientFilter;
 /**
  * Parameter slot (robust): Rest when the gyroscope's spread around its low-pass and the
  * low-pass itself stay below this; default 0.0349 (2 deg/s, VQF's default; MEMS biases
- * are below it).
+ * are below it); 4 deg/s under joints (orient_config_for_joints()), with bias_limit.
  *
  * Unit rad/s; range 0 to 10; default 0.03490658503988659.
  */
@@ -582,7 +582,7 @@ typedef struct OrientFilter OrientFilter;
  * Parameter slot (robust): Largest component the motion estimate may give the bias, and
  * its measurement error (a larger component learned at rest raises the bound for every
  * component to it); default 0.0349 (orient: 2 deg/s, VQF's biasClip and the rest
- * threshold: a larger bias would also hide rest); 4 deg/s under joints
+ * threshold: a larger bias would also hide rest); 4 deg/s under joints, with rest_gyro
  * (orient_config_for_joints()).
  *
  * Unit rad/s; range 0 to 10; default 0.03490658503988659.
@@ -1687,8 +1687,10 @@ double orient_madgwick_beta(double gyro_error);
  * Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_ROBUST
  * the gyroscope bias random walk (ORIENT_PARAM_ROBUST_BIAS_WALK) at 8.727e-4
  * rad/s/sqrt(s) (0.05 deg/s/sqrt(s), five times its default), so a drifting bias is
- * followed more closely, and the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
- * 0.0698 rad/s (4 deg/s); other kinds have neither and `config` is left as it was. Call
+ * followed more closely, the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
+ * 0.0698 rad/s (4 deg/s), and the rest detector's gyroscope threshold
+ * (ORIENT_PARAM_ROBUST_REST_GYRO) at the same 0.0698 rad/s, so a bias above the default
+ * 2 deg/s does not hide rest; other kinds have none of them and `config` is left as it was. Call
  * it after orient_config_default() for each sensor of a rig whose joints hold its
  * heading (docs/ACCURACY.md has the simulated gloves' figures); a sensor alone keeps the
  * defaults. NULL_POINTER for

@@ -381,7 +381,7 @@ fn config(b: &mut Bytes, kind: i32) -> Option<(OrientConfig, String)> {
     Some((c, taken))
 }
 
-/// orient_config_for_joints on a copy of `c`: OK and only the robust kind's two slots
+/// orient_config_for_joints on a copy of `c`: OK and only the robust kind's three slots
 /// changed, or refused as orient_config_set_param refuses the same configuration, with
 /// nothing changed.
 fn for_joints(c: &OrientConfig) {
@@ -394,7 +394,11 @@ fn for_joints(c: &OrientConfig) {
         assert_eq!(config_bytes(&j), config_bytes(c), "refused for_joints changed the configuration");
         return;
     }
-    let slots = [ORIENT_PARAM_ROBUST_BIAS_WALK as usize, ORIENT_PARAM_ROBUST_BIAS_LIMIT as usize];
+    let slots = [
+        ORIENT_PARAM_ROBUST_BIAS_WALK as usize,
+        ORIENT_PARAM_ROBUST_BIAS_LIMIT as usize,
+        ORIENT_PARAM_ROBUST_REST_GYRO as usize,
+    ];
     for (i, (a, b)) in c.params.iter().zip(&j.params).enumerate() {
         if a.to_bits() != b.to_bits() {
             assert!(c.kind == OrientKind::Robust as i32 && slots.contains(&i), "for_joints changed slot {i} of kind {}", c.kind);

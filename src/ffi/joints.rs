@@ -129,8 +129,10 @@ fn index(i: usize, n: usize, what: &str) -> Result<usize, OrientStatus> {
 /// Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_ROBUST
 /// the gyroscope bias random walk (ORIENT_PARAM_ROBUST_BIAS_WALK) at 8.727e-4
 /// rad/s/sqrt(s) (0.05 deg/s/sqrt(s), five times its default), so a drifting bias is
-/// followed more closely, and the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
-/// 0.0698 rad/s (4 deg/s); other kinds have neither and `config` is left as it was. Call
+/// followed more closely, the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
+/// 0.0698 rad/s (4 deg/s), and the rest detector's gyroscope threshold
+/// (ORIENT_PARAM_ROBUST_REST_GYRO) at the same 0.0698 rad/s, so a bias above the default
+/// 2 deg/s does not hide rest; other kinds have none of them and `config` is left as it was. Call
 /// it after orient_config_default() for each sensor of a rig whose joints hold its
 /// heading (docs/ACCURACY.md has the simulated gloves' figures); a sensor alone keeps the
 /// defaults. NULL_POINTER for

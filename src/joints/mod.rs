@@ -71,11 +71,16 @@ pub const MAX_SEGMENTS: usize = 256;
 /// recommended kind's parameter names: the gyroscope bias random walk at 0.05 °/s/√s,
 /// five times the default, so the motion bias filter follows a drifting bias more
 /// closely (the joints hold the relative heading that a faster bias estimate would
-/// otherwise let wander), and the motion estimate's bound at 4 °/s,
-/// so a glove's bias up to 3 °/s per axis is learned whole. Measured on simulated gloves
+/// otherwise let wander), the motion estimate's bound at 4 °/s, so a glove's bias up to
+/// 3 °/s per axis is learned whole, and the rest detector's gyroscope threshold at the same
+/// 4 °/s, so a sensor whose bias is above the default 2 °/s is still found at rest (the
+/// reference pose among its rests) and learns its bias there. Measured on simulated gloves
 /// and a leg (docs/ACCURACY.md); alone, on BROAD's real trials, the defaults stay better.
-pub const SENSOR_SETTINGS: [(&str, f64); 2] =
-    [("bias_walk", 8.726_646_259_971_648e-4), ("bias_limit", 0.069_813_170_079_773_18)];
+pub const SENSOR_SETTINGS: [(&str, f64); 3] = [
+    ("bias_walk", 8.726_646_259_971_648e-4),
+    ("bias_limit", 0.069_813_170_079_773_18),
+    ("rest_gyro", 0.069_813_170_079_773_18),
+];
 
 impl Config {
     /// Sets [`SENSOR_SETTINGS`], the settings a sensor's filter runs with under joints,

@@ -732,6 +732,37 @@ fn for_joints_sets_the_sensor_settings_where_the_kind_has_them() {
     }
 }
 
+/// A sensor whose bias is above the default rest threshold (2 deg/s), lying still for a
+/// 5 s reference pose: under the settings for joints it is found at rest and has learned
+/// its bias by the pose's end (the joints' heading alignment then holds); with the
+/// defaults it is never at rest and keeps most of the bias.
+#[test]
+fn a_bias_above_the_default_rest_threshold_is_learned_in_the_reference_pose() {
+    use crate::filters::Kind;
+    const DEG: f64 = core::f64::consts::PI / 180.0;
+    let b = Vec3::new(2.0, -2.0, 2.5) * DEG;
+    let run = |joints: bool| {
+        let mut c = Config::new(Kind::Robust).unwrap();
+        if joints {
+            c.for_joints();
+        }
+        let mut f = Filter::new(&c).unwrap();
+        let s = Sample { dt: 0.01, gyro: Some(b), accel: Some(Vec3::new(0.0, 0.0, 9.81)), mag: None };
+        let mut rest = 0;
+        for _ in 0..500 {
+            f.update(&s).unwrap();
+            rest += usize::from(f.diagnostics().rest > 0.5);
+        }
+        ((f.diagnostics().gyro_bias - b).norm() / DEG, rest)
+    };
+    let (left, rest) = run(true);
+    // Rest from 1.5 s (rest_time), the bias following with bias_tau_rest (2 s): e^(-1.75)
+    // of 3.8 deg/s is 0.66 deg/s.
+    assert!(rest >= 340 && left < 0.7, "under joints: {left} deg/s left, {rest} rows at rest");
+    let (left, rest) = run(false);
+    assert!(rest == 0 && left > 3.0, "defaults: {left} deg/s left, {rest} rows at rest");
+}
+
 /// The tuning as a table: ids in order, one entry per name, each default in its range,
 /// its ranges what [`Joints::new`] accepts, and `set_param` takes a value in range, refuses
 /// others (and unknown names) with nothing changed.

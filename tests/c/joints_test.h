@@ -231,21 +231,24 @@ static void two_dof_axes(void) {
     free(qc);
 }
 
-/* orient_config_for_joints: the robust kind's two settings, other kinds and refused
+/* orient_config_for_joints: the robust kind's three settings, other kinds and refused
  * configs left byte for byte. */
 static void config_for_joints(void) {
     OrientConfig c, before;
-    double walk, limit;
+    double walk, limit, rest;
     CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &c), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_config_for_joints(&c), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_config_get_param(&c, ORIENT_PARAM_ROBUST_BIAS_WALK, &walk), ORIENT_STATUS_OK);
     CHECK(fabs(walk - 0.05 * DEGREE) < 1e-15);
     CHECK_STATUS(orient_config_get_param(&c, ORIENT_PARAM_ROBUST_BIAS_LIMIT, &limit), ORIENT_STATUS_OK);
     CHECK(fabs(limit - 4.0 * DEGREE) < 1e-15);
-    /* Nothing else: the default with those two set is the same struct. */
+    CHECK_STATUS(orient_config_get_param(&c, ORIENT_PARAM_ROBUST_REST_GYRO, &rest), ORIENT_STATUS_OK);
+    CHECK(fabs(rest - 4.0 * DEGREE) < 1e-15);
+    /* Nothing else: the default with those three set is the same struct. */
     CHECK_STATUS(orient_config_default(ORIENT_KIND_ROBUST, &before), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_config_set_param(&before, ORIENT_PARAM_ROBUST_BIAS_WALK, walk), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_config_set_param(&before, ORIENT_PARAM_ROBUST_BIAS_LIMIT, limit), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_config_set_param(&before, ORIENT_PARAM_ROBUST_REST_GYRO, rest), ORIENT_STATUS_OK);
     CHECK(memcmp(&c, &before, sizeof c) == 0);
     CHECK_STATUS(orient_config_default(ORIENT_KIND_MADGWICK, &c), ORIENT_STATUS_OK);
     before = c;

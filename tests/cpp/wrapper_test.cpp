@@ -513,11 +513,12 @@ static void joints() {
     CHECK(h.axis_parent.z > 0.9999 && h.axis_child.y > 0.9999 && h.quality < 0.05);
     qc.pop_back();
     CHECK(orient::estimate_two_dof_axes(qp, qc, orient::vec3(0, 0, 1), orient::vec3(0, 1, 0), h) == ORIENT_STATUS_INVALID_ARGUMENT);
-    // A sensor's configuration under joints: the two settings, other kinds unchanged.
+    // A sensor's configuration under joints: the three settings, other kinds unchanged.
     orient::Config under = orient::Config::defaults(orient::Kind::Robust).value();
     CHECK(under.for_joints() == ORIENT_STATUS_OK);
     CHECK(std::fabs(under.get(ORIENT_PARAM_ROBUST_BIAS_WALK) - 0.05 * 0.017453292519943295) < 1e-15);
     CHECK(std::fabs(under.get(ORIENT_PARAM_ROBUST_BIAS_LIMIT) - 4.0 * 0.017453292519943295) < 1e-15);
+    CHECK(std::fabs(under.get(ORIENT_PARAM_ROBUST_REST_GYRO) - 4.0 * 0.017453292519943295) < 1e-15);
     orient::Config other = orient::Config::defaults(orient::Kind::Madgwick).value();
     CHECK(other.for_joints() == ORIENT_STATUS_OK);
     CHECK(std::memcmp(&other.raw(), &orient::Config::defaults(orient::Kind::Madgwick).value().raw(), sizeof(OrientConfig)) == 0);

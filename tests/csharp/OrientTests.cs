@@ -560,8 +560,9 @@ public static class OrientTests
             Throws(Status.InvalidArgument, () => OrientJoints.EstimateTwoDofAxes(new Orient.Native.Quaternion[0], new Orient.Native.Quaternion[0], x, x),
                 "OrientJoints: no orientations");
             var under = new OrientSettings(Kind.Robust).ForJoints();
-            Check(Math.Abs(under["bias_walk"] - 0.05 * Math.PI / 180) < 1e-15 && Math.Abs(under["bias_limit"] - 4.0 * Math.PI / 180) < 1e-15,
-                "OrientSettings.ForJoints: the two settings");
+            Check(Math.Abs(under["bias_walk"] - 0.05 * Math.PI / 180) < 1e-15 && Math.Abs(under["bias_limit"] - 4.0 * Math.PI / 180) < 1e-15
+                && Math.Abs(under["rest_gyro"] - 4.0 * Math.PI / 180) < 1e-15,
+                "OrientSettings.ForJoints: the three settings");
             Check(new OrientSettings(Kind.Madgwick).ForJoints()["beta_imu"] == new OrientSettings(Kind.Madgwick)["beta_imu"],
                 "OrientSettings.ForJoints: other kinds unchanged");
             joints.Dispose();

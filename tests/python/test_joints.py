@@ -150,6 +150,7 @@ def test_a_filter_for_joints_takes_the_sensor_settings():
     plain, under = orient.Robust(), orient.Robust(for_joints=True)
     assert under["bias_walk"] == pytest.approx(math.radians(0.05), abs=1e-15)
     assert under["bias_limit"] == pytest.approx(math.radians(4.0), abs=1e-15)
+    assert under["rest_gyro"] == pytest.approx(math.radians(4.0), abs=1e-15)
     assert plain["bias_walk"] < under["bias_walk"]
     # Given settings come after, and other kinds have none of them.
     assert orient.Robust(for_joints=True, bias_walk=0.0)["bias_walk"] == 0.0

@@ -239,7 +239,8 @@ class Filter:
             ``"identity"``, or a quaternion (w, x, y, z) in the configured frame.
         for_joints: the settings a sensor's filter runs with under :class:`Joints`
             (``orient_config_for_joints``: for the recommended kind a faster bias random
-            walk and a 4 deg/s motion bias bound; other kinds unchanged), before
+            walk, a 4 deg/s motion bias bound and a 4 deg/s rest threshold; other kinds
+            unchanged), before
             ``settings``.
         **settings: parameters by name (see :meth:`params`); each is checked against
             the library's range.
