@@ -1688,9 +1688,9 @@ double orient_madgwick_beta(double gyro_error);
  * the gyroscope bias random walk (ORIENT_PARAM_ROBUST_BIAS_WALK) at 8.727e-4
  * rad/s/sqrt(s) (0.05 deg/s/sqrt(s), five times its default), so a drifting bias is
  * followed more closely, the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
- * 0.0698 rad/s (4 deg/s), and the rest detector's gyroscope threshold
- * (ORIENT_PARAM_ROBUST_REST_GYRO) at the same 0.0698 rad/s, so a bias above the default
- * 2 deg/s does not hide rest; other kinds have none of them and `config` is left as it was. Call
+ * 0.0698 rad/s (4 deg/s per axis), and the rest detector's gyroscope threshold
+ * (ORIENT_PARAM_ROBUST_REST_GYRO) at 0.0698 rad/s, so a bias up to 4 deg/s long does
+ * not hide rest; other kinds have none of them and `config` is left as it was. Call
  * it after orient_config_default() for each sensor of a rig whose joints hold its
  * heading (docs/ACCURACY.md has the simulated gloves' figures); a sensor alone keeps the
  * defaults. NULL_POINTER for

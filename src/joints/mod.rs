@@ -71,10 +71,12 @@ pub const MAX_SEGMENTS: usize = 256;
 /// recommended kind's parameter names: the gyroscope bias random walk at 0.05 °/s/√s,
 /// five times the default, so the motion bias filter follows a drifting bias more
 /// closely (the joints hold the relative heading that a faster bias estimate would
-/// otherwise let wander), the motion estimate's bound at 4 °/s, so a glove's bias up to
-/// 3 °/s per axis is learned whole, and the rest detector's gyroscope threshold at the same
-/// 4 °/s, so a sensor whose bias is above the default 2 °/s is still found at rest (the
-/// reference pose among its rests) and learns its bias there. Measured on simulated gloves
+/// otherwise let wander), the motion estimate's bound at 4 °/s per axis, so a glove's
+/// bias up to 3 °/s per axis is learned whole in motion, and the rest detector's
+/// gyroscope threshold (a bound on the rate's length) at 4 °/s, so a sensor whose bias is
+/// up to 4 °/s long is still found at rest (the reference pose among its rests) and
+/// learns its bias there; a slow turn about the vertical below 4 °/s, held for
+/// `rest_time`, is then taken for rest too. Measured on simulated gloves
 /// and a leg (docs/ACCURACY.md); alone, on BROAD's real trials, the defaults stay better.
 pub const SENSOR_SETTINGS: [(&str, f64); 3] = [
     ("bias_walk", 8.726_646_259_971_648e-4),
