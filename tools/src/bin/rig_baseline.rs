@@ -146,7 +146,7 @@ fn main() {
     let mut results: Vec<Vec<Vec<RigScores>>> = vec![vec![Vec::new(); CASES.len()]; rows.len()];
     let mut vertical = vec![0.0; CASES.len()];
     let n_seeds = (seeds - first + 1) as f64;
-    // Issue 42 item 7: per sensor, heading offset removed, on the 60 Hz vigorous glove.
+    // Issue 42 item 7: per sensor, heading offset removed, on `own_case`'s glove.
     let mut own_names: Vec<String> = Vec::new();
     let mut own: [Vec<(f64, f64)>; 2] = [Vec::new(), Vec::new()];
     let (mut sim_time, mut filter_time) = (0.0, 0.0);
