@@ -21,7 +21,8 @@
 //! Readings: the gyroscope gives the rotation vector of each sample interval divided by
 //! its length, `log(q(t−dt)⁻¹ q(t))/dt` (what a strapdown integration recovers exactly),
 //! plus a per-sensor bias (each axis uniform within ±0.8 of [`SimConfig::bias_deg_s`],
-//! drifting slowly by up to ±0.2 of it, so no axis exceeds the bound), optionally scale and
+//! drifting slowly by up to ±0.2 of it, so no axis exceeds the bound; the drift's share
+//! is [`SimConfig::bias_drift`]), optionally scale and
 //! axis errors ([`SimConfig::gyro_scale_pct`]), and white noise; the accelerometer the specific force at the sensor's position (second
 //! difference of the position, so the lever arms' tangential and centripetal terms are
 //! in it) plus noise; the magnetometer the earth's field, optionally with a dipole under
@@ -228,6 +229,10 @@ pub struct SimConfig {
     pub sideways: f64,
     /// Bound on each axis of each sensor's gyroscope bias, deg/s.
     pub bias_deg_s: f64,
+    /// How far each axis's bias drifts, a fraction of [`SimConfig::bias_deg_s`]: each
+    /// axis starts within ±(1 − this) of the bound and moves within ± this of it over one
+    /// to ten minutes; the presets' 0.2; 0 for a constant bias.
+    pub bias_drift: f64,
     /// Angle by which each axis in rig.json is off the true one, degrees.
     pub axis_error_deg: f64,
     /// Angle by which each mounting in rig.json is off the true one, degrees.
@@ -274,6 +279,7 @@ impl SimConfig {
             vigorous: false,
             sideways: 0.0,
             bias_deg_s: 1.0,
+            bias_drift: 0.2,
             axis_error_deg: 0.0,
             mounting_error_deg: 0.0,
             laxity_deg: 3.0,
@@ -453,8 +459,9 @@ impl Simulation {
             let w = deg(config.wobble_deg);
             let wobble = [0, 1, 2].map(|_| Bounded::new(rng, band(0.5, 4.0), -w, w));
             let b = deg(config.bias_deg_s);
-            let bias0 = Vec3::new(rng.range(-0.8, 0.8), rng.range(-0.8, 0.8), rng.range(-0.8, 0.8)) * b;
-            let drift = [0, 1, 2].map(|_| Bounded::new(rng, (1.0 / 600.0, 1.0 / 60.0), -0.2 * b, 0.2 * b));
+            let (d, r) = (config.bias_drift, 1.0 - config.bias_drift);
+            let bias0 = Vec3::new(rng.range(-r, r), rng.range(-r, r), rng.range(-r, r)) * b;
+            let drift = [0, 1, 2].map(|_| Bounded::new(rng, (1.0 / 600.0, 1.0 / 60.0), -d * b, d * b));
             let hard_iron = if config.magnet { rng.direction() * rng.range(0.5, 3.0) } else { Vec3::ZERO };
             segs.push(Segment {
                 name,

@@ -5,12 +5,13 @@
 //!
 //! ```text
 //! cargo run --release -p orient-tools --bin rig_baseline [-- --seeds N|A-B] [--minutes M] [--rest S] [--6d]
-//!     [--set KEY=VALUE].. [--own-case NAME]
+//!     [--set KEY=VALUE].. [--own-case NAME] [--bias-drift F]
 //! ```
 //!
 //! - `--seeds N` (default 3): seeds 1..=N per case, or `--seeds A-B` seeds A..=B;
 //!   `--minutes M` (default 10); `--rest S` the mean still time of the rests (the
-//!   simulator's default unless given).
+//!   simulator's default unless given); `--bias-drift F` the share of each case's bias
+//!   bound that the biases drift (the simulator's 0.2 unless given; 0 for constant biases).
 //! - `--6d`: only the 6D rows (robust and VQF without magnetometer); otherwise the 9D
 //!   rows too (with the simulator's magnet under the desk).
 //! - `--set KEY=VALUE`: a robust parameter (by its name, `bias_sigma_motion` say) for the
@@ -104,6 +105,7 @@ fn main() {
     let mut only6 = false;
     let mut own_case = "60hz-vigorous";
     let mut rest = None;
+    let mut drift = None;
     let mut robust = Config::new(Kind::Robust).unwrap();
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -117,6 +119,7 @@ fn main() {
             }
             "--minutes" => minutes = it.next().and_then(|v| v.parse().ok()).expect("--minutes M"),
             "--rest" => rest = Some(it.next().and_then(|v| v.parse().ok()).expect("--rest S")),
+            "--bias-drift" => drift = Some(it.next().and_then(|v| v.parse().ok()).expect("--bias-drift F")),
             "--6d" => only6 = true,
             "--own-case" => {
                 let v = it.next().expect("--own-case NAME");
@@ -131,7 +134,7 @@ fn main() {
             _ => {
                 eprintln!(
                     "usage: rig_baseline [--seeds N|A-B] [--minutes M] [--rest S] [--6d] [--set KEY=VALUE].. \
-                     [--own-case NAME]"
+                     [--own-case NAME] [--bias-drift F]"
                 );
                 std::process::exit(2);
             }
@@ -155,6 +158,7 @@ fn main() {
             let mut config = SimConfig::preset(preset, seed).unwrap();
             config.duration_s = minutes * 60.0;
             config.rest_s = rest.unwrap_or(config.rest_s);
+            config.bias_drift = drift.unwrap_or(config.bias_drift);
             let (sim, t) = clock::time(|| Simulation::new(config).run());
             sim_time += t.as_secs_f64();
             vertical[c] += vertical_hinge_fraction(&sim, 60.0) / n_seeds;

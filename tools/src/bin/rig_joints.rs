@@ -5,10 +5,12 @@
 //! ```text
 //! cargo run --release -p orient-tools --bin rig_joints [-- --seeds A-B] [--minutes M] [--gyro-scale PCT]
 //!     [--cases a,b,..] [--filters robust,vqf] [--set KEY=VALUE].. [--oracle] [--cost]
-//!     [--debias true|initial] [--filter-set NAME=VALUE].. [--plain]
+//!     [--debias true|initial] [--filter-set NAME=VALUE].. [--plain] [--bias-drift F]
 //! ```
 //!
 //! - `--seeds A-B` (default 1-3): the seeds per case (design on 1-3, hold out 4-8).
+//! - `--bias-drift F`: the share of each case's bias bound that the biases drift (the
+//!   simulator's 0.2 unless given; 0 for constant biases).
 //! - `--set KEY=VALUE`: a [`JointParams`] field (`q_heading`, `r_hinge`, ...; angles in
 //!   the units of the field's doc).
 //! - `--oracle`: also the floor: each child's relative heading set from the truth (what
@@ -148,6 +150,7 @@ fn main() {
     let (mut s0, mut s1) = (1u64, 3u64);
     let mut minutes = 10.0;
     let mut gyro_scale = 0.0;
+    let mut drift = None;
     let mut cases: Vec<String> =
         ["100hz", "60hz-vigorous", "palm-sideways", "bias-3dps", "axes-5deg-off"].map(String::from).to_vec();
     let mut bases = vec![Base::Robust, Base::Vqf];
@@ -164,6 +167,7 @@ fn main() {
             "--seeds" => (s0, s1) = seed_range(&val()),
             "--minutes" => minutes = val().parse().unwrap(),
             "--gyro-scale" => gyro_scale = val().parse().unwrap(),
+            "--bias-drift" => drift = Some(val().parse().unwrap()),
             "--cases" => cases = val().split(',').map(String::from).collect(),
             "--filters" => {
                 bases = val().split(',').map(|f| if f == "vqf" { Base::Vqf } else { Base::Robust }).collect()
@@ -195,6 +199,7 @@ fn main() {
             let mut config = SimConfig::preset(case, seed).expect("a preset");
             config.duration_s = minutes * 60.0;
             config.gyro_scale_pct = gyro_scale;
+            config.bias_drift = drift.unwrap_or(config.bias_drift);
             let mut sim = Simulation::new(config).run();
             for (s, bias) in sim.recording.sensors.iter_mut().zip(&sim.bias) {
                 s.mag.clear();

@@ -4,7 +4,7 @@
 //! ```text
 //! cargo run --release -p orient-tools --bin simulate_rig -- --out DIR [--preset NAME]
 //!     [--seed N] [--body glove|glove-dip|leg] [--rate HZ] [--duration S] [--rest S]
-//!     [--vigorous] [--sideways FRACTION] [--bias DEG_S] [--axis-error DEG]
+//!     [--vigorous] [--sideways FRACTION] [--bias DEG_S] [--bias-drift F] [--axis-error DEG]
 //!     [--mounting-error DEG] [--laxity DEG] [--axial-play DEG] [--wobble DEG]
 //!     [--gyro-scale PCT] [--no-magnet]
 //! ```
@@ -14,6 +14,8 @@
 //!   change the preset.
 //! - `--rest S`: the mean still time of each rest between moving episodes (default 2.5 s).
 //! - `--sideways`: the fraction of the time with the palm sideways (0 for ordinary motion).
+//! - `--bias-drift F`: the share of `--bias` each axis's bias drifts over one to ten
+//!   minutes (default 0.2; 0 for a constant bias).
 //! - Prints what it wrote, the fraction of time hinge axes spend more than 60 deg from
 //!   horizontal, and the time taken.
 //!
@@ -25,8 +27,8 @@ use std::process::exit;
 use std::time::Instant;
 
 const USAGE: &str = "usage: simulate_rig --out DIR [--preset NAME] [--seed N] [--body glove|glove-dip|leg] \
-                     [--rate HZ] [--duration S] [--rest S] [--vigorous] [--sideways F] [--bias DEG_S] [--axis-error DEG] \
-                     [--mounting-error DEG] [--laxity DEG] [--axial-play DEG] [--wobble DEG] [--gyro-scale PCT] [--no-magnet]";
+                     [--rate HZ] [--duration S] [--rest S] [--vigorous] [--sideways F] [--bias DEG_S] [--bias-drift F] \
+                     [--axis-error DEG] [--mounting-error DEG] [--laxity DEG] [--axial-play DEG] [--wobble DEG] [--gyro-scale PCT] [--no-magnet]";
 
 fn fail(message: impl std::fmt::Display) -> ! {
     eprintln!("simulate_rig: {message}");
@@ -49,8 +51,9 @@ fn main() {
             "--seed" => seed = value("--seed").parse().unwrap_or_else(|_| fail("--seed: not a whole number")),
             "--out" => out = Some(PathBuf::from(value("--out"))),
             "--vigorous" | "--no-magnet" => changes.push((a.clone(), String::new())),
-            "--body" | "--rate" | "--duration" | "--rest" | "--sideways" | "--bias" | "--axis-error"
-            | "--mounting-error" | "--laxity" | "--axial-play" | "--wobble" | "--gyro-scale" => {
+            "--body" | "--rate" | "--duration" | "--rest" | "--sideways" | "--bias" | "--bias-drift"
+            | "--axis-error" | "--mounting-error" | "--laxity" | "--axial-play" | "--wobble"
+            | "--gyro-scale" => {
                 let v = value(&a);
                 changes.push((a.clone(), v));
             }
@@ -87,6 +90,7 @@ fn main() {
             "--rest" => c.rest_s = num(),
             "--sideways" => c.sideways = num().min(0.95),
             "--bias" => c.bias_deg_s = num(),
+            "--bias-drift" => c.bias_drift = num().clamp(0.0, 1.0),
             "--axis-error" => c.axis_error_deg = num(),
             "--mounting-error" => c.mounting_error_deg = num(),
             "--laxity" => c.laxity_deg = num(),
