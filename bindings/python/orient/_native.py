@@ -400,9 +400,11 @@ PARAM_ROBUST_REST_TILT = 92
 PARAM_ROBUST_REST_TAU = 85
 
 #: Parameter slot (robust): Time constant with which the bias follows the low-passed
-#: gyroscope at rest; default 2 (orient: settles within a typical 5-10 s pause).
+#: gyroscope at rest; default 1 (orient: a hand's pauses last a few seconds, of which
+#: rest detection takes rest_time; shorter learns more of each pause but also more of a
+#: slow turn that starts from rest below rest_gyro, docs/ACCURACY.md).
 #:
-#: Unit s; range 0.001 to 3600; default 2.
+#: Unit s; range 0.001 to 3600; default 1.
 PARAM_ROBUST_BIAS_TAU_REST = 86
 
 #: Parameter slot (robust): Standard deviation the bias estimate in motion settles to

@@ -209,12 +209,14 @@ settings! {
         },
         bias_tau_rest: f64 = ROBUST_BIAS_TAU_REST 86 {
             unit: "s",
-            default: 2.0,
+            default: 1.0,
             min: 1e-3,
             max: 3600.0,
             zero_off: false,
             doc: "Time constant with which the bias follows the low-passed gyroscope at rest; \
-                 default 2 (orient: settles within a typical 5-10 s pause).",
+                 default 1 (orient: a hand's pauses last a few seconds, of which rest detection \
+                 takes rest_time; shorter learns more of each pause but also more of a slow turn \
+                 that starts from rest below rest_gyro, docs/ACCURACY.md).",
         },
         bias_sigma_motion: f64 = ROBUST_BIAS_SIGMA_MOTION 100 {
             unit: "rad/s",
