@@ -201,7 +201,7 @@ fn robust_beats_vqf_on_every_target() {
     }
     // The recommended kind against VQF, the best published filter on these trials
     // (shared/data/README.md): 9D 3.34 (0.82), 6D* 2.82 (0.82). Measured: 9D 2.28
-    // (0.80), 6D* 2.80 (0.80) (before the motion bias filter, issue 42: 2.36 and 2.69).
+    // (0.80), 6D* 2.79 (0.80) (before the motion bias filter, issue 42: 2.36 and 2.69).
     let (total, incl) = means(Kind::Robust, false);
     println!("robust 9D mean {total:.2} ({incl:.2})");
     assert!(total < 3.34 && incl < 0.82, "9D {total:.3} ({incl:.3})");
@@ -256,8 +256,9 @@ fn robust_leads_vqf_over_all_fourteen_trials() {
     let Some(dir) = broad_dir() else { return };
     // VQF over the 14 trials (shared/data/README.md, reproduced by tools/src/bin/robust_cv.rs
     // with vqf-rs): 9D 2.94 (0.81), 6D* 2.80 (0.81). Measured (docs/ACCURACY.md): 9D 2.23,
-    // 6D* 2.79, inclination 0.80; before the motion bias filter (issue 42) 2.32 / 2.69 /
-    // 0.80, before issue 19's changes 2.52 / 2.69 / 0.80. The 6D* bound is VQF's own:
+    // 6D* 2.77, inclination 0.80 (6D* 2.79 with the rest time constant at 2 s); before the
+    // motion bias filter (issue 42) 2.32 / 2.69 / 0.80, before issue 19's changes 2.52 /
+    // 2.69 / 0.80. The 6D* bound is VQF's own:
     // the motion bias filter trades 0.1° of it for the 9D error and for simulated gloves,
     // whose 6D error it halves (docs/ACCURACY.md).
     let config = Config::new(Kind::Robust).unwrap();
