@@ -20,9 +20,9 @@
 //!
 //! Readings: the gyroscope gives the rotation vector of each sample interval divided by
 //! its length, `log(q(t−dt)⁻¹ q(t))/dt` (what a strapdown integration recovers exactly),
-//! plus a per-sensor bias (each axis uniform within ±0.8 of [`SimConfig::bias_deg_s`],
-//! drifting slowly by up to ±0.2 of it, so no axis exceeds the bound; the drift's share
-//! is [`SimConfig::bias_drift`]), optionally scale and
+//! plus a per-sensor bias (each axis centred uniformly within ±(1 − d) of
+//! [`SimConfig::bias_deg_s`] and drifting slowly by up to ±d of it, d =
+//! [`SimConfig::bias_drift`], 0.2 in the presets, so no axis exceeds the bound), optionally scale and
 //! axis errors ([`SimConfig::gyro_scale_pct`]), and white noise; the accelerometer the specific force at the sensor's position (second
 //! difference of the position, so the lever arms' tangential and centripetal terms are
 //! in it) plus noise; the magnetometer the earth's field, optionally with a dipole under
@@ -229,9 +229,9 @@ pub struct SimConfig {
     pub sideways: f64,
     /// Bound on each axis of each sensor's gyroscope bias, deg/s.
     pub bias_deg_s: f64,
-    /// How far each axis's bias drifts, a fraction of [`SimConfig::bias_deg_s`]: each
-    /// axis starts within ±(1 − this) of the bound and moves within ± this of it over one
-    /// to ten minutes; the presets' 0.2; 0 for a constant bias.
+    /// How far each axis's bias drifts, a fraction of [`SimConfig::bias_deg_s`] from 0 to
+    /// 1: each axis is centred within ±(1 − this) of the bound and moves within ± this of
+    /// it over one to ten minutes; the presets' 0.2; 0 for a constant bias.
     pub bias_drift: f64,
     /// Angle by which each axis in rig.json is off the true one, degrees.
     pub axis_error_deg: f64,
@@ -407,6 +407,14 @@ fn deg(d: f64) -> f64 {
 pub fn seed_range(v: &str) -> (u64, u64) {
     let (a, b) = v.split_once('-').unwrap_or((v, v));
     (a.parse().expect("a seed"), b.parse().expect("a seed"))
+}
+
+/// A `--bias-drift F` argument ([`SimConfig::bias_drift`]): a number from 0 to 1.
+pub fn bias_drift_arg(v: &str) -> Result<f64, String> {
+    match v.parse::<f64>() {
+        Ok(f) if (0.0..=1.0).contains(&f) => Ok(f),
+        _ => Err(format!("--bias-drift: '{v}' is not a number from 0 to 1")),
+    }
 }
 
 /// The rotation by the rotation vector `v`.

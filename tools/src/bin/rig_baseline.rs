@@ -29,7 +29,7 @@ use orient::{Config, Filter, Kind};
 use orient_tools::clock;
 use orient_tools::eval::{self, remove_heading_offset};
 use orient_tools::rig::{joint_errors, run_rig, score_rig, Alone, RigRecording, RigScores, SensorFilter};
-use orient_tools::rigsim::{seed_range, vertical_hinge_fraction, SimConfig, Simulation};
+use orient_tools::rigsim::{bias_drift_arg, seed_range, vertical_hinge_fraction, SimConfig, Simulation};
 
 const CASES: [(&str, &str); 5] = [
     ("100hz", "100 Hz"),
@@ -119,7 +119,10 @@ fn main() {
             }
             "--minutes" => minutes = it.next().and_then(|v| v.parse().ok()).expect("--minutes M"),
             "--rest" => rest = Some(it.next().and_then(|v| v.parse().ok()).expect("--rest S")),
-            "--bias-drift" => drift = Some(it.next().and_then(|v| v.parse().ok()).expect("--bias-drift F")),
+            "--bias-drift" => {
+                let v = it.next().expect("--bias-drift F");
+                drift = Some(bias_drift_arg(&v).unwrap_or_else(|e| panic!("{e}")));
+            }
             "--6d" => only6 = true,
             "--own-case" => {
                 let v = it.next().expect("--own-case NAME");
@@ -193,8 +196,9 @@ fn main() {
     };
     println!(
         "\nEvery sensor alone, headings aligned once at the reference pose; RMSE of each child \
-         segment relative to its parent over all joints, deg; mean of seeds {first}..={seeds}, {minutes} min each, rests of {} s.\n",
-        rest.unwrap_or(SimConfig::glove(0).rest_s)
+         segment relative to its parent over all joints, deg; mean of seeds {first}..={seeds}, {minutes} min each, rests of {} s, biases drifting by {} of their bound.\n",
+        rest.unwrap_or(SimConfig::glove(0).rest_s),
+        drift.unwrap_or(SimConfig::glove(0).bias_drift)
     );
     let head: Vec<String> = CASES
         .iter()

@@ -33,7 +33,7 @@ use orient_tools::rig::{
     joint_errors, reference_row, run_rig, score_rig, twist_angle, Alone, JointStage, RigRecording, RigScores,
     SensorFilter,
 };
-use orient_tools::rigsim::{seed_range, SimConfig, Simulation};
+use orient_tools::rigsim::{bias_drift_arg, seed_range, SimConfig, Simulation};
 
 /// Sets each child's heading relative to its parent from the truth.
 struct Oracle<'a> {
@@ -167,7 +167,7 @@ fn main() {
             "--seeds" => (s0, s1) = seed_range(&val()),
             "--minutes" => minutes = val().parse().unwrap(),
             "--gyro-scale" => gyro_scale = val().parse().unwrap(),
-            "--bias-drift" => drift = Some(val().parse().unwrap()),
+            "--bias-drift" => drift = Some(bias_drift_arg(&val()).unwrap_or_else(|e| panic!("{e}"))),
             "--cases" => cases = val().split(',').map(String::from).collect(),
             "--filters" => {
                 bases = val().split(',').map(|f| if f == "vqf" { Base::Vqf } else { Base::Robust }).collect()
@@ -279,7 +279,7 @@ fn main() {
             }
         }
     }
-    println!("\nRIG-FORMAT.md scores, 6D, deg: all joints / worst joint / last minute; mean over seeds {s0}-{s1} [max over seeds of all], {minutes} min\n");
+    println!("\nRIG-FORMAT.md scores, 6D, deg: all joints / worst joint / last minute; mean over seeds {s0}-{s1} [max over seeds of all], {minutes} min, biases drifting by {} of their bound\n", drift.unwrap_or(SimConfig::glove(0).bias_drift));
     println!(
         "| case | filter | alone | joints | {}",
         if oracle { "oracle (heading from truth) |" } else { "" }

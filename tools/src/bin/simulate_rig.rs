@@ -15,13 +15,13 @@
 //! - `--rest S`: the mean still time of each rest between moving episodes (default 2.5 s).
 //! - `--sideways`: the fraction of the time with the palm sideways (0 for ordinary motion).
 //! - `--bias-drift F`: the share of `--bias` each axis's bias drifts over one to ten
-//!   minutes (default 0.2; 0 for a constant bias).
+//!   minutes, from 0 to 1 (default 0.2; 0 for a constant bias).
 //! - Prints what it wrote, the fraction of time hinge axes spend more than 60 deg from
 //!   horizontal, and the time taken.
 //!
 //! Exit status: 0 on success, 2 on bad arguments, 1 when writing fails.
 
-use orient_tools::rigsim::{vertical_hinge_fraction, Body, SimConfig, Simulation, PRESETS};
+use orient_tools::rigsim::{bias_drift_arg, vertical_hinge_fraction, Body, SimConfig, Simulation, PRESETS};
 use std::path::PathBuf;
 use std::process::exit;
 use std::time::Instant;
@@ -90,7 +90,7 @@ fn main() {
             "--rest" => c.rest_s = num(),
             "--sideways" => c.sideways = num().min(0.95),
             "--bias" => c.bias_deg_s = num(),
-            "--bias-drift" => c.bias_drift = num().clamp(0.0, 1.0),
+            "--bias-drift" => c.bias_drift = bias_drift_arg(v).unwrap_or_else(|e| fail(e)),
             "--axis-error" => c.axis_error_deg = num(),
             "--mounting-error" => c.mounting_error_deg = num(),
             "--laxity" => c.laxity_deg = num(),
