@@ -418,7 +418,8 @@ fn replay_rig_refuses_bad_descriptions_and_arguments_with_status_2() {
 /// not chosen on: the child segments stay with their parents where every sensor alone
 /// drifts apart. Two minutes per case, the filters under joints with the settings for
 /// joints: over seeds 7-12 the joints scored 0.40 to 1.32 deg (every sensor alone, the
-/// defaults, 2.57 to 5.90), and 1.08 to 2.06 with biases to 3 deg/s (alone 9.7 to 24.9),
+/// defaults, 2.57 to 5.90), and 1.08 to 2.06 with biases to 3 deg/s (alone 9.7 to 24.9;
+/// measured with the robust kind's rest time constant at 2 s, its default then),
 /// so 1.6 deg (2.5 with those biases) and half of alone fail only on a change of
 /// behaviour (the 10-minute figures against the target: `rig_joints`).
 #[test]
