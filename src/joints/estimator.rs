@@ -437,7 +437,7 @@ pub const JOINT_PARAMS: [ParamSpec; 22] = [
     ),
 ];
 
-const DEG: f64 = core::f64::consts::PI / 180.0;
+pub(super) const DEG: f64 = core::f64::consts::PI / 180.0;
 const Q_HEADING: f64 = (0.1 * DEG) * (0.1 * DEG);
 
 const fn spec(

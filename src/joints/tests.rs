@@ -1,3 +1,4 @@
+use super::estimator::DEG;
 use super::*;
 
 const G: f64 = 9.81;
@@ -731,8 +732,6 @@ fn for_joints_sets_the_sensor_settings_where_the_kind_has_them() {
         assert_eq!(has, if kind == Kind::Robust { SENSOR_SETTINGS.len() } else { 0 }, "{kind:?}");
     }
 }
-
-const DEG: f64 = core::f64::consts::PI / 180.0;
 
 /// A robust filter (under the settings for joints or with the defaults) fed 5 s at 100 Hz
 /// of a constant gyroscope reading `gyro` and gravity along its z axis: its bias at the
