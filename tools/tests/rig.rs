@@ -4,7 +4,7 @@
 
 use orient::{Quat, Vec3};
 use orient_tools::rig::{joint_angles, JointKind, RigRecording, RigSpec};
-use orient_tools::rigsim::{exp, log, SimConfig, SimRig, Simulation};
+use orient_tools::rigsim::{bias_drift_arg, exp, log, SimConfig, SimRig, Simulation};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -173,6 +173,36 @@ fn gyroscope_scale_errors_are_within_their_bounds() {
         }
     }
     assert!(largest > 0.01, "{largest}");
+}
+
+/// `bias_drift`: 0 keeps each sensor's bias constant, a share d moves it by at most d of
+/// the bound around a centre within 1 - d of it, and the motion is the same whatever d
+/// is; `--bias-drift` takes 0 to 1 and nothing else.
+#[test]
+fn the_bias_drifts_by_the_share_it_is_given() {
+    let base = short(5, 120.0, 60.0);
+    let bound = base.bias_deg_s.to_radians();
+    let (steady, drifting) = (
+        Simulation::new(SimConfig { bias_drift: 0.0, ..base.clone() }).run(),
+        Simulation::new(SimConfig { bias_drift: 0.5, ..base }).run(),
+    );
+    let mut moved: f64 = 0.0;
+    for (s, (a, b)) in steady.bias.iter().zip(&drifting.bias).enumerate() {
+        assert_eq!(steady.recording.sensors[s].truth, drifting.recording.sensors[s].truth);
+        assert!(a.iter().all(|x| *x == a[0]), "sensor {s}: a steady bias moved");
+        for x in b {
+            assert!(x.max_abs() <= bound + 1e-15, "sensor {s}: {x:?} beyond the bound");
+            moved = moved.max((*x - b[0]).max_abs());
+        }
+    }
+    // Over two minutes some axis moves by a good part of its 0.5 of the bound.
+    assert!(moved > 0.05 * bound && moved <= bound, "largest move {moved} rad/s");
+    for ok in ["0", "0.2", "1"] {
+        assert!(bias_drift_arg(ok).is_ok(), "{ok}");
+    }
+    for bad in ["-0.1", "1.5", "NaN", "inf", "x"] {
+        assert!(bias_drift_arg(bad).is_err(), "{bad}");
+    }
 }
 
 #[test]
