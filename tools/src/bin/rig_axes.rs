@@ -16,6 +16,8 @@ use orient::{Config, Filter, Kind, Quat, Vec3};
 use orient_tools::rig::{run_rig, Alone, SensorFilter};
 use orient_tools::rigsim::{seed_range, SimConfig, Simulation};
 
+const USAGE: &str = "usage: rig_axes [--seeds A-B] [--cases a,b,..] [--windows 5,10,30] [--guess-off DEG]";
+
 fn angle(a: Vec3, b: Vec3) -> f64 {
     libm::atan2(a.cross(b).norm(), a.dot(b)).to_degrees()
 }
@@ -34,7 +36,14 @@ fn main() {
             "--cases" => cases = val().split(',').map(String::from).collect(),
             "--windows" => windows = val().split(',').map(|w| w.parse().unwrap()).collect(),
             "--guess-off" => guess_off = val().parse().unwrap(),
-            _ => panic!("unknown argument {a}"),
+            "-h" | "--help" => {
+                println!("{USAGE}");
+                std::process::exit(0)
+            }
+            _ => {
+                eprintln!("rig_axes: unknown argument '{a}'\n{USAGE}");
+                std::process::exit(2)
+            }
         }
     }
     println!("axes from motion, from t = 10 s: error (deg, the worse of the two axes) mean / max over joints and seeds {s0}-{s1}; quality mean / max; guesses {guess_off} deg further off\n");

@@ -6,6 +6,7 @@
 //! cargo run --release -p orient-tools --bin rig_joints [-- --seeds A-B] [--minutes M] [--gyro-scale PCT]
 //!     [--cases a,b,..] [--filters robust,vqf] [--set KEY=VALUE].. [--oracle] [--cost]
 //!     [--debias true|initial] [--filter-set NAME=VALUE].. [--plain] [--bias-drift F]
+//!     [--no-alone] [--verbose] [--trace FILE [--truth-input]]
 //! ```
 //!
 //! - `--seeds A-B` (default 1-3): the seeds per case (design on 1-3, hold out 4-8).
@@ -25,9 +26,22 @@
 //!   less the bias at the start (`initial`, what the still reference pose could give):
 //!   how much of the error a better bias estimate could remove.
 //!
+//! - `--no-alone`: without the every-sensor-alone runs; `--verbose`: each seed's error
+//!   per joint under joints (stderr).
+//! - `--trace FILE`: one more run under joints per case, seed and filter (the last one stays in
+//!   FILE), a CSV row per sample: t, the first sensor's rate (rad/s), then per joint the
+//!   relative heading error after and before the joint stage (deg), its rating and its
+//!   measured drift (deg/s); `--truth-input`: the joint stage is given the true sensor
+//!   orientations.
+//!
 //! A benchmark, not a test: it asserts nothing.
 
 use orient::{Config, Filter, Kind, Quat, Sample, Vec3};
+
+const USAGE: &str = "usage: rig_joints [--seeds A-B] [--minutes M] [--gyro-scale PCT] [--cases a,b,..] \
+                     [--filters robust,vqf] [--set KEY=VALUE].. [--oracle] [--no-alone] [--cost] [--trace FILE] \
+                     [--truth-input] [--debias true|initial] [--filter-set NAME=VALUE].. [--verbose] [--plain] \
+                     [--bias-drift F]\n(the options are described at the top of tools/src/bin/rig_joints.rs)";
 use orient_tools::joints::{JointParams, Joints};
 use orient_tools::rig::{
     joint_errors, reference_row, run_rig, score_rig, twist_angle, Alone, JointStage, RigRecording, RigScores,
@@ -82,10 +96,8 @@ impl JointStage for Trace<'_> {
     fn update(&mut self, row: usize, samples: &[Sample], learns: &[bool], sensors: &mut [Quat]) {
         use std::io::Write;
         if self.truth_input {
-            let t = self.rec.t()[row];
             for (s, q) in sensors.iter_mut().enumerate() {
-                let psi = 0.0 * t * s as f64;
-                *q = Quat::from_axis_angle(Vec3::new(0.0, 0.0, 1.0), psi) * self.rec.sensors[s].truth[row];
+                *q = self.rec.sensors[s].truth[row];
             }
         }
         let raw: Vec<Quat> = sensors.to_vec();
@@ -186,7 +198,14 @@ fn main() {
             }
             "--verbose" => verbose = true,
             "--plain" => plain = true,
-            _ => panic!("unknown argument {a}"),
+            "-h" | "--help" => {
+                println!("{USAGE}");
+                std::process::exit(0)
+            }
+            _ => {
+                eprintln!("rig_joints: unknown argument '{a}'\n{USAGE}");
+                std::process::exit(2)
+            }
         }
     }
     eprintln!("{params:?}");
