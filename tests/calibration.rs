@@ -188,15 +188,16 @@ fn models_and_host_frames_survive_reset_and_snapshots() {
 /// as are those of version 3 (before the robust kind's heading uncertainty), 4 (the
 /// robust kind's heading as an angle, not a half-angle pair), 5 (Mahony's estimate
 /// North-West-Up), 6 (before the robust kind's innovation evidence, eq. H5, and the
-/// EKF's mean gravity innovation), 7 (before the rest watch) and 8 (before the robust
-/// kind's motion bias filter).
+/// EKF's mean gravity innovation), 7 (before the rest watch), 8 (before the robust
+/// kind's motion bias filter) and 9 (before the rest detector's mean of the still
+/// period).
 #[test]
 fn a_version_2_snapshot_is_refused_as_another_version() {
     use orient::filters::state::{checksum, StateError, VERSION};
-    assert_eq!(VERSION, 9);
+    assert_eq!(VERSION, 10);
     let mut f = Filter::new(&Config::new(Kind::Madgwick).unwrap()).unwrap();
     let before = f.clone();
-    for old in [2u16, 3, 4, 5, 6, 7, 8] {
+    for old in [2u16, 3, 4, 5, 6, 7, 8, 9] {
         let mut blob = vec![0u8; f.state_size()];
         f.save(&mut blob).unwrap();
         blob[4..6].copy_from_slice(&old.to_le_bytes());

@@ -121,8 +121,9 @@ fn every_kind_survives_a_day_still_and_turning() {
         }
         let turning = motion != Motion::Still;
         // Bounds a few tenths above the measured worst over the day (the robust kind's
-        // 0.87 / 1.86 turning: its rest time constant, 1 s, learns the start of the slow
-        // turn as bias for a moment; at 0.5 s it exceeded both). Mahony (Ki = 0 by
+        // 0.63 / 1.59 turning: its rest time constant, 1 s, learns the start of the slow
+        // turn as bias for a moment before the tilt test ends the rest; with the earlier
+        // tilt test 0.87 / 1.86, and at 0.5 s it exceeded both). Mahony (Ki = 0 by
         // default) carries a steady offset of about |bias|/Kp; the complementary filter
         // has no heading reference (its heading drifts with the start-up bias residual),
         // so only its inclination is bounded.

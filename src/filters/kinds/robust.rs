@@ -193,8 +193,9 @@ settings! {
             min: 0.0,
             max: 3.2,
             zero_off: false,
-            doc: "Rest also needs the low-passed accelerometer direction to stay within this angle \
-                 of where the still period began, so a slow turn under rest_gyro is not learned \
+            doc: "Rest also needs the accelerometer's direction to stay within this angle of where \
+                 the still period began (the mean of its first rest_tau/2, against a low-pass of \
+                 rest_tau/2 started with the period), so a slow turn under rest_gyro is not learned \
                  as bias; default 0.0087 (0.5 deg, orient: 10x the direction noise after the \
                  rest low-pass of a consumer MEMS accelerometer).",
         },
@@ -204,8 +205,8 @@ settings! {
             min: 1e-3,
             max: 100.0,
             zero_off: false,
-            doc: "Time constant of the low-pass that rest detection compares against; default 0.5 \
-                 (VQF's default).",
+            doc: "Time constant of the low-pass that rest detection compares against (the tilt \
+                 test, rest_tilt, takes half of it); default 0.5 (VQF's default).",
         },
         bias_tau_rest: f64 = ROBUST_BIAS_TAU_REST 86 {
             unit: "s",
@@ -583,7 +584,8 @@ impl Robust {
     /// and 1e12, and the accelerometer's and magnetometer's squared norms at least
     /// `f64::MIN_POSITIVE`), every value the step stores is finite:
     /// - Every low-pass (rest detector, bias at rest, magnetic reference and candidate,
-    ///   hard iron) moves by a gain `dt / (τ + dt)` in [0, 1] towards a bounded input:
+    ///   hard iron) moves by a gain in [0, 1] (`dt / (τ + dt)`, or a mean's `dt / t` with
+    ///   t ≥ dt the time it has averaged) towards a bounded input:
     ///   it stays between its old value and its input. The Butterworth low-pass is the
     ///   exact flow of a stable system (its coefficients have |·| ≤ √2 max(1, τ, 2/τ)),
     ///   so its state stays within a constant factor of its inputs and its own bound.

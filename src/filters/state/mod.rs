@@ -5,7 +5,7 @@
 //! ```text
 //! offset  size  field
 //! 0       4     magic "ORST"
-//! 4       2     format version (7)
+//! 4       2     format version ([`VERSION`])
 //! 6       1     kind (1 Madgwick .. 5 GMVDK)
 //! 7       1     reserved, 0
 //! 8       4     payload length P
@@ -24,7 +24,7 @@ pub(crate) mod holds;
 use crate::math::{Quat, Vec3};
 
 pub const MAGIC: [u8; 4] = *b"ORST";
-pub const VERSION: u16 = 9;
+pub const VERSION: u16 = 10;
 pub const HEADER: usize = 12;
 pub const TRAILER: usize = 8;
 

@@ -264,7 +264,7 @@ fn no_accepted_sample_makes_the_step_non_finite() {
         1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, // q_gyr, q_inc, q_δ, q
         rate, rate, rate, // bias
         1.0, 1.0, 1.0, 1.0, 1.0, 1.0, acc, acc, acc, 1e12, 1e12, 1e12, -1e6, // low-pass
-        rate, rate, rate, acc, acc, acc, acc, acc, acc, -1e300, // rest detector
+        rate, rate, rate, acc, acc, acc, acc, acc, acc, acc, acc, acc, -1e300, // rest detector
         -norm, PI, mag, mag, mag, -(2.0 * mag) * (2.0 * mag), -1e300, mag, mag, mag, // magnetic
         -MAG_CONFIRM_TIME, -norm, PI, -1e300, // reference confirmation, candidate
         1.0, 1.0, 1.0, // heading covariance
