@@ -380,22 +380,25 @@ PARAM_ROBUST_REST_GYRO = 82
 PARAM_ROBUST_REST_ACCEL = 83
 
 #: Parameter slot (robust): How long the rest conditions must hold before the sensor
-#: counts as resting; default 1.5 (VQF's default).
+#: counts as resting (0: rest_tau/2, the tilt test's window, rest_tilt); default 1.5
+#: (VQF's default).
 #:
 #: Unit s; range 0 to 3600; default 1.5.
 PARAM_ROBUST_REST_TIME = 84
 
 #: Parameter slot (robust): Rest also needs the accelerometer's direction to stay within
-#: this angle of where the still period began (the mean of its first rest_tau/2, against
-#: a low-pass of rest_tau/2 started with the period), so a slow turn under rest_gyro is
-#: not learned as bias; default 0.0087 (0.5 deg, orient: 10x the direction noise after
-#: the rest low-pass of a consumer MEMS accelerometer).
+#: this angle of where the still period began (the mean of its first window of
+#: rest_tau/2, or rest_time/6 when shorter, against a low-pass of that window started
+#: with the period), so a slow turn under rest_gyro is not learned as bias; default
+#: 0.0087 (0.5 deg, orient: 10x the direction noise after the rest low-pass of a consumer
+#: MEMS accelerometer).
 #:
 #: Unit rad; range 0 to 3.2; default 0.008726646259971648.
 PARAM_ROBUST_REST_TILT = 92
 
 #: Parameter slot (robust): Time constant of the low-pass that rest detection compares
-#: against (the tilt test, rest_tilt, takes half of it); default 0.5 (VQF's default).
+#: against (the tilt test, rest_tilt, takes half of it, or rest_time/6 when shorter);
+#: default 0.5 (VQF's default).
 #:
 #: Unit s; range 0.001 to 100; default 0.5.
 PARAM_ROBUST_REST_TAU = 85

@@ -1,17 +1,20 @@
 //! Rest detection shared by the filters that learn the gyroscope bias at rest.
 //!
-//! The sensor rests when, for `time` seconds, the gyroscope and accelerometer stay
-//! within `gyro` and `accel` of their own low-passed values (time constant `tau`), the
-//! low-passed gyroscope is itself below `gyro` (a bias is smaller than that), and the
-//! accelerometer's direction stays within `tilt` of where the still period began. The
-//! last test keeps a slow turn, whose rate is below a bias's size, from being taken for
-//! rest: at rest gravity keeps its direction in the sensor frame.
+//! The sensor rests when, for `time` seconds (and at least the tilt test's window, below),
+//! the gyroscope and accelerometer stay within `gyro` and `accel` of their own
+//! low-passed values (time constant `tau`), the low-passed gyroscope is itself below
+//! `gyro` (a bias is smaller than that), and the accelerometer's direction stays within
+//! `tilt` of where the still period began. The last test keeps a slow turn, whose rate is
+//! below a bias's size, from being taken for rest: at rest gravity keeps its direction in
+//! the sensor frame.
 //!
 //! The tilt test looks at the still period's own readings only. When a period begins,
 //! the accelerometer's low-pass starts over from that sample as the mean of the
-//! period's readings (a low-pass, time constant `tau`, once the period is that long);
-//! the reference direction is that mean after `tau / 2`, and from then on it is compared
-//! with a second such mean of the period that becomes a low-pass of `tau / 2`. A
+//! period's readings (a low-pass, time constant `tau`, once the period is that long; a
+//! single still sample amid motion thus restarts it, from a reading within `accel` of
+//! it); the reference direction is that mean after the tilt test's window (`tau / 2`, or
+//! `time / 6` when shorter: [`RestThresholds::tilt_window`]), and from then on it is
+//! compared with a second such mean of the period that becomes a low-pass of that window. A
 //! low-pass that carried the motion before the pause would keep moving while it settled
 //! (by up to the `accel` bound, about 3°, at the first still sample), leave the `tilt`
 //! bound and start the period over: at the still start of a simulated glove, rest came
@@ -49,10 +52,12 @@ pub struct RestDetector {
     primed: bool,
     gyro_lp: Vec3,
     acc_lp: Vec3,
-    /// The mean of the current still period's first `tau / 2` of accelerometer readings.
+    /// The mean of the current still period's accelerometer readings over the tilt test's
+    /// window (until the period is that long, the previous period's).
     acc_ref: Vec3,
-    /// The current still period's accelerometer readings: their mean, a low-pass of
-    /// `tau / 2` once the period is that long; compared with `acc_ref`.
+    /// The current still period's accelerometer readings: their mean, a low-pass with the
+    /// tilt test's window as time constant once the period is that long; compared with
+    /// `acc_ref`.
     acc_still: Vec3,
     /// How long the conditions have held (s).
     clock: f64,
@@ -113,9 +118,10 @@ impl RestDetector {
             return false;
         }
         // The period's length with this sample, and its readings' means (module
-        // documentation): a mean while it is shorter than the low-pass's τ.
+        // documentation): each a mean while the period is shorter than its time constant,
+        // τ for `acc_lp` and the tilt window for `acc_still`.
         let t = self.clock + dt;
-        let half = 0.5 * th.tau;
+        let half = th.tilt_window();
         if self.clock == 0.0 {
             self.acc_lp = a;
             self.acc_still = a;
@@ -136,7 +142,8 @@ impl RestDetector {
             }
         }
         self.clock = t;
-        self.rest = t >= th.time;
+        // Not before the tilt test has run (a rest time of 0 is shorter than its window).
+        self.rest = t >= th.time.max(half);
         self.rest
     }
 
@@ -161,6 +168,18 @@ impl RestDetector {
 }
 
 impl RestThresholds {
+    /// The tilt test's window (s): `tau / 2`, or `time / 6` when shorter, so that the test
+    /// has run for most of the rest time before rest is declared (a longer window lags a
+    /// slow turn by more); `tau / 2` when `time` is 0.
+    pub fn tilt_window(&self) -> f64 {
+        let w = 0.5 * self.tau;
+        if self.time > 0.0 {
+            w.min(self.time / 6.0)
+        } else {
+            w
+        }
+    }
+
     /// Thresholds for consumer MEMS sensors held in the hand or worn: 2 °/s, 0.5 m/s²,
     /// 0.5° of tilt, 1.5 s, 0.5 s low-pass (the robust kind's defaults).
     pub const DEFAULT: RestThresholds = RestThresholds {
@@ -331,34 +350,65 @@ mod tests {
     }
 
     /// Rest comes `time` after the first still sample, both at a still start with a noisy
-    /// accelerometer (the first reading alone is up to 0.8° off the mean) and in a pause
-    /// after motion that leaves the accelerometer's low-pass 0.8° off: the tilt test looks
-    /// at the still period's own readings. (Against a reference from the low-pass at the
-    /// first still sample, a simulated glove's still start was rest after 2.9 s.)
+    /// accelerometer whose first reading is more than the tilt bound off the mean and in a
+    /// pause after motion that leaves the accelerometer's low-pass beyond the tilt bound
+    /// off gravity: the tilt test looks at the still period's own readings. (Against a
+    /// reference from the low-pass at the first still sample, a simulated glove's still
+    /// start was rest after 2.9 s.)
     #[test]
     fn rest_comes_rest_time_after_the_first_still_sample() {
         // 60 Hz: 1.5 s is sample 89 (the 90th), or the next when the sum of dt rounds low.
         let at_rest_time = |i: Option<usize>| matches!(i, Some(89 | 90));
+        let angle = |a: Vec3, b: Vec3| libm::atan2(a.cross(b).norm(), a.dot(b));
         let g = Vec3::new(-1.4, 2.0, 9.6);
         let bias = Vec3::new(0.01, -0.005, 0.008);
-        let mut u = crate::math::test_uniform(5);
-        let mut noisy = move || {
-            let mut n = || 0.1 * u();
-            (bias + Vec3::new(n(), n(), n()) * 0.03, g + Vec3::new(n(), n(), n()))
-        };
+        let mut u = crate::math::test_uniform(26);
+        let readings: Vec<(Vec3, Vec3)> = (0..600)
+            .map(|_| {
+                let mut n = || 0.1 * u();
+                (bias + Vec3::new(n(), n(), n()) * 0.03, g + Vec3::new(n(), n(), n()))
+            })
+            .collect();
+        let mean = readings[..30].iter().fold(Vec3::ZERO, |m, r| m + r.1) * (1.0 / 30.0);
+        let first_off = angle(readings[0].1, mean);
+        assert!(first_off > RestThresholds::DEFAULT.tilt, "{}", first_off.to_degrees());
         let mut d = RestDetector::default();
-        let start = first_rest(&mut d, 600, |_| noisy());
+        let start = first_rest(&mut d, readings.len(), |i| readings[i]);
         assert!(at_rest_time(start), "{start:?}");
 
-        // Two seconds of a hand shaken sideways at 2 Hz (1.5 m/s², never still), ending
-        // where the low-pass is 0.13 m/s² (0.8°, beyond the 0.5° tilt bound) off gravity,
-        // then still.
+        // Two seconds of a hand shaken sideways (±1.5 m/s², a square wave of 2 Hz: never
+        // still), ending with the low-pass beyond the 0.5° tilt bound off gravity, then
+        // still.
+        let th = RestThresholds::DEFAULT;
         let mut d = RestDetector::default();
-        let shake = |i: usize| 1.5 * libm::sin(core::f64::consts::TAU * 2.0 * (i as f64 / 60.0) + 0.9);
-        assert_eq!(first_rest(&mut d, 120, |i| (bias, g + Vec3::new(shake(i), 0.0, 0.0))), None);
-        let off = (d.acc_lp - g).norm();
-        assert!(off > 0.1 && off < 0.5, "{off}");
+        for i in 0..120 {
+            let shake = if (i / 15) % 2 == 0 { 1.5 } else { -1.5 };
+            assert!(!d.update(1.0 / 60.0, bias, Some(g + Vec3::new(shake, 0.0, 0.0)), &th));
+            // The detector starts from the first reading: still until the first reversal.
+            assert!(d.clock == 0.0 || i < 15, "still at sample {i}");
+        }
+        let off = angle(d.acc_lp, g);
+        assert!(off > 2.0 * th.tilt && (d.acc_lp - g).norm() < th.accel, "{}", off.to_degrees());
         let pause = first_rest(&mut d, 600, |_| (bias, g));
         assert!(at_rest_time(pause), "{pause:?}");
+    }
+
+    /// A turn of 1.15 °/s, under the gyroscope threshold, is never rest, also with a
+    /// low-pass time constant `tau` far longer than the rest time (the tilt window stays
+    /// `time / 6`) or a rest time long enough for `tau / 2` to be the window.
+    #[test]
+    fn a_slow_turn_is_not_rest_whatever_the_windows() {
+        let dt = 0.01;
+        let w = Vec3::new(0.02, 0.0, 0.0);
+        for (tau, time) in [(0.5, 1.5), (2.0, 1.5), (4.0, 1.5), (0.5, 6.0)] {
+            let th = RestThresholds { tau, time, ..RestThresholds::DEFAULT };
+            let mut d = RestDetector::default();
+            for i in 0..6000 {
+                let turned =
+                    crate::math::Quat::from_axis_angle(Vec3::new(1.0, 0.0, 0.0), 0.02 * dt * i as f64);
+                let a = turned.rotate_inverse(Vec3::new(0.0, 0.0, 9.81));
+                assert!(!d.update(dt, w, Some(a), &th), "tau {tau}, time {time}: rest at sample {i}");
+            }
+        }
     }
 }

@@ -184,8 +184,8 @@ settings! {
             min: 0.0,
             max: 3600.0,
             zero_off: false,
-            doc: "How long the rest conditions must hold before the sensor counts as resting; \
-                 default 1.5 (VQF's default).",
+            doc: "How long the rest conditions must hold before the sensor counts as resting (0: \
+                 rest_tau/2, the tilt test's window, rest_tilt); default 1.5 (VQF's default).",
         },
         rest_tilt: f64 = ROBUST_REST_TILT 92 {
             unit: "rad",
@@ -194,10 +194,11 @@ settings! {
             max: 3.2,
             zero_off: false,
             doc: "Rest also needs the accelerometer's direction to stay within this angle of where \
-                 the still period began (the mean of its first rest_tau/2, against a low-pass of \
-                 rest_tau/2 started with the period), so a slow turn under rest_gyro is not learned \
-                 as bias; default 0.0087 (0.5 deg, orient: 10x the direction noise after the \
-                 rest low-pass of a consumer MEMS accelerometer).",
+                 the still period began (the mean of its first window of rest_tau/2, or \
+                 rest_time/6 when shorter, against a low-pass of that window started with the \
+                 period), so a slow turn under rest_gyro is not learned as bias; default 0.0087 \
+                 (0.5 deg, orient: 10x the direction noise after the rest low-pass of a consumer \
+                 MEMS accelerometer).",
         },
         rest_tau: f64 = ROBUST_REST_TAU 85 {
             unit: "s",
@@ -206,7 +207,8 @@ settings! {
             max: 100.0,
             zero_off: false,
             doc: "Time constant of the low-pass that rest detection compares against (the tilt \
-                 test, rest_tilt, takes half of it); default 0.5 (VQF's default).",
+                 test, rest_tilt, takes half of it, or rest_time/6 when shorter); default 0.5 \
+                 (VQF's default).",
         },
         bias_tau_rest: f64 = ROBUST_BIAS_TAU_REST 86 {
             unit: "s",
