@@ -393,6 +393,19 @@ mod tests {
         assert!(at_rest_time(pause), "{pause:?}");
     }
 
+    /// A rest time of 0 (the robust kind's `rest_time` 0) is rest once the tilt test's window,
+    /// `tau / 2`, has passed, not at the first still sample.
+    #[test]
+    fn a_zero_rest_time_waits_for_the_tilt_window() {
+        let th = RestThresholds { time: 0.0, ..RestThresholds::DEFAULT };
+        assert_eq!(th.tilt_window(), 0.5 * th.tau);
+        let mut d = RestDetector::default();
+        let up = Vec3::new(0.0, 0.0, 9.81);
+        let first = (0..100).find(|_| d.update(0.01, Vec3::ZERO, Some(up), &th));
+        // 0.25 s at 100 Hz: sample 24 (the 25th), or the next when the sum of dt rounds low.
+        assert!(matches!(first, Some(24 | 25)), "{first:?}");
+    }
+
     /// A turn of 1.15 °/s, under the gyroscope threshold, is never rest, also with a
     /// low-pass time constant `tau` far longer than the rest time (the tilt window stays
     /// `time / 6`) or a rest time long enough for `tau / 2` to be the window.
