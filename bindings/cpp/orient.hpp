@@ -139,9 +139,10 @@ public:
         return s == ORIENT_STATUS_OK ? set(id, value) : s;
     }
 
-    /// Sets what a sensor's filter runs with under joints (orient_config_for_joints): for
-    /// the recommended kind a faster bias random walk, a 4 deg/s motion bias bound and a
-    /// 4 deg/s rest threshold; other kinds are left as they were.
+    /// Sets what a sensor's filter runs with under joints (orient_config_for_joints, whose
+    /// doc in orient.h gives each value): for the recommended kind a faster bias random
+    /// walk and a wider motion bias bound and rest threshold; other kinds are left as they
+    /// were.
     OrientStatus for_joints() noexcept { return orient_config_for_joints(&raw_); }
 
     double get(uint32_t id) const noexcept { return id < ORIENT_MAX_PARAMS ? raw_.params[id] : 0.0; }

@@ -674,7 +674,7 @@ namespace Orient.Native
         /// <summary>
         /// Parameter slot (robust): Rest when the gyroscope's spread around its low-pass and the
         /// low-pass itself stay below this; default 0.0349 (2 deg/s, VQF's default; MEMS biases
-        /// are below it); 4 deg/s under joints (orient_config_for_joints()), with bias_limit.
+        /// are below it); another under joints (orient_config_for_joints()), with bias_limit.
         ///
         /// Unit rad/s; range 0 to 10; default 0.03490658503988659.
         /// </summary>
@@ -744,7 +744,7 @@ namespace Orient.Native
         /// Parameter slot (robust): Largest component the motion estimate may give the bias, and
         /// its measurement error (a larger component learned at rest raises the bound for every
         /// component to it); default 0.0349 (orient: 2 deg/s, VQF's biasClip and the rest
-        /// threshold: a larger bias would also hide rest); 4 deg/s under joints, with rest_gyro
+        /// threshold: a larger bias would also hide rest); another under joints, with rest_gyro
         /// (orient_config_for_joints()).
         ///
         /// Unit rad/s; range 0 to 10; default 0.03490658503988659.
@@ -810,8 +810,8 @@ namespace Orient.Native
         /// filter lets a learned bias go (its process noise) and the heading uncertainty grows
         /// with it (eq. H1); larger follows a drifting bias sooner and takes more of a fast
         /// motion's scale errors for bias; 0 learns the bias at rest only; default 1.745e-4 (0.01
-        /// deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); five times it
-        /// under joints (orient_config_for_joints()).
+        /// deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); another under
+        /// joints (orient_config_for_joints()).
         ///
         /// Unit rad/s/sqrt(s); range 0 to 10; default 0.00017453292519943296.
         /// </summary>
@@ -1708,19 +1708,23 @@ namespace Orient.Native
         public static extern double orient_madgwick_beta(double gyroError);
 
         /// <summary>
-        /// Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_ROBUST
-        /// the gyroscope bias random walk (ORIENT_PARAM_ROBUST_BIAS_WALK) at 8.727e-4
-        /// rad/s/sqrt(s) (0.05 deg/s/sqrt(s), five times its default), so a drifting bias is
-        /// followed more closely, the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
-        /// 0.0698 rad/s (4 deg/s per axis), and the rest detector's gyroscope threshold
-        /// (ORIENT_PARAM_ROBUST_REST_GYRO) at 0.0698 rad/s, so a bias up to 4 deg/s long does
-        /// not hide rest; other kinds have none of them and `config` is left as it was. Call
-        /// it after orient_config_default() for each sensor of a rig whose joints hold its
-        /// heading (docs/ACCURACY.md has the simulated gloves' figures); a sensor alone keeps the
-        /// defaults. NULL_POINTER for
-        /// a NULL `config`; VERSION_MISMATCH for a `struct_size` other than this header's;
-        /// INVALID_ARGUMENT for an unknown kind, frame or init; PARAM_OUT_OF_RANGE for a slot
-        /// outside its parameter's range; a refused `config` is left as it was.
+        /// Sets in `config` what a sensor's filter runs with under joints: for
+        /// ORIENT_KIND_ROBUST, ORIENT_PARAM_ROBUST_BIAS_WALK at 8.727e-4 rad/s/sqrt(s) (0.05
+        /// deg/s/sqrt(s); default 0.01), so the motion bias filter follows a drifting bias more
+        /// closely (the joints hold the relative heading that a faster bias estimate would
+        /// otherwise let wander); ORIENT_PARAM_ROBUST_BIAS_LIMIT at 0.06981 rad/s (4 deg/s;
+        /// default 2), a bound on each axis, so a glove's bias up to 3 deg/s per axis is learned
+        /// whole in motion; and ORIENT_PARAM_ROBUST_REST_GYRO at 0.06981 rad/s (4 deg/s; default
+        /// 2), a bound on the rate's length, so a sensor whose bias is up to that long is still
+        /// found at rest (the reference pose among its rests) and learns its bias there; a slow
+        /// turn about the vertical below it, held for rest_time, is then taken for rest too.
+        /// Other kinds have none of them and `config` is left as it was. Call it after
+        /// orient_config_default() for each sensor of a rig whose joints hold its heading
+        /// (docs/ACCURACY.md has the simulated gloves' figures); a sensor alone keeps the
+        /// defaults. NULL_POINTER for a NULL `config`; VERSION_MISMATCH for a `struct_size` other
+        /// than this header's; INVALID_ARGUMENT for an unknown kind, frame or init;
+        /// PARAM_OUT_OF_RANGE for a slot outside its parameter's range; a refused `config` is
+        /// left as it was.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_config_for_joints(Config* config);

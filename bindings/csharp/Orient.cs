@@ -176,9 +176,9 @@ namespace Orient
         }
 
         /// <summary>Sets what a sensor's filter runs with under joints
-        /// (orient_config_for_joints): for the recommended kind a faster bias random walk,
-        /// a 4 deg/s motion bias bound and a 4 deg/s rest threshold; other kinds are left
-        /// as they were. Returns this.</summary>
+        /// (orient_config_for_joints, whose doc in orient.h gives each value): for the
+        /// recommended kind a faster bias random walk and a wider motion bias bound and rest
+        /// threshold; other kinds are left as they were. Returns this.</summary>
         public OrientSettings ForJoints()
         {
             fixed (Config* c = &raw)

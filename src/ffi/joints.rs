@@ -126,21 +126,9 @@ fn index(i: usize, n: usize, what: &str) -> Result<usize, OrientStatus> {
     }
 }
 
-/// Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_ROBUST
-/// the gyroscope bias random walk (ORIENT_PARAM_ROBUST_BIAS_WALK) at 8.727e-4
-/// rad/s/sqrt(s) (0.05 deg/s/sqrt(s), five times its default), so a drifting bias is
-/// followed more closely, the motion bias bound (ORIENT_PARAM_ROBUST_BIAS_LIMIT) at
-/// 0.0698 rad/s (4 deg/s per axis), and the rest detector's gyroscope threshold
-/// (ORIENT_PARAM_ROBUST_REST_GYRO) at 0.0698 rad/s, so a bias up to 4 deg/s long does
-/// not hide rest; other kinds have none of them and `config` is left as it was. Call
-/// it after orient_config_default() for each sensor of a rig whose joints hold its
-/// heading (docs/ACCURACY.md has the simulated gloves' figures); a sensor alone keeps the
-/// defaults. NULL_POINTER for
-/// a NULL `config`; VERSION_MISMATCH for a `struct_size` other than this header's;
-/// INVALID_ARGUMENT for an unknown kind, frame or init; PARAM_OUT_OF_RANGE for a slot
-/// outside its parameter's range; a refused `config` is left as it was.
-#[no_mangle]
-pub unsafe extern "C" fn orient_config_for_joints(config: *mut OrientConfig) -> OrientStatus {
+/// orient_config_for_joints (`joint_settings.rs`, generated for its doc): the recommended
+/// kind's settings under joints, only the slots they change written to `config`.
+pub(super) unsafe fn config_for_joints(config: *mut OrientConfig) -> OrientStatus {
     guard(|| {
         let before = config_from(config)?;
         let mut c = before.clone();

@@ -21,6 +21,7 @@ mod convert;
 mod error;
 mod handles;
 mod info;
+mod joint_settings; // generated: orient_config_for_joints
 mod joints; // issue 42
 mod offline;
 mod outputs;

@@ -159,6 +159,97 @@ pub(crate) fn render_param_ids() -> String {
     out
 }
 
+/// `x` with four significant digits, without trailing zeros: 8.727e-4, 0.0698, 4.
+fn short(x: f64) -> String {
+    if x != 0.0 && x.abs() < 1e-3 {
+        return format!("{x:.3e}");
+    }
+    let digits = (3 - x.abs().log10().floor() as i32).max(0) as usize;
+    let text = format!("{x:.digits$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
+/// A value in its parameter's unit, with its degrees (for a unit in radians) and the
+/// default's beside it: "8.727e-4 rad/s/sqrt(s) (0.05 deg/s/sqrt(s); default 0.01)".
+fn value_in_units(x: f64, default: f64, unit: &str) -> String {
+    match unit.strip_prefix("rad") {
+        Some(rest) => format!(
+            "{} {unit} ({} deg{rest}; default {})",
+            short(x),
+            short(x.to_degrees()),
+            short(default.to_degrees())
+        ),
+        None => format!("{} {unit} (default {})", short(x), short(default)),
+    }
+}
+
+/// The doc of orient_config_for_joints, rendered from `joints::SENSOR_SETTINGS`: each
+/// setting's C slot, value, default and reason.
+fn for_joints_doc() -> String {
+    use crate::joints::SENSOR_SETTINGS;
+    let kinds: Vec<Kind> = Kind::ALL
+        .into_iter()
+        .filter(|k| SENSOR_SETTINGS.iter().all(|s| k.param_by_name(s.name).is_some()))
+        .collect();
+    assert!(
+        kinds.len() == 1
+            && Kind::ALL
+                .iter()
+                .all(|k| kinds.contains(k)
+                    || SENSOR_SETTINGS.iter().all(|s| k.param_by_name(s.name).is_none())),
+        "the sensor settings belong to one kind"
+    );
+    let kind = kinds[0];
+    let settings: Vec<String> = SENSOR_SETTINGS
+        .iter()
+        .map(|s| {
+            let p = kind.param_by_name(s.name).expect("the kind's");
+            format!(
+                "{} at {}, {}",
+                c_param(s.name).expect("a C name"),
+                value_in_units(s.value, p.default, p.unit),
+                s.why
+            )
+        })
+        .collect();
+    let (last, first) = settings.split_last().expect("settings");
+    format!(
+        "Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_{}, {}; and {}. \
+         Other kinds have none of them and `config` is left as it was. Call it after \
+         orient_config_default() for each sensor of a rig whose joints hold its heading \
+         (docs/ACCURACY.md has the simulated gloves' figures); a sensor alone keeps the \
+         defaults. NULL_POINTER for a NULL `config`; VERSION_MISMATCH for a `struct_size` \
+         other than this header's; INVALID_ARGUMENT for an unknown kind, frame or init; \
+         PARAM_OUT_OF_RANGE for a slot outside its parameter's range; a refused `config` is \
+         left as it was.",
+        kind.name().to_ascii_uppercase(),
+        first.join("; "),
+        last
+    )
+}
+
+/// The text of `src/ffi/joint_settings.rs`: orient_config_for_joints with its doc.
+pub(crate) fn render_joint_settings() -> String {
+    let mut out = String::from(
+        "//! orient_config_for_joints, whose doc is generated from `joints::SENSOR_SETTINGS` by the\n\
+         //! test `joint_settings_are_generated_from_the_tables` in `src/ffi/render.rs`; do not\n\
+         //! edit. Regenerate: ORIENT_BLESS=1 cargo test -p orient --lib generated_from_the_tables\n\n\
+         use super::*;\n\n",
+    );
+    doc_comment(&mut out, &for_joints_doc());
+    out.push_str(
+        "#[no_mangle]\n\
+         pub unsafe extern \"C\" fn orient_config_for_joints(config: *mut OrientConfig) -> OrientStatus {\n    \
+         joints::config_for_joints(config)\n\
+         }\n",
+    );
+    out
+}
+
 /// Fails unless the committed `src/ffi/{file}` is `want`; writes it with ORIENT_BLESS=1.
 fn check_generated(file: &str, want: &str) {
     let path = format!("{}/src/ffi/{file}", env!("CARGO_MANIFEST_DIR"));
@@ -182,6 +273,26 @@ fn param_ids_are_generated_from_the_tables() {
 #[cfg_attr(miri, ignore = "reads a file")]
 fn bits_are_generated_from_the_tables() {
     check_generated("bits.rs", &render_bits());
+}
+
+#[test]
+#[cfg_attr(miri, ignore = "reads a file")]
+fn joint_settings_are_generated_from_the_tables() {
+    check_generated("joint_settings.rs", &render_joint_settings());
+}
+
+#[test]
+fn values_are_written_short() {
+    assert_eq!(short(8.726_646_259_971_648e-4), "8.727e-4");
+    assert_eq!(short(0.069_813_170_079_773_18), "0.06981");
+    assert_eq!(short(4.000_000_000_001), "4");
+    assert_eq!(short(0.05), "0.05");
+    assert_eq!(short(1234.5), "1234");
+    assert_eq!(
+        value_in_units(0.069_813_170_079_773_18, 0.0349, "rad/s"),
+        "0.06981 rad/s (4 deg/s; default 2)"
+    );
+    assert_eq!(value_in_units(0.5, 0.25, "m/s^2"), "0.5 m/s^2 (default 0.25)");
 }
 
 #[test]

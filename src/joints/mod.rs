@@ -67,28 +67,50 @@ pub const MAX_JOINTS: usize = 64;
 /// The most segments one [`Joints`] holds.
 pub const MAX_SEGMENTS: usize = 256;
 
-/// The settings a sensor's filter takes under joints ([`Config::for_joints`]), by the
-/// recommended kind's parameter names: the gyroscope bias random walk at 0.05 °/s/√s,
-/// five times the default, so the motion bias filter follows a drifting bias more
-/// closely (the joints hold the relative heading that a faster bias estimate would
-/// otherwise let wander), the motion estimate's bound at 4 °/s per axis, so a glove's
-/// bias up to 3 °/s per axis is learned whole in motion, and the rest detector's
-/// gyroscope threshold (a bound on the rate's length) at 4 °/s, so a sensor whose bias is
-/// up to 4 °/s long is still found at rest (the reference pose among its rests) and
-/// learns its bias there; a slow turn about the vertical below 4 °/s, held for
-/// `rest_time`, is then taken for rest too. Measured on simulated gloves
-/// and a leg (docs/ACCURACY.md); alone, on BROAD's real trials, the defaults stay better.
-pub const SENSOR_SETTINGS: [(&str, f64); 3] = [
-    ("bias_walk", 8.726_646_259_971_648e-4),
-    ("bias_limit", 0.069_813_170_079_773_18),
-    ("rest_gyro", 0.069_813_170_079_773_18),
+/// One setting a sensor's filter takes under joints: a parameter by its name (the
+/// recommended kind's), its value in the parameter's unit, and why, as the C header's
+/// orient_config_for_joints says it (rendered from [`SENSOR_SETTINGS`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SensorSetting {
+    /// The parameter's name ([`Config::set`]).
+    pub name: &'static str,
+    /// Its value under joints, in the parameter's unit.
+    pub value: f64,
+    /// Why, a clause that follows the value.
+    pub why: &'static str,
+}
+
+/// The settings a sensor's filter takes under joints ([`Config::for_joints`]), each with
+/// its reason. Measured on simulated gloves and a leg (docs/ACCURACY.md); alone, on
+/// BROAD's real trials, the defaults stay better. The C header's doc of
+/// orient_config_for_joints, and through it the bindings', is rendered from this table.
+pub const SENSOR_SETTINGS: [SensorSetting; 3] = [
+    SensorSetting {
+        name: "bias_walk",
+        value: 8.726_646_259_971_648e-4,
+        why: "so the motion bias filter follows a drifting bias more closely (the joints hold \
+              the relative heading that a faster bias estimate would otherwise let wander)",
+    },
+    SensorSetting {
+        name: "bias_limit",
+        value: 0.069_813_170_079_773_18,
+        why: "a bound on each axis, so a glove's bias up to 3 deg/s per axis is learned whole in \
+              motion",
+    },
+    SensorSetting {
+        name: "rest_gyro",
+        value: 0.069_813_170_079_773_18,
+        why: "a bound on the rate's length, so a sensor whose bias is up to that long is still found at rest (the reference \
+              pose among its rests) and learns its bias there; a slow turn about the vertical \
+              below it, held for rest_time, is then taken for rest too",
+    },
 ];
 
 impl Config {
     /// Sets [`SENSOR_SETTINGS`], the settings a sensor's filter runs with under joints,
     /// where the kind has them (the recommended kind); other kinds are left as they were.
     pub fn for_joints(&mut self) {
-        for (name, value) in SENSOR_SETTINGS {
+        for SensorSetting { name, value, .. } in SENSOR_SETTINGS {
             if let Some(set) = self.set(name, value) {
                 debug_assert!(set.is_ok(), "{name} in range (tested)");
             }

@@ -721,13 +721,13 @@ fn for_joints_sets_the_sensor_settings_where_the_kind_has_them() {
         for (id, (a, b)) in before.slots().iter().zip(c.slots()).enumerate() {
             if a.to_bits() != b.to_bits() {
                 let spec = kind.param(id as u32).unwrap();
-                let (_, want) = SENSOR_SETTINGS.iter().find(|(n, _)| *n == spec.name).unwrap();
+                let want = &SENSOR_SETTINGS.iter().find(|s| s.name == spec.name).unwrap().value;
                 assert_eq!(b.to_bits(), want.to_bits());
                 assert!(spec.accepts(*want));
                 changed += 1;
             }
         }
-        let has = SENSOR_SETTINGS.iter().filter(|(n, _)| kind.param_by_name(n).is_some()).count();
+        let has = SENSOR_SETTINGS.iter().filter(|s| kind.param_by_name(s.name).is_some()).count();
         assert_eq!(changed, has, "{kind:?}");
         assert_eq!(has, if kind == Kind::Robust { SENSOR_SETTINGS.len() } else { 0 }, "{kind:?}");
     }

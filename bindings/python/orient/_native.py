@@ -368,7 +368,7 @@ PARAM_ROBUST_TAU_MAG = 81
 
 #: Parameter slot (robust): Rest when the gyroscope's spread around its low-pass and the
 #: low-pass itself stay below this; default 0.0349 (2 deg/s, VQF's default; MEMS biases
-#: are below it); 4 deg/s under joints (orient_config_for_joints()), with bias_limit.
+#: are below it); another under joints (orient_config_for_joints()), with bias_limit.
 #:
 #: Unit rad/s; range 0 to 10; default 0.03490658503988659.
 PARAM_ROBUST_REST_GYRO = 82
@@ -424,7 +424,7 @@ PARAM_ROBUST_BIAS_SIGMA_MOTION = 100
 #: Parameter slot (robust): Largest component the motion estimate may give the bias, and
 #: its measurement error (a larger component learned at rest raises the bound for every
 #: component to it); default 0.0349 (orient: 2 deg/s, VQF's biasClip and the rest
-#: threshold: a larger bias would also hide rest); 4 deg/s under joints, with rest_gyro
+#: threshold: a larger bias would also hide rest); another under joints, with rest_gyro
 #: (orient_config_for_joints()).
 #:
 #: Unit rad/s; range 0 to 10; default 0.03490658503988659.
@@ -476,8 +476,8 @@ PARAM_ROBUST_BIAS_SIGMA_REST = 95
 #: filter lets a learned bias go (its process noise) and the heading uncertainty grows
 #: with it (eq. H1); larger follows a drifting bias sooner and takes more of a fast
 #: motion's scale errors for bias; 0 learns the bias at rest only; default 1.745e-4 (0.01
-#: deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); five times it
-#: under joints (orient_config_for_joints()).
+#: deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); another under
+#: joints (orient_config_for_joints()).
 #:
 #: Unit rad/s/sqrt(s); range 0 to 10; default 0.00017453292519943296.
 PARAM_ROBUST_BIAS_WALK = 96

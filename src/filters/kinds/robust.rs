@@ -166,8 +166,8 @@ settings! {
             max: 10.0,
             zero_off: false,
             doc: "Rest when the gyroscope's spread around its low-pass and the low-pass itself stay \
-                 below this; default 0.0349 (2 deg/s, VQF's default; MEMS biases are below it); 4 \
-                 deg/s under joints (orient_config_for_joints()), with bias_limit.",
+                 below this; default 0.0349 (2 deg/s, VQF's default; MEMS biases are below it); \
+                 another under joints (orient_config_for_joints()), with bias_limit.",
         },
         rest_accel: f64 = ROBUST_REST_ACCEL 83 {
             unit: "m/s^2",
@@ -243,7 +243,7 @@ settings! {
             doc: "Largest component the motion estimate may give the bias, and its measurement \
                  error (a larger component learned at rest raises the bound for every component \
                  to it); default 0.0349 (orient: 2 deg/s, VQF's biasClip and the rest threshold: \
-                 a larger bias would also hide rest); 4 deg/s under joints, with rest_gyro \
+                 a larger bias would also hide rest); another under joints, with rest_gyro \
                  (orient_config_for_joints()).",
         },
         mag_norm_th: f64 = ROBUST_MAG_NORM_TH 89 {
@@ -315,7 +315,7 @@ settings! {
                  learned bias go (its process noise) and the heading uncertainty grows with it \
                  (eq. H1); larger follows a drifting bias sooner and takes more of a fast motion's \
                  scale errors for bias; 0 learns the bias at rest only; default 1.745e-4 (0.01 \
-                 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); five times it under \
+                 deg/s/sqrt(s): VQF's 0.1 deg/s over its biasForgettingTime of 100 s); another under \
                  joints (orient_config_for_joints()).",
         },
         mag_heading_sigma: f64 = ROBUST_MAG_HEADING_SIGMA 97 {
