@@ -47,7 +47,7 @@ use orient_tools::rig::{
     joint_errors, reference_row, run_rig, score_rig, twist_angle, Alone, JointStage, RigRecording, RigScores,
     SensorFilter,
 };
-use orient_tools::rigsim::{bias_drift_arg, seed_range, SimConfig, Simulation};
+use orient_tools::rigsim::{bias_drift_arg, seed_range, SimConfig, Simulation, PRESETS};
 
 /// Sets each child's heading relative to its parent from the truth.
 struct Oracle<'a> {
@@ -158,6 +158,12 @@ fn set_param(p: &mut JointParams, kv: &str) {
     }
 }
 
+/// The usage on stderr after `what`, and exit status 2.
+fn usage_error(what: &str) -> ! {
+    eprintln!("rig_joints: {what}\n{USAGE}");
+    std::process::exit(2)
+}
+
 fn main() {
     let (mut s0, mut s1) = (1u64, 3u64);
     let mut minutes = 10.0;
@@ -182,7 +188,14 @@ fn main() {
             "--bias-drift" => drift = Some(bias_drift_arg(&val()).unwrap_or_else(|e| panic!("{e}"))),
             "--cases" => cases = val().split(',').map(String::from).collect(),
             "--filters" => {
-                bases = val().split(',').map(|f| if f == "vqf" { Base::Vqf } else { Base::Robust }).collect()
+                bases = val()
+                    .split(',')
+                    .map(|f| match f {
+                        "robust" => Base::Robust,
+                        "vqf" => Base::Vqf,
+                        _ => usage_error(&format!("unknown filter '{f}' (robust, vqf)")),
+                    })
+                    .collect()
             }
             "--set" => set_param(&mut params, &val()),
             "--oracle" => oracle = true,
@@ -202,11 +215,11 @@ fn main() {
                 println!("{USAGE}");
                 std::process::exit(0)
             }
-            _ => {
-                eprintln!("rig_joints: unknown argument '{a}'\n{USAGE}");
-                std::process::exit(2)
-            }
+            _ => usage_error(&format!("unknown argument '{a}'")),
         }
+    }
+    if let Some(case) = cases.iter().find(|c| !PRESETS.contains(&c.as_str())) {
+        usage_error(&format!("unknown case '{case}' ({})", PRESETS.join(", ")));
     }
     eprintln!("{params:?}");
     // [case][base][method] -> scores per seed; methods: alone, joints, oracle.
