@@ -45,6 +45,7 @@ pub use config::*;
 pub(crate) use convert::*;
 pub use handles::*;
 pub use info::*;
+pub use joint_settings::*;
 pub use joints::*; // issue 42
 pub use offline::*;
 pub use outputs::*;

@@ -1,7 +1,8 @@
 //! The generated files of the C API, rendered from the core's tables, and the tests that
 //! hold the committed files to them: `param_ids.rs` (each kind's `settings!`,
-//! `params::COMMON` and the slot map `params::BLOCKS`) and `bits.rs` (the `bits!` tables
-//! of `filters::flags` and `filters::diag`). cbindgen reads the committed files into
+//! `params::COMMON` and the slot map `params::BLOCKS`), `bits.rs` (the `bits!` tables
+//! of `filters::flags` and `filters::diag`) and `joint_settings.rs` (orient_config_for_joints,
+//! its doc from `joints::SENSOR_SETTINGS`). cbindgen reads the committed files into
 //! include/orient.h, from which the C# and Python layers are generated in turn, so a
 //! value or a doc sentence is written once, in the core. With ORIENT_BLESS=1 the tests
 //! write the files instead.
@@ -159,31 +160,40 @@ pub(crate) fn render_param_ids() -> String {
     out
 }
 
-/// `x` with four significant digits, without trailing zeros: 8.727e-4, 0.0698, 4.
+/// `x` with four significant digits (all the digits of an integer part up to 9999,
+/// exponent form beyond it and below 10⁻³), without trailing zeros: 8.727e-4, 0.06981, 4.
 fn short(x: f64) -> String {
-    if x != 0.0 && x.abs() < 1e-3 {
-        return format!("{x:.3e}");
+    fn trim(digits: &str) -> &str {
+        if digits.contains('.') {
+            digits.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            digits
+        }
+    }
+    if x == 0.0 {
+        return "0".to_string();
+    }
+    if x.abs() < 1e-3 || x.abs() >= 1e4 {
+        let text = format!("{x:.3e}");
+        let (mantissa, exponent) = text.split_once('e').expect("exponent form");
+        return format!("{}e{exponent}", trim(mantissa));
     }
     let digits = (3 - x.abs().log10().floor() as i32).max(0) as usize;
-    let text = format!("{x:.digits$}");
-    if text.contains('.') {
-        text.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        text
-    }
+    trim(&format!("{x:.digits$}")).to_string()
 }
 
 /// A value in its parameter's unit, with its degrees (for a unit in radians) and the
-/// default's beside it: "8.727e-4 rad/s/sqrt(s) (0.05 deg/s/sqrt(s); default 0.01)".
+/// default's beside it: "8.727e-4 rad/s/sqrt(s) (0.05 deg/s/sqrt(s); its default 0.01
+/// deg/s/sqrt(s))".
 fn value_in_units(x: f64, default: f64, unit: &str) -> String {
     match unit.strip_prefix("rad") {
         Some(rest) => format!(
-            "{} {unit} ({} deg{rest}; default {})",
+            "{} {unit} ({} deg{rest}; its default {} deg{rest})",
             short(x),
             short(x.to_degrees()),
             short(default.to_degrees())
         ),
-        None => format!("{} {unit} (default {})", short(x), short(default)),
+        None => format!("{} {unit} (its default {} {unit})", short(x), short(default)),
     }
 }
 
@@ -191,34 +201,37 @@ fn value_in_units(x: f64, default: f64, unit: &str) -> String {
 /// setting's C slot, value, default and reason.
 fn for_joints_doc() -> String {
     use crate::joints::SENSOR_SETTINGS;
-    let kinds: Vec<Kind> = Kind::ALL
-        .into_iter()
-        .filter(|k| SENSOR_SETTINGS.iter().all(|s| k.param_by_name(s.name).is_some()))
-        .collect();
-    assert!(
-        kinds.len() == 1
-            && Kind::ALL
-                .iter()
-                .all(|k| kinds.contains(k)
-                    || SENSOR_SETTINGS.iter().all(|s| k.param_by_name(s.name).is_none())),
-        "the sensor settings belong to one kind"
-    );
+    let has_all = |k: &Kind| SENSOR_SETTINGS.iter().all(|s| k.param_by_name(s.name).is_some());
+    let has_none = |k: &Kind| SENSOR_SETTINGS.iter().all(|s| k.param_by_name(s.name).is_none());
+    let kinds: Vec<Kind> = Kind::ALL.into_iter().filter(has_all).collect();
+    let one_kind = kinds.len() == 1 && Kind::ALL.iter().all(|k| has_all(k) || has_none(k));
+    assert!(one_kind && !SENSOR_SETTINGS.is_empty(), "the sensor settings belong to one kind");
     let kind = kinds[0];
     let settings: Vec<String> = SENSOR_SETTINGS
         .iter()
         .map(|s| {
             let p = kind.param_by_name(s.name).expect("the kind's");
-            format!(
-                "{} at {}, {}",
-                c_param(s.name).expect("a C name"),
-                value_in_units(s.value, p.default, p.unit),
-                s.why
-            )
+            // A parameter named in backticks reads as its C constant.
+            let why: String = s
+                .why
+                .split('`')
+                .enumerate()
+                .map(|(i, piece)| match (i % 2, c_param(piece)) {
+                    (1, Some(c)) => c,
+                    (1, None) => format!("`{piece}`"),
+                    _ => piece.to_string(),
+                })
+                .collect();
+            let c = c_param(s.name).expect("a C name");
+            format!("{c} at {}, {why}", value_in_units(s.value, p.default, p.unit))
         })
         .collect();
-    let (last, first) = settings.split_last().expect("settings");
+    let list = match settings.split_last() {
+        Some((last, first)) if !first.is_empty() => format!("{}; and {last}", first.join("; ")),
+        _ => settings.concat(),
+    };
     format!(
-        "Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_{}, {}; and {}. \
+        "Sets in `config` what a sensor's filter runs with under joints: for ORIENT_KIND_{}, {list}. \
          Other kinds have none of them and `config` is left as it was. Call it after \
          orient_config_default() for each sensor of a rig whose joints hold its heading \
          (docs/ACCURACY.md has the simulated gloves' figures); a sensor alone keeps the \
@@ -227,8 +240,6 @@ fn for_joints_doc() -> String {
          PARAM_OUT_OF_RANGE for a slot outside its parameter's range; a refused `config` is \
          left as it was.",
         kind.name().to_ascii_uppercase(),
-        first.join("; "),
-        last
     )
 }
 
@@ -243,8 +254,8 @@ pub(crate) fn render_joint_settings() -> String {
     doc_comment(&mut out, &for_joints_doc());
     out.push_str(
         "#[no_mangle]\n\
-         pub unsafe extern \"C\" fn orient_config_for_joints(config: *mut OrientConfig) -> OrientStatus {\n    \
-         joints::config_for_joints(config)\n\
+         pub unsafe extern \"C\" fn orient_config_for_joints(config: *mut OrientConfig) \
+         -> OrientStatus {\n    joints::config_for_joints(config)\n\
          }\n",
     );
     out
@@ -288,11 +299,17 @@ fn values_are_written_short() {
     assert_eq!(short(4.000_000_000_001), "4");
     assert_eq!(short(0.05), "0.05");
     assert_eq!(short(1234.5), "1234");
+    assert_eq!(short(0.0), "0");
+    assert_eq!(short(-0.0), "0");
+    assert_eq!(short(5e-4), "5e-4");
+    assert_eq!(short(-5.25e-4), "-5.25e-4");
+    assert_eq!(short(12_345.6), "1.235e4");
+    assert_eq!(short(-0.5), "-0.5");
     assert_eq!(
         value_in_units(0.069_813_170_079_773_18, 0.0349, "rad/s"),
-        "0.06981 rad/s (4 deg/s; default 2)"
+        "0.06981 rad/s (4 deg/s; its default 2 deg/s)"
     );
-    assert_eq!(value_in_units(0.5, 0.25, "m/s^2"), "0.5 m/s^2 (default 0.25)");
+    assert_eq!(value_in_units(0.5, 0.25, "m/s^2"), "0.5 m/s^2 (its default 0.25 m/s^2)");
 }
 
 #[test]

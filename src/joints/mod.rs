@@ -100,9 +100,10 @@ pub const SENSOR_SETTINGS: [SensorSetting; 3] = [
     SensorSetting {
         name: "rest_gyro",
         value: 0.069_813_170_079_773_18,
-        why: "a bound on the rate's length, so a sensor whose bias is up to that long is still found at rest (the reference \
-              pose among its rests) and learns its bias there; a slow turn about the vertical \
-              below it, held for rest_time, is then taken for rest too",
+        why: "a bound on the rate's length, so a sensor whose bias is up to that long is still \
+              found at rest (the reference pose among its rests) and learns its bias there; a \
+              turn about the vertical slower than it, held as long as rest takes (`rest_time`), \
+              is then taken for rest too",
     },
 ];
 

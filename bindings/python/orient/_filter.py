@@ -238,9 +238,10 @@ class Filter:
         initial: ``None`` (default: from the first accelerometer/magnetometer sample),
             ``"identity"``, or a quaternion (w, x, y, z) in the configured frame.
         for_joints: the settings a sensor's filter runs with under :class:`Joints`
-            (``orient_config_for_joints``, whose doc in orient.h gives each value: for the
-            recommended kind a faster bias random walk and a wider motion bias bound and
-            rest threshold; other kinds unchanged), before
+            (``orient_config_for_joints``, whose doc in orient.h gives each value and why;
+            ``Robust(for_joints=True)[name]`` reads them: for the recommended kind a faster
+            bias random walk and a wider motion bias bound and rest threshold; other kinds
+            unchanged), before
             ``settings``.
         **settings: parameters by name (see :meth:`params`); each is checked against
             the library's range.
