@@ -267,6 +267,12 @@ pub struct SimConfig {
 pub const PRESETS: [&str; 6] =
     ["100hz", "60hz-vigorous", "palm-sideways", "bias-3dps", "axes-5deg-off", "leg"];
 
+/// The first of `cases` that names no preset, as a tool's usage error says it.
+pub fn unknown_preset(cases: &[String]) -> Option<String> {
+    let case = cases.iter().find(|c| !PRESETS.contains(&c.as_str()))?;
+    Some(format!("unknown case '{case}' ({})", PRESETS.join(", ")))
+}
+
 impl SimConfig {
     /// A 10-minute glove at 100 Hz: bias to 1 deg/s, laxity 3 deg, axial play 4 deg,
     /// wobble 1.5 deg, axes and mountings true, a magnet under the desk.

@@ -14,12 +14,18 @@
 use orient::joints::{estimate_hinge_axes, estimate_two_dof_axes, JointKind};
 use orient::{Config, Filter, Kind, Quat, Vec3};
 use orient_tools::rig::{run_rig, Alone, SensorFilter};
-use orient_tools::rigsim::{seed_range, SimConfig, Simulation};
+use orient_tools::rigsim::{seed_range, unknown_preset, SimConfig, Simulation};
 
 const USAGE: &str = "usage: rig_axes [--seeds A-B] [--cases a,b,..] [--windows 5,10,30] [--guess-off DEG]";
 
 fn angle(a: Vec3, b: Vec3) -> f64 {
     libm::atan2(a.cross(b).norm(), a.dot(b)).to_degrees()
+}
+
+/// The usage on stderr after `what`, and exit status 2.
+fn usage_error(what: &str) -> ! {
+    eprintln!("rig_axes: {what}\n{USAGE}");
+    std::process::exit(2)
 }
 
 fn main() {
@@ -40,11 +46,11 @@ fn main() {
                 println!("{USAGE}");
                 std::process::exit(0)
             }
-            _ => {
-                eprintln!("rig_axes: unknown argument '{a}'\n{USAGE}");
-                std::process::exit(2)
-            }
+            _ => usage_error(&format!("unknown argument '{a}'")),
         }
+    }
+    if let Some(e) = unknown_preset(&cases) {
+        usage_error(&e);
     }
     println!("axes from motion, from t = 10 s: error (deg, the worse of the two axes) mean / max over joints and seeds {s0}-{s1}; quality mean / max; guesses {guess_off} deg further off\n");
     println!("| case | kind | window (s) | error mean / max | quality mean / max |");

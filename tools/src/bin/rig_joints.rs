@@ -47,7 +47,7 @@ use orient_tools::rig::{
     joint_errors, reference_row, run_rig, score_rig, twist_angle, Alone, JointStage, RigRecording, RigScores,
     SensorFilter,
 };
-use orient_tools::rigsim::{bias_drift_arg, seed_range, SimConfig, Simulation, PRESETS};
+use orient_tools::rigsim::{bias_drift_arg, seed_range, unknown_preset, SimConfig, Simulation};
 
 /// Sets each child's heading relative to its parent from the truth.
 struct Oracle<'a> {
@@ -218,8 +218,8 @@ fn main() {
             _ => usage_error(&format!("unknown argument '{a}'")),
         }
     }
-    if let Some(case) = cases.iter().find(|c| !PRESETS.contains(&c.as_str())) {
-        usage_error(&format!("unknown case '{case}' ({})", PRESETS.join(", ")));
+    if let Some(e) = unknown_preset(&cases) {
+        usage_error(&e);
     }
     eprintln!("{params:?}");
     // [case][base][method] -> scores per seed; methods: alone, joints, oracle.
