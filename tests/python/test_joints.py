@@ -107,6 +107,47 @@ def test_a_hinged_finger_in_one_call():
     assert e.value.status == Status.NON_FINITE
 
 
+def test_a_rig_aligned_at_the_end_of_its_pose_in_the_same_call():
+    """align_at does what the two calls around align_rig_heading do, bit for bit: the
+    filters alone up to the pose's last row, their headings turned to the segments' mean
+    heading, then filters and joints."""
+    dt, n, k = 0.01, 1000, 300
+    gh, ah = readings(hand_at, n, dt)
+    gf, af = readings(finger_at, n, dt)
+    gyr, acc = np.stack([gh, gf]), np.stack([ah, af])
+    x = [1.0, 0.0, 0.0]
+    with orient.Joints([("hinge", 0, 1, x, x)], 2) as j1, orient.Joints([("hinge", 0, 1, x, x)], 2) as j2:
+        one = orient.run_rig([orient.Robust(for_joints=True) for _ in range(2)], j1, gyr, acc, dt=dt, align_at=k)
+        filters = [orient.Robust(for_joints=True) for _ in range(2)]
+        alone = orient.run_rig(filters, None, gyr[:, :k], acc[:, :k], dt=dt)["segments"]
+        pose = alone[:, -1]
+        yaw = [2 * math.atan2(q[3], q[0]) for q in pose]
+        mean = math.atan2(sum(map(math.sin, yaw)), sum(map(math.cos, yaw)))
+        assert abs(yaw[0] - yaw[1]) > 1e-9  # the alignment has something to do
+        orient.align_rig_heading(filters, [[math.cos(mean / 2), 0.0, 0.0, math.sin(mean / 2)]] * 2)
+        rest = orient.run_rig(filters, j2, gyr[:, k:], acc[:, k:], dt=dt)
+        assert np.array_equal(one["segments"][:, k:], rest["segments"])
+        assert np.array_equal(one["angles"][:, k:], rest["angles"], equal_nan=True)
+        assert np.array_equal(one["rating"][:, k:], rest["rating"])
+        assert np.isnan(one["angles"][:, :k]).all() and np.isnan(one["rating"][:, :k]).all()
+        assert np.array_equal(one["segments"][:, :k], alone)
+    # Given references, and a pose that ends with the recording.
+    refs = [[1.0, 0.0, 0.0, 0.0]] * 2
+    f1 = [orient.Robust() for _ in range(2)]
+    orient.run_rig(f1, None, gyr[:, :k], acc[:, :k], dt=dt, align_at=k, references=refs)
+    f2 = [orient.Robust() for _ in range(2)]
+    orient.run_rig(f2, None, gyr[:, :k], acc[:, :k], dt=dt)
+    orient.align_rig_heading(f2, refs)
+    assert all(np.array_equal(a.quaternion, b.quaternion) for a, b in zip(f1, f2))
+    for bad in [0, k + 1, True, 1.5]:
+        with pytest.raises(ValueError):
+            orient.run_rig([orient.Robust(), orient.Robust()], None, gyr[:, :k], acc[:, :k], dt=dt, align_at=bad)
+    with pytest.raises(ValueError):
+        orient.run_rig([orient.Robust(), orient.Robust()], None, gyr, acc, dt=dt, align_at=k, references=[[1, 0, 0, 0]])
+    with pytest.raises(ValueError):
+        orient.run_rig([orient.Robust(), orient.Robust()], None, gyr, acc, dt=dt, references=refs)
+
+
 def test_bad_rigs_and_rows_are_refused():
     x = [1.0, 0.0, 0.0]
     for joints, status, detail in [

@@ -4,6 +4,7 @@ magnetometer, and a whole rig recording in one call."""
 from __future__ import annotations
 
 import ctypes
+import math
 from ctypes import byref, c_double, c_size_t, c_uint8, c_uint32, c_void_p
 from dataclasses import dataclass
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
@@ -11,7 +12,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _native as n
-from ._filter import ArrayLike, Filter, ParamInfo, _check, _param_info, _ptr, _record_dtype, _vec3
+from ._filter import ArrayLike, Filter, ParamInfo, _check, _param_info, _ptr, _record_dtype, _vec3, align_rig_heading
 from ._native import lib
 
 _KINDS = {"hinge": n.JOINT_HINGE, "2dof": n.JOINT_TWO_DOF}
@@ -238,15 +239,38 @@ def estimate_two_dof_axes(q_parent: ArrayLike, q_child: ArrayLike, guess_parent:
     return JointAxes(np.array([a.x, a.y, a.z]), np.array([b.x, b.y, b.z]), out.quality)
 
 
+def _mean_heading(quats: Any, S: int) -> np.ndarray:
+    """(S, 4): the rotation about the vertical by the circular mean of the S
+    orientations' headings (each one's twist about the vertical)."""
+    yaw = np.array([2.0 * math.atan2(quats[s].z, quats[s].w) for s in range(S)])
+    mean = math.atan2(np.sin(yaw).sum(), np.cos(yaw).sum())
+    return np.tile([math.cos(mean / 2), 0.0, 0.0, math.sin(mean / 2)], (S, 1))
+
+
 def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike, acc: ArrayLike,
-            mag: Optional[ArrayLike] = None, *, dt: ArrayLike, start: int = 0) -> Dict[str, np.ndarray]:
+            mag: Optional[ArrayLike] = None, *, dt: ArrayLike, start: Optional[int] = None,
+            align_at: Optional[int] = None, references: Optional[ArrayLike] = None) -> Dict[str, np.ndarray]:
     """A whole rig recording in one call: ``gyr``, ``acc`` (and ``mag``) of shape
     (S, N, 3), sensor s's N readings for the rig's S ``filters``; ``dt`` one value or (N,).
     Every row updates every filter (``orient_filters_update``), then from row ``start`` on
-    the joints (the row after the headings were aligned, if you align them; None: no
-    joints). Returns ``segments`` (S, N, 4): each segment's orientation after each row
-    (the joints' when given, else each filter's own), and with joints ``angles`` (J, N, 2)
-    and ``rating`` (J, N). A refused sample raises OrientError naming its row."""
+    the joints (None: no joints).
+
+    ``align_at``: the first row after the reference pose. Before that row the filters'
+    headings are aligned (``align_rig_heading``) to ``references`` ((S, 4) w, x, y, z,
+    each segment's orientation in the pose), by default every segment to the segments'
+    mean heading at the pose's last row (every segment's frame the same in the pose, the
+    rig's common heading kept), and ``start`` defaults to it: the joints start from
+    aligned headings. Without it the joints start at row ``start`` (default 0) from the
+    headings as they are: align before the call, or give the joints
+    ``params={"heading_std0": math.pi}`` so that they find the relative headings from the
+    motion (about a minute). A segment's orientation is its filter's with the filter's
+    mounting (``Filter.mounting``) for the alignment, and with the joints' ``mountings``
+    for the joints' outputs: give both the same mountings.
+
+    Returns ``segments`` (S, N, 4): each segment's orientation after each row (the joints'
+    from ``start`` on, else each filter's own), and with joints ``angles`` (J, N, 2,
+    radians; NaN before ``start``) and ``rating`` (J, N). A refused sample raises
+    OrientError naming its row; a bad ``align_at`` or ``references`` raises ValueError."""
     g = np.ascontiguousarray(gyr, dtype=np.float64)
     a = np.ascontiguousarray(acc, dtype=np.float64)
     S = len(filters)
@@ -259,6 +283,17 @@ def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike,
     d = np.broadcast_to(np.asarray(dt, dtype=np.float64), (N,))
     if joints is not None and joints.segments != S:
         raise ValueError(f"the joints have {joints.segments} segments, the rig {S} filters")
+    if align_at is not None:
+        if isinstance(align_at, bool) or not isinstance(align_at, (int, np.integer)) or not 0 < align_at <= N:
+            raise ValueError(f"align_at must be a row in 1..{N}, got {align_at!r}")
+        if references is not None:
+            references = np.ascontiguousarray(references, dtype=np.float64)
+            if references.shape != (S, 4):
+                raise ValueError(f"references must have shape ({S}, 4), got {references.shape}")
+    elif references is not None:
+        raise ValueError("references are for align_at")
+    if start is None:
+        start = 0 if align_at is None else int(align_at)
     # Row-major samples: row i's S samples are contiguous, one pointer per call.
     samples = np.zeros((N, S), dtype=SAMPLE_DTYPE)
     samples["dt"] = d[:, None]
@@ -279,6 +314,10 @@ def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike,
     r = c_double()
     jh = None if joints is None else joints._handle()
     for i in range(N):
+        if i == align_at:
+            # quats holds every filter's orientation after the pose's last row.
+            refs = references if references is not None else _mean_heading(quats, S)
+            align_rig_heading(filters, refs)
         row = _ptr(samples, n.OrientSample, i)
         st = lib.orient_filters_update(handles, row, S, quats, None)
         if st != 0:
@@ -296,6 +335,9 @@ def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike,
         else:
             for s in range(S):
                 segments[s, i] = (quats[s].w, quats[s].x, quats[s].y, quats[s].z)
+    if align_at == N:
+        # The pose ends with the recording: the filters are left aligned for the next call.
+        align_rig_heading(filters, references if references is not None else _mean_heading(quats, S))
     out = {"segments": segments}
     if joints is not None:
         out["angles"] = angles
