@@ -1784,9 +1784,10 @@ namespace Orient.Native
         /// <summary>
         /// Segment `segment`'s orientation (segment to earth, the filters' earth frame) after
         /// the last orient_joints_update: its sensor's orientation with the joints' correction and
-        /// the mounting applied, the bone rotation a host draws. Before the first update, the
-        /// identity's rotation by the mounting's inverse. INVALID_ARGUMENT for a segment at or
-        /// beyond the rig's count.
+        /// the segment's mounting given to orient_joints_new applied, the bone rotation a host
+        /// draws (the filters' own mountings are not read: give orient_joints_new each filter's
+        /// orient_filter_mounting). Before the first update, the identity's rotation by the
+        /// mounting's inverse. INVALID_ARGUMENT for a segment at or beyond the rig's count.
         /// </summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern Status orient_joints_segment_quaternion(IntPtr joints, UIntPtr segment, Quaternion* @out);
