@@ -51,9 +51,12 @@ use std::path::PathBuf;
 use std::process::exit;
 
 const USAGE: &str = "usage: replay --filter NAME[,NAME...] [--offline] [--no-mag] [--frame enu|ned|nwu] \
-                     [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv\n   or: replay --rig \
-                     DIR/rig.json --out-dir OUT [--no-mag] [--kind KIND] [--set KEY=VALUE]... [--no-align] \
-                     [--svg FILE]";
+                     [--set KEY=VALUE]... [--out OUT.csv] [--svg OUT.svg] INPUT.csv";
+
+/// Both modes' usage: this file's and the rig mode's (`rig::USAGE`).
+fn usage() -> String {
+    format!("{USAGE}\n   or: {}", rig::USAGE.trim_start_matches("usage: "))
+}
 
 /// println! that stops the tool quietly (status 0) when standard output was closed, as
 /// `| head` does, instead of panicking on the broken pipe; other write errors are status 1.
@@ -99,7 +102,7 @@ fn parse_args() -> Args {
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
         let mut value =
-            |name: &str| it.next().unwrap_or_else(|| fail(format!("{name} needs a value\n{USAGE}")));
+            |name: &str| it.next().unwrap_or_else(|| fail(format!("{name} needs a value\n{}", usage())));
         match arg.as_str() {
             "--filter" => {
                 let names: Vec<&str> = Kind::ALL.iter().map(|k| k.name()).collect();
@@ -129,11 +132,11 @@ fn parse_args() -> Args {
             "--out" => out = Some(PathBuf::from(value("--out"))),
             "--svg" => svg = Some(PathBuf::from(value("--svg"))),
             "-h" | "--help" => {
-                say!("{USAGE}");
+                say!("{}", usage());
                 exit(0)
             }
-            s if s.starts_with("--") => fail(format!("unknown option '{s}'\n{USAGE}")),
-            _ if input.is_some() => fail(format!("more than one input file\n{USAGE}")),
+            s if s.starts_with("--") => fail(format!("unknown option '{s}'\n{}", usage())),
+            _ if input.is_some() => fail(format!("more than one input file\n{}", usage())),
             _ => input = Some(PathBuf::from(arg)),
         }
     }
@@ -141,7 +144,7 @@ fn parse_args() -> Args {
         kinds.push(Kind::Robust);
     }
     if kinds.is_empty() {
-        fail(format!("--filter is required (or --offline, which defaults to robust)\n{USAGE}"));
+        fail(format!("--filter is required (or --offline, which defaults to robust)\n{}", usage()));
     }
     if out.is_some() && kinds.len() > 1 {
         fail("--out takes one filter (its columns depend on the kind)");
@@ -154,7 +157,7 @@ fn parse_args() -> Args {
         sets,
         out,
         svg,
-        input: input.unwrap_or_else(|| fail(format!("no input file\n{USAGE}"))),
+        input: input.unwrap_or_else(|| fail(format!("no input file\n{}", usage()))),
     }
 }
 

@@ -12,8 +12,8 @@
 //!   `--no-align` or the description has no reference pose. Without the alignment the
 //!   joints start with the relative headings unknown (`heading_std0` π, unless
 //!   `--joint-set` gives it): each joint then finds its heading from the motion within
-//!   about a minute (a 100 Hz glove without its reference pose: 1.88 deg over all
-//!   joints, 0.76 over the last minute, against 30.8 and 6.9 at the default 1 deg).
+//!   about a minute (a 100 Hz glove without its reference pose: 2.07 deg over all
+//!   joints, 0.75 over the last minute, against 29.5 and 5.8 at the default 1 deg).
 //! - The joints (`orient::joints`, default tuning, `--joint-set` changes a parameter of
 //!   `orient::joints::JOINT_PARAMS` by name; repeatable) then hold every child to its parent:
 //!   each child's heading relative to its parent from the joint constraints, from the
