@@ -270,7 +270,9 @@ def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike,
     Returns ``segments`` (S, N, 4): each segment's orientation after each row (the joints'
     from ``start`` on, else each filter's own), and with joints ``angles`` (J, N, 2,
     radians; NaN before ``start``) and ``rating`` (J, N). A refused sample raises
-    OrientError naming its row; a bad ``align_at`` or ``references`` raises ValueError."""
+    OrientError naming its row, a refused alignment (``align_rig_heading``'s statuses: a
+    non-finite reference, a filter without an orientation) OrientError too; a bad
+    ``align_at`` or a ``references`` of the wrong shape raises ValueError."""
     g = np.ascontiguousarray(gyr, dtype=np.float64)
     a = np.ascontiguousarray(acc, dtype=np.float64)
     S = len(filters)
