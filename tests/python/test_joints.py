@@ -123,7 +123,8 @@ def test_a_rig_aligned_at_the_end_of_its_pose_in_the_same_call():
         pose = alone[:, -1]
         yaw = [2 * math.atan2(q[3], q[0]) for q in pose]
         mean = math.atan2(sum(map(math.sin, yaw)), sum(map(math.cos, yaw)))
-        assert abs(yaw[0] - yaw[1]) > 1e-9  # the alignment has something to do
+        gap = (yaw[0] - yaw[1] + math.pi) % (2 * math.pi) - math.pi
+        assert abs(gap) > 1e-3  # the alignment has something to do
         orient.align_rig_heading(filters, [[math.cos(mean / 2), 0.0, 0.0, math.sin(mean / 2)]] * 2)
         rest = orient.run_rig(filters, j2, gyr[:, k:], acc[:, k:], dt=dt)
         assert np.array_equal(one["segments"][:, k:], rest["segments"])
@@ -137,8 +138,10 @@ def test_a_rig_aligned_at_the_end_of_its_pose_in_the_same_call():
     orient.run_rig(f1, None, gyr[:, :k], acc[:, :k], dt=dt, align_at=k, references=refs)
     f2 = [orient.Robust() for _ in range(2)]
     orient.run_rig(f2, None, gyr[:, :k], acc[:, :k], dt=dt)
+    unaligned = [f.quaternion for f in f2]
     orient.align_rig_heading(f2, refs)
     assert all(np.array_equal(a.quaternion, b.quaternion) for a, b in zip(f1, f2))
+    assert any(not np.allclose(a.quaternion, q) for a, q in zip(f1, unaligned))
     for bad in [0, k + 1, True, 1.5]:
         with pytest.raises(ValueError):
             orient.run_rig([orient.Robust(), orient.Robust()], None, gyr[:, :k], acc[:, :k], dt=dt, align_at=bad)
@@ -146,6 +149,14 @@ def test_a_rig_aligned_at_the_end_of_its_pose_in_the_same_call():
         orient.run_rig([orient.Robust(), orient.Robust()], None, gyr, acc, dt=dt, align_at=k, references=[[1, 0, 0, 0]])
     with pytest.raises(ValueError):
         orient.run_rig([orient.Robust(), orient.Robust()], None, gyr, acc, dt=dt, references=refs)
+    # Refused before any row: a start before the alignment, a reference no rotation has.
+    f3 = [orient.Robust(), orient.Robust()]
+    with pytest.raises(ValueError):
+        orient.run_rig(f3, None, gyr, acc, dt=dt, align_at=k, start=k - 1)
+    for ref in ([0.0, 0.0, 0.0, 0.0], [np.nan, 0.0, 0.0, 1.0]):
+        with pytest.raises(ValueError):
+            orient.run_rig(f3, None, gyr, acc, dt=dt, align_at=k, references=[[1.0, 0, 0, 0], ref])
+    assert all(np.array_equal(f.quaternion, [1.0, 0.0, 0.0, 0.0]) for f in f3)
 
 
 def test_bad_rigs_and_rows_are_refused():

@@ -54,7 +54,9 @@ class Joint:
 class Joints:
     """A rig's joints over ``segments`` segments (segment i is the rig's filter i).
     ``mountings`` ((segments, 4) w, x, y, z, sensor to segment; None for the identity)
-    give the angles' zero: the reference pose, every segment's frame the same. ``params``:
+    give the angles' zero (the reference pose, every segment's frame the same) and the
+    segments' outputs; the filters' own mountings are not read: pass each filter's
+    ``mounting``. ``params``:
     joint parameters by name (``joint_params()``), set before the first update. Raises
     OrientError (``Status.INVALID_JOINT`` names the joint) for a rig that is not a forest
     or an axis that is zero or not finite, ``Status.UNKNOWN_PARAM`` or
@@ -130,7 +132,8 @@ class Joints:
         _check(lib.orient_joints_update(self._handle(), handles, ptr, len(filters)))
 
     def segment(self, s: int) -> np.ndarray:
-        """Segment ``s``'s orientation (w, x, y, z), segment to earth: the bone rotation."""
+        """Segment ``s``'s orientation (w, x, y, z), segment to earth: the bone rotation
+        (the joints' correction and the joints' mounting ``s`` applied)."""
         q = n.OrientQuaternion()
         _check(lib.orient_joints_segment_quaternion(self._handle(), s, byref(q)))
         return np.array([q.w, q.x, q.y, q.z])
@@ -271,8 +274,9 @@ def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike,
     from ``start`` on, else each filter's own), and with joints ``angles`` (J, N, 2,
     radians; NaN before ``start``) and ``rating`` (J, N). A refused sample raises
     OrientError naming its row, a refused alignment (``align_rig_heading``'s statuses: a
-    non-finite reference, a filter without an orientation) OrientError too; a bad
-    ``align_at`` or a ``references`` of the wrong shape raises ValueError."""
+    filter without an orientation, one listed twice) OrientError too; an ``align_at``
+    outside 1..N, a ``start`` before it, ``references`` without it or not (S, 4) finite
+    quaternions of a usable norm raise ValueError before any row."""
     g = np.ascontiguousarray(gyr, dtype=np.float64)
     a = np.ascontiguousarray(acc, dtype=np.float64)
     S = len(filters)
@@ -288,10 +292,16 @@ def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike,
     if align_at is not None:
         if isinstance(align_at, bool) or not isinstance(align_at, (int, np.integer)) or not 0 < align_at <= N:
             raise ValueError(f"align_at must be a row in 1..{N}, got {align_at!r}")
+        if start is not None and start < align_at:
+            # The alignment would turn the filters' headings under running joints.
+            raise ValueError(f"start ({start}) before align_at ({align_at})")
         if references is not None:
             references = np.ascontiguousarray(references, dtype=np.float64)
             if references.shape != (S, 4):
                 raise ValueError(f"references must have shape ({S}, 4), got {references.shape}")
+            norms = np.linalg.norm(references, axis=1)
+            if not (np.isfinite(references).all() and (norms > 1e-150).all() and (norms < 1e150).all()):
+                raise ValueError("references must be finite quaternions of a norm that can be normalised")
     elif references is not None:
         raise ValueError("references are for align_at")
     if start is None:
