@@ -444,7 +444,8 @@ public:
     Joints() noexcept = default;
 
     /// Joints over `segments` segments; `mountings` (sensor to segment, one per segment)
-    /// give the angles' zero, nullptr for the identity.
+    /// give the angles' zero and the segments' outputs, nullptr for the identity (the
+    /// filters' own mountings are not read: pass each filter's `mounting()`).
     static Result<Joints> create(const OrientJoint* joints, std::size_t n_joints, std::size_t segments,
                                  const OrientQuaternion* mountings = nullptr) noexcept {
         Joints j;

@@ -1048,7 +1048,8 @@ namespace Orient
         /// <summary>
         /// The joints over the rig's filters (segment i is filter i). mountings (sensor to
         /// segment, one per filter; null for the identity) give the angles' zero, the
-        /// reference pose. Throws OrientException (Status.InvalidJoint names the joint).
+        /// reference pose, and the segments' outputs; the filters' own mountings are not
+        /// read: pass each filter's Mounting. Throws OrientException (Status.InvalidJoint names the joint).
         /// </summary>
         public OrientJoints(OrientRig rig, Joint[] joints, Native.Quaternion[] mountings = null)
         {

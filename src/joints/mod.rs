@@ -531,7 +531,8 @@ impl Joints {
     }
 
     /// Segment `s`'s orientation (segment to earth), the bone rotation a host draws: the
-    /// corrected sensor orientation with the mounting applied, `q_sensor ⊗ m⁻¹`.
+    /// corrected sensor orientation with this rig's mounting `m` of the segment (given to
+    /// [`Joints::new`]; a filter's own is not read) applied, `q_sensor ⊗ m⁻¹`.
     pub fn segment_quaternion(&self, s: usize) -> Quat {
         (self.sensors[s] * self.mountings[s].conj()).normalized()
     }
