@@ -400,6 +400,41 @@ static void learning_by_kind(void) {
     CHECK(same_as_without_learning(ORIENT_KIND_ROBUST, ORIENT_PARAM_ROBUST_BIAS_WALK, 0.0));
 }
 
+/* The segments' outputs apply the mountings given to orient_joints_new, never the
+ * filters' own (orient_joints_segment_quaternion's doc): the root segment of joints made
+ * without mountings is its filter's sensor orientation, of joints made with the
+ * filter's mounting its filter's orientation. */
+static void joints_read_their_own_mountings(void) {
+    OrientJoint j = hinge_joint(0, 1);
+    OrientJoints *plain = NULL, *mounted = NULL;
+    OrientFilter *filters[2];
+    OrientSample s[2];
+    OrientQuaternion m = oq_of(q_axis(0, 0, 1, 90 * DEGREE)), mountings[2], seg, sensor, own;
+    filters[0] = new_filter(ORIENT_KIND_ROBUST);
+    filters[1] = new_filter(ORIENT_KIND_ROBUST);
+    CHECK_STATUS(orient_filter_set_mounting(filters[0], &m), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_mounting(filters[0], &mountings[0]), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_mounting(filters[1], &mountings[1]), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_new(&j, 1, 2, NULL, &plain), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_new(&j, 1, 2, mountings, &mounted), ORIENT_STATUS_OK);
+    s[0] = moving(parent_at(0.0), parent_at(0.01), 0.01);
+    s[1] = moving(child_at(0.0), child_at(0.01), 0.01);
+    CHECK_STATUS(orient_filters_update(filters, s, 2, NULL, NULL), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_update(plain, filters, s, 2), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_update(mounted, filters, s, 2), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_sensor_quaternion(filters[0], &sensor), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_quaternion(filters[0], &own), ORIENT_STATUS_OK);
+    CHECK(quat_angle(sensor, own) > 89.0 * DEGREE);
+    CHECK_STATUS(orient_joints_segment_quaternion(plain, 0, &seg), ORIENT_STATUS_OK);
+    CHECK(quat_angle(seg, sensor) < 1e-9);
+    CHECK_STATUS(orient_joints_segment_quaternion(mounted, 0, &seg), ORIENT_STATUS_OK);
+    CHECK(quat_angle(seg, own) < 1e-9);
+    CHECK_STATUS(orient_joints_free(plain), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_joints_free(mounted), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_free(filters[0]), ORIENT_STATUS_OK);
+    CHECK_STATUS(orient_filter_free(filters[1]), ORIENT_STATUS_OK);
+}
+
 static void joint_calls(void) {
     OrientJoint j = hinge_joint(0, 1);
     OrientJoints *joints = NULL, *gone = NULL;
@@ -414,6 +449,7 @@ static void joint_calls(void) {
 
     joints_new_refusals();
     joint_params();
+    joints_read_their_own_mountings();
     CHECK(strcmp(orient_status_message(ORIENT_STATUS_INVALID_JOINT), "unknown status code") != 0);
 
     filters[0] = new_filter(ORIENT_KIND_ROBUST);
