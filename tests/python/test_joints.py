@@ -157,6 +157,8 @@ def test_a_rig_aligned_at_the_end_of_its_pose_in_the_same_call():
         with pytest.raises(ValueError):
             orient.run_rig(f3, None, gyr, acc, dt=dt, align_at=k, references=[[1.0, 0, 0, 0], ref])
     assert all(np.array_equal(f.quaternion, [1.0, 0.0, 0.0, 0.0]) for f in f3)
+    # The same test as the library's: a tiny norm it can normalise is a reference.
+    orient.run_rig(f3, None, gyr[:, :k], acc[:, :k], dt=dt, align_at=k, references=[[1e-152, 0.0, 0.0, 0.0]] * 2)
 
 
 def test_bad_rigs_and_rows_are_refused():

@@ -299,8 +299,11 @@ def run_rig(filters: Sequence[Filter], joints: Optional[Joints], gyr: ArrayLike,
             references = np.ascontiguousarray(references, dtype=np.float64)
             if references.shape != (S, 4):
                 raise ValueError(f"references must have shape ({S}, 4), got {references.shape}")
-            norms = np.linalg.norm(references, axis=1)
-            if not (np.isfinite(references).all() and (norms > 1e-150).all() and (norms < 1e150).all()):
+            # orient_rig_align_heading's own test of a reference (check_quaternion): finite,
+            # a finite squared norm, and one no smaller than the smallest normal double.
+            with np.errstate(over="ignore"):
+                n2 = (references * references).sum(axis=1)
+            if not (np.isfinite(references).all() and np.isfinite(n2).all() and (n2 >= np.finfo(float).tiny).all()):
                 raise ValueError("references must be finite quaternions of a norm that can be normalised")
     elif references is not None:
         raise ValueError("references are for align_at")
