@@ -206,14 +206,23 @@ impl Parser<'_> {
                         b'r' => '\r',
                         b't' => '\t',
                         b'u' => {
-                            let hex =
-                                self.s.get(self.i..self.i + 4).ok_or_else(|| self.err("bad \\u escape"))?;
-                            self.i += 4;
-                            let code = std::str::from_utf8(hex)
-                                .ok()
-                                .and_then(|h| u32::from_str_radix(h, 16).ok())
-                                .ok_or_else(|| self.err("bad \\u escape"))?;
-                            char::from_u32(code).unwrap_or('\u{fffd}')
+                            // A character beyond the BMP is a surrogate pair, `\uD83E\uDDB5`; a
+                            // lone surrogate is no character (U+FFFD, as a lossy decoder reads it).
+                            let code = self.hex4()?;
+                            let mut c = char::from_u32(code);
+                            if (0xD800..0xDC00).contains(&code)
+                                && self.s.get(self.i..self.i + 2) == Some(b"\\u")
+                            {
+                                let at = self.i;
+                                self.i += 2;
+                                let low = self.hex4()?;
+                                if (0xDC00..0xE000).contains(&low) {
+                                    c = char::from_u32(0x10000 + ((code - 0xD800) << 10) + (low - 0xDC00));
+                                } else {
+                                    self.i = at;
+                                }
+                            }
+                            c.unwrap_or('\u{fffd}')
                         }
                         _ => return Err(self.err("bad escape in string")),
                     };
@@ -225,6 +234,14 @@ impl Parser<'_> {
             }
         }
         Err(self.err("unterminated string"))
+    }
+
+    /// The four hex digits of a `\\u` escape.
+    fn hex4(&mut self) -> Result<u32, JsonError> {
+        let hex = self.s.get(self.i..self.i + 4).filter(|h| h.iter().all(u8::is_ascii_hexdigit));
+        let hex = hex.ok_or_else(|| self.err("bad \\u escape"))?;
+        self.i += 4;
+        Ok(hex.iter().fold(0, |v, d| v * 16 + (*d as char).to_digit(16).unwrap_or(0)))
     }
 }
 
@@ -256,6 +273,11 @@ mod tests {
         assert_eq!(a[2], Value::Bool(true));
         assert_eq!(v.get("b").unwrap().get("c").unwrap().as_str(), Some("x\"yA"));
         assert_eq!(parse(&quote("q\"\\\n")).unwrap().as_str(), Some("q\"\\\n"));
+        // A surrogate pair is one character; a lone surrogate is U+FFFD; `+` is no hex digit.
+        assert_eq!(parse("\"thigh\\uD83E\\uDDB5\"").unwrap().as_str(), Some("thigh\u{1F9B5}"));
+        assert_eq!(parse("\"\\uD83Ex\\uDC00\"").unwrap().as_str(), Some("\u{fffd}x\u{fffd}"));
+        assert_eq!(parse("\"\\uD83E\\u0041\"").unwrap().as_str(), Some("\u{fffd}A"));
+        assert!(parse("\"\\u+041\"").is_err());
     }
 
     #[test]
