@@ -155,7 +155,9 @@ impl Recording {
     }
 
     /// The samples, `dt` from consecutive `t` (the first row takes the second row's dt).
-    /// Magnetometer readings are included when the recording has them.
+    /// Magnetometer readings are included when the recording has them. A reading with a
+    /// `NaN` cell (FORMAT.md's missing value) is left out of its sample, and the rest of
+    /// the sample kept: a magnetometer at half the rate still leaves every gyroscope row.
     pub fn samples(&self) -> Vec<Sample> {
         (0..self.len())
             .map(|i| {
@@ -164,11 +166,12 @@ impl Recording {
                     0 => 0.01,
                     _ => self.t[i] - self.t[i - 1],
                 };
+                let present = |v: Vec3| (!v.x.is_nan() && !v.y.is_nan() && !v.z.is_nan()).then_some(v);
                 Sample {
                     dt,
-                    gyro: Some(self.gyro[i]),
-                    accel: Some(self.accel[i]),
-                    mag: self.mag.get(i).copied(),
+                    gyro: present(self.gyro[i]),
+                    accel: present(self.accel[i]),
+                    mag: self.mag.get(i).copied().and_then(present),
                 }
             })
             .collect()

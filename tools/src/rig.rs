@@ -257,14 +257,16 @@ pub struct RigRecording {
 
 impl RigRecording {
     /// Reads `rig.json` and every sensor's CSV (files relative to its folder); checks that
-    /// all files have the same `t` column.
+    /// all files have the same rows, each row's `t` within a quarter of the nominal period
+    /// of the first file's (a `t` written with fewer digits in one file, as FORMAT.md's
+    /// `%.7g`, is the same instant), and gives every sensor the first file's `t`.
     pub fn read(rig_json: &Path, with_mag: bool) -> Result<RigRecording, String> {
         let spec = RigSpec::read(rig_json)?;
         let dir = rig_json.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
         let mut sensors: Vec<Recording> = Vec::new();
         for s in &spec.sensors {
             let path = dir.join(&s.file);
-            let rec = Recording::read(&path, with_mag).map_err(|e| format!("{}: {e}", path.display()))?;
+            let mut rec = Recording::read(&path, with_mag).map_err(|e| format!("{}: {e}", path.display()))?;
             if let Some(first) = sensors.first() {
                 if first.t.len() != rec.t.len() {
                     return Err(format!(
@@ -274,11 +276,16 @@ impl RigRecording {
                         first.t.len()
                     ));
                 }
-                if let Some(i) =
-                    first.t.iter().zip(&rec.t).position(|(a, b)| (a - b).abs() > 1e-9 * a.abs().max(1.0))
+                let within = 0.25 / spec.rate_hz;
+                if let Some(i) = first
+                    .t
+                    .iter()
+                    .zip(&rec.t)
+                    .position(|(a, b)| (a - b).abs() > within || a.is_nan() || b.is_nan())
                 {
                     return Err(format!(
-                        "{}: row {} (line {}) is at t = {}, the first sensor's at {}",
+                        "{}: row {} (line {}) is at t = {}, the first sensor's at {} (more than a \
+                         quarter of the nominal period apart)",
                         path.display(),
                         i,
                         i + 2,
@@ -286,6 +293,8 @@ impl RigRecording {
                         first.t[i]
                     ));
                 }
+                // One instant per row: every sensor's steps are the first file's.
+                rec.t.clone_from(&first.t);
             }
             sensors.push(rec);
         }
@@ -405,7 +414,7 @@ pub struct RigScores {
     pub last_minute: f64,
     /// Each joint's RMSE, in [`RigSpec::joints`] order.
     pub joints: Vec<f64>,
-    /// Rows scored per joint.
+    /// Rows scored, over all joints.
     pub rows: usize,
 }
 
@@ -434,7 +443,7 @@ pub fn score_rig(spec: &RigSpec, t: &[f64], errors: &[Vec<f64>]) -> RigScores {
         }
         all += s;
         all_n += n;
-        rows = n;
+        rows += n;
         per.push(if n == 0 { f64::NAN } else { (s / n as f64).sqrt().to_degrees() });
     }
     let rms = |s: f64, n: usize| if n == 0 { f64::NAN } else { (s / n as f64).sqrt().to_degrees() };
@@ -500,6 +509,11 @@ pub trait JointStage {
     /// `learns[s]`: sensor `s`'s filter learns its gyroscope bias in motion
     /// ([`SensorFilter::learns_bias_in_motion`]).
     fn update(&mut self, row: usize, samples: &[Sample], learns: &[bool], sensors: &mut [Quat]);
+
+    /// The headings were aligned at the reference pose's last row, `row`, before that
+    /// row's [`JointStage::update`]. Not called when the alignment failed (a sensor
+    /// without an orientation there).
+    fn aligned(&mut self, _row: usize) {}
 }
 
 /// No joint estimation: every sensor alone.
@@ -517,8 +531,12 @@ pub struct RigRun {
     pub rejected: usize,
     /// Thread CPU time of the per-sample loop ([`crate::clock`]).
     pub elapsed: Duration,
-    /// The row after which headings were aligned (the last row of the reference pose).
+    /// The row after which headings were aligned (the last row of the reference pose);
+    /// `None` without a pose, without `align`, or when a sensor had no orientation there.
     pub aligned_at: Option<usize>,
+    /// The sensors without an orientation at the pose's last row, when that left the
+    /// headings unaligned.
+    pub unaligned: Vec<usize>,
 }
 
 /// The last row inside the reference pose, if the recording has one and covers it.
@@ -550,6 +568,7 @@ pub fn run_rig(
     let samples: Vec<Vec<Sample>> = rec.sensors.iter().map(Recording::samples).collect();
     let rows = rec.rows();
     let align_row = if align { reference_row(spec, rec.t()) } else { None };
+    let (mut aligned_at, mut unaligned) = (None, Vec::new());
     let mut out: Vec<Vec<Quat>> = (0..n).map(|_| Vec::with_capacity(rows)).collect();
     let mut offsets = vec![Quat::IDENTITY; n];
     let mut row_samples = vec![Sample { dt: 0.0, gyro: None, accel: None, mag: None }; n];
@@ -566,7 +585,13 @@ pub fn run_rig(
             }
         }
         if Some(i) == align_row {
-            align_headings(spec, filters, &mut offsets);
+            match align_headings(spec, filters, &mut offsets) {
+                Ok(()) => {
+                    aligned_at = Some(i);
+                    stage.aligned(i);
+                }
+                Err(sensors) => unaligned = sensors,
+            }
         }
         for ((q, f), o) in q.iter_mut().zip(filters.iter()).zip(&offsets) {
             *q = *o * f.sensor_quaternion();
@@ -580,13 +605,25 @@ pub fn run_rig(
         sensors: out,
         rejected,
         elapsed: crate::clock::thread_cpu().saturating_sub(start),
-        aligned_at: align_row,
+        aligned_at,
+        unaligned,
     }
 }
 
 /// Gives every segment the mean heading of all segments (each segment's orientation is
-/// its sensor's times the mounting's inverse).
-fn align_headings(spec: &RigSpec, filters: &mut [SensorFilter], offsets: &mut [Quat]) {
+/// its sensor's times the mounting's inverse); with nothing changed, the sensors that have
+/// no orientation yet (no valid sample before the pose's last row).
+fn align_headings(
+    spec: &RigSpec,
+    filters: &mut [SensorFilter],
+    offsets: &mut [Quat],
+) -> Result<(), Vec<usize>> {
+    let none: Vec<usize> = (0..filters.len())
+        .filter(|&s| matches!(&filters[s], SensorFilter::Orient(f) if !f.is_initialized()))
+        .collect();
+    if !none.is_empty() {
+        return Err(none);
+    }
     let segment = |f: &SensorFilter, s: usize| f.sensor_quaternion() * spec.sensors[s].mounting.conj();
     let (mut sin, mut cos) = (0.0, 0.0);
     for (s, f) in filters.iter().enumerate() {
@@ -605,10 +642,10 @@ fn align_headings(spec: &RigSpec, filters: &mut [SensorFilter], offsets: &mut [Q
             }
         }
     }
+    // Fails only for a filter without an orientation, checked above.
+    let refs = vec![mean; orient.len()];
     if !orient.is_empty() {
-        let refs = vec![mean; orient.len()];
-        // Only fails for a filter without an orientation, which every filter has after
-        // the reference pose's samples; unaligned is the honest output then.
-        let _ = Filter::align_rig_heading(&mut orient, &refs);
+        Filter::align_rig_heading(&mut orient, &refs).expect("every filter has an orientation");
     }
+    Ok(())
 }

@@ -444,6 +444,158 @@ fn replay_rig_refuses_bad_descriptions_and_arguments_with_status_2() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// What RIG-FORMAT.md allows and replay once misread (a review against the format): a
+/// reference pose later in the recording, a sensor without readings in the pose, a sensor
+/// named `joints`, truth in some files only, `t` written with fewer digits in one file, a
+/// magnetometer at half the rate (NaN cells).
+#[test]
+fn replay_rig_takes_what_the_format_allows() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("rig-format-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let sim = Simulation::new(SimConfig { duration_s: 40.0, ..SimConfig::preset("100hz", 4).unwrap() }).run();
+    sim.recording.write(&dir.join("in")).unwrap();
+    let rig_json = std::fs::read_to_string(dir.join("in/rig.json")).unwrap();
+    let q = ["quat_w", "quat_x", "quat_y", "quat_z"];
+    let names: Vec<String> = sim.recording.spec.sensors.iter().map(|s| s.name.clone()).collect();
+    // A variant: rig.json and each sensor's CSV as `edit` leaves them.
+    let variant = |name: &str, json: &str, edit: &dyn Fn(&str, usize, &str) -> String| {
+        let d = dir.join(name);
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::write(d.join("rig.json"), json).unwrap();
+        for s in &names {
+            let text = std::fs::read_to_string(dir.join("in").join(format!("{s}.csv"))).unwrap();
+            let lines: Vec<String> = text.lines().enumerate().map(|(i, l)| edit(s, i, l)).collect();
+            std::fs::write(d.join(format!("{s}.csv")), lines.join("\n") + "\n").unwrap();
+        }
+        d.join("rig.json")
+    };
+    let replay = |rig: &std::path::Path, out: &str, extra: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_replay"))
+            .args(["--rig", rig.to_str().unwrap(), "--out-dir"])
+            .arg(dir.join(out))
+            .args(extra)
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+        assert!(o.status.success(), "{stdout}{}", String::from_utf8_lossy(&o.stderr));
+        let est: Vec<_> = names
+            .iter()
+            .map(|s| dir.join(out).join(format!("{s}.csv")))
+            .filter(|p| p.exists())
+            .map(|p| read_quats(&p, q).1)
+            .collect();
+        (stdout, est)
+    };
+    let same = |_: &str, _: usize, l: &str| l.to_string();
+    let pose = "\"reference_pose\": {\"start\": 0, \"end\": 5, \"note\": \"hand level, fingers straight\"},";
+    assert!(rig_json.contains(pose));
+    let no_pose = variant("no-pose", &rig_json.replace(pose, ""), &same);
+    let (_, unknown) = replay(&no_pose, "out-no-pose", &[]);
+    let rows = unknown[0].len();
+    let at = |t: f64| (t * 100.0).round() as usize;
+
+    // A pose later in the recording: the rows before its last run as without a pose
+    // (the joints find the headings from the motion), then the headings are aligned and
+    // the joints start over. Before, those rows had no joints at all.
+    let later =
+        rig_json.replace(pose, &pose.replace("\"start\": 0, \"end\": 5", "\"start\": 20, \"end\": 25"));
+    let (stdout, est) = replay(&variant("later", &later, &same), "out-later", &[]);
+    assert!(stdout.contains("aligned at t = 24.99"), "{stdout}");
+    let last = at(24.99);
+    assert!(est.iter().zip(&unknown).all(|(e, u)| e[..last] == u[..last] && e[last..] != u[last..]));
+
+    // A sensor without readings until after the pose: nothing can be aligned; replay says
+    // which, and the run is the one without a pose, bit for bit.
+    let late = |s: &str, i: usize, l: &str| {
+        if s == "index_middle" && (1..=at(6.0)).contains(&i) {
+            let mut cells: Vec<String> = l.split(',').map(str::to_string).collect();
+            for c in &mut cells[1..10] {
+                *c = "NaN".into();
+            }
+            cells.join(",")
+        } else {
+            l.to_string()
+        }
+    };
+    let (stdout, est) = replay(&variant("late", &rig_json, &late), "out-late", &[]);
+    assert!(
+        stdout.contains("not aligned: at the reference pose's last row (t = 4.99) index_middle had"),
+        "{stdout}"
+    );
+    let (_, without) =
+        replay(&variant("late-no-pose", &rig_json.replace(pose, ""), &late), "out-late-np", &[]);
+    assert!(est == without);
+
+    // A sensor named `joints`: its estimate is OUT/joints.csv, the angles go beside it.
+    let renamed = rig_json
+        .replace("\"name\": \"hand\"", "\"name\": \"joints\"")
+        .replace("\"parent\": \"hand\"", "\"parent\": \"joints\"");
+    let r = variant("renamed", &renamed, &same);
+    let (stdout, _) = replay(&r, "out-renamed", &[]);
+    assert!(stdout.contains("joint angles: joints_angles.csv"), "{stdout}");
+    let (_, joints) = read_quats(&dir.join("out-renamed/joints.csv"), q);
+    let (_, mut all) = replay(&dir.join("in/rig.json"), "out-all", &[]);
+    assert_eq!(joints, all.remove(0));
+    let angles = std::fs::read_to_string(dir.join("out-renamed/joints_angles.csv")).unwrap();
+    assert!(angles.starts_with("t,index_mcp_1,index_mcp_2,index_pip,"));
+
+    // Truth in all files but one: the joints whose two sensors have it are scored, as
+    // with truth everywhere; the others are named.
+    let full = replay(&dir.join("in/rig.json"), "out-full", &[]).0;
+    let drop_truth = |s: &str, _: usize, l: &str| {
+        if s == "little_middle" {
+            l.split(',').take(10).collect::<Vec<_>>().join(",")
+        } else {
+            l.to_string()
+        }
+    };
+    let (part, _) = replay(&variant("part", &rig_json, &drop_truth), "out-part", &[]);
+    assert!(part.contains("no truth in little_middle: not scored: little_pip"), "{part}");
+    let joint_line =
+        |out: &str, j: &str| out.lines().find(|l| l.trim_start().starts_with(j)).unwrap().to_string();
+    assert!(joint_line(&part, "little_pip").ends_with("not scored"), "{part}");
+    for j in ["index_mcp", "index_pip", "little_mcp"] {
+        assert_eq!(joint_line(&part, j), joint_line(&full, j));
+    }
+
+    // `t` in one file within a quarter of the period of the first file's: the same rows.
+    let shifted = |by: f64| {
+        move |s: &str, i: usize, l: &str| {
+            if s != "ring_middle" || i == 0 {
+                return l.to_string();
+            }
+            let (t, rest) = l.split_once(',').unwrap();
+            format!("{},{rest}", t.parse::<f64>().unwrap() + by)
+        }
+    };
+    let (_, est) = replay(&variant("close", &rig_json, &shifted(0.0024)), "out-close", &[]);
+    assert!(est == replay(&dir.join("in/rig.json"), "out-again", &[]).1);
+    let far = variant("far", &rig_json, &shifted(0.0026));
+    let o = Command::new(env!("CARGO_BIN_EXE_replay"))
+        .args(["--rig", far.to_str().unwrap(), "--out-dir"])
+        .arg(dir.join("out-far"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("a quarter of the nominal period"));
+
+    // A magnetometer at half the rate (NaN on every other row): every gyroscope row is
+    // taken, each sensor alone in 9D, none rejected.
+    let half = |_: &str, i: usize, l: &str| {
+        if i % 2 == 1 {
+            let mut cells: Vec<&str> = l.split(',').collect();
+            cells[7..10].fill("NaN");
+            cells.join(",")
+        } else {
+            l.to_string()
+        }
+    };
+    let (stdout, _) = replay(&variant("half", &rig_json, &half), "out-half", &["--no-joints"]);
+    assert!(stdout.contains("robust 9D") && stdout.contains(" 0 rejected"), "{stdout}");
+    assert_eq!(rows, sim.recording.rows());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// The library's joints (orient::joints) on simulated gloves, 6D, seeds the defaults were
 /// not chosen on: the child segments stay with their parents where every sensor alone
 /// drifts apart. Two minutes per case, the filters under joints with the settings for

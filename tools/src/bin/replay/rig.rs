@@ -13,11 +13,15 @@
 //!   joints start with the relative headings unknown (`heading_std0` π, unless
 //!   `--joint-set` gives it): each joint then finds its heading from the motion within
 //!   about a minute (a 100 Hz glove without its reference pose: 2.07 deg over all
-//!   joints, 0.75 over the last minute, against 29.5 and 5.8 at the default 1 deg).
+//!   joints, 0.75 over the last minute, against 29.5 and 5.8 at the default 1 deg). Rows
+//!   before the alignment run so too, and at the alignment the joints start over with
+//!   their own `heading_std0`: a pose later in the recording leaves no row without
+//!   joints. A pose where a sensor has no orientation (no valid reading yet) aligns
+//!   nothing; replay says so, and the joints go on finding the headings from the motion.
 //! - The joints (`orient::joints`, default tuning, `--joint-set` changes a parameter of
 //!   `orient::joints::JOINT_PARAMS` by name; repeatable) then hold every child to its parent:
 //!   each child's heading relative to its parent from the joint constraints, from the
-//!   alignment on (from the first row without one). The joints run on 6D estimates: every
+//!   first row. The joints run on 6D estimates: every
 //!   magnetometer is left out, and the rig's common heading is the reference pose's (the
 //!   segments' mean at the alignment), which RIG-FORMAT.md leaves free. Each sensor's
 //!   filter takes the settings for joints (`Config::for_joints`) before any `--set`. A
@@ -26,14 +30,19 @@
 //!   sensor 9D, 3.5 deg with the hand 9D and the fingers 6D, 0.9 deg all 6D). `--no-joints`:
 //!   every sensor alone, with its magnetometer unless `--no-mag`.
 //! - Writes `OUT/<sensor>.csv` (`t,quat_w,quat_x,quat_y,quat_z`: the sensor's
-//!   orientation, sensor to earth, ENU, one row per input row) and `OUT/joints.csv`: `t`
+//!   orientation, sensor to earth, ENU, one row per input row, RIG-FORMAT.md's estimate)
+//!   and `OUT/joints.csv` (`OUT/joints_angles.csv` if a sensor is named `joints`, and so
+//!   on with more `_angles`, so that no sensor's file is overwritten): `t`
 //!   and per joint its angles in degrees (`orient_tools::rig::joint_angles`): a hinge's
 //!   `<joint>` about its axis, a 2-DoF joint's `<joint>_1` about `axis_parent` then
 //!   `<joint>_2` about `axis_child`, right-handed about the axes as given, zero where
 //!   the segments coincide (the reference pose).
-//! - With truth in every sensor's file: prints the scores of RIG-FORMAT.md (RMSE over all
-//!   joints' rows with t ≥ 10 s, the worst joint, the last minute) and each joint's RMSE;
-//!   `--svg` plots each joint's error over time.
+//! - With truth (`quat_*`) in the sensors' files: prints the scores of RIG-FORMAT.md (RMSE
+//!   over all joints' rows with t ≥ 10 s, the worst joint, the last minute) and each
+//!   joint's RMSE, over the joints whose two sensors have truth (the others are named and
+//!   left out); `--svg` plots each joint's error over time. A NaN cell is a missing value
+//!   (FORMAT.md): a row's reading with one is left out of that sensor's sample, the rest
+//!   of the sample kept; a row whose truth has one is not scored.
 //!
 //! The per-row loop is `orient_tools::rig::run_rig`, with the joints as its
 //! `JointStage` (`orient_tools::joints`).
@@ -157,10 +166,16 @@ pub fn main(args: Vec<String>) {
     let with_mag = !args.no_mag && !args.joints;
     let rec = RigRecording::read(&args.rig, with_mag).unwrap_or_else(|e| fail(e));
     let spec = &rec.spec;
-    if args.svg.is_some() && !rec.has_truth() {
+    let has_truth: Vec<bool> = rec.sensors.iter().map(|r| !r.truth.is_empty()).collect();
+    if args.svg.is_some() && !has_truth.contains(&true) {
         fail("--svg: the recording has no truth columns (quat_*)");
     }
-    let dt = 1.0 / spec.rate_hz;
+    // VQF takes one sampling period: the recording's mean, which `rate_hz` only names.
+    let t = rec.t();
+    let dt = match t.len() {
+        n if n > 1 && t[n - 1] > t[0] => (t[n - 1] - t[0]) / (n - 1) as f64,
+        _ => 1.0 / spec.rate_hz,
+    };
     let mut filters: Vec<SensorFilter> = (0..spec.sensors.len())
         .map(|_| match args.kind {
             None => SensorFilter::vqf(dt, with_mag),
@@ -183,18 +198,26 @@ pub fn main(args: Vec<String>) {
     if args.kind.is_none() && !args.sets.is_empty() {
         fail("--set applies to orient's kinds, not to vqf");
     }
+    let pose = if args.align { reference_row(spec, t) } else { None };
     let run = if args.joints && !spec.joints.is_empty() {
-        let aligned = if args.align { reference_row(spec, rec.t()) } else { None };
-        let mut params = args.joint_params;
-        if aligned.is_none() && !args.heading_std0_given {
-            params.heading_std0 = std::f64::consts::PI;
+        let mut unknown = args.joint_params;
+        if !args.heading_std0_given {
+            unknown.heading_std0 = std::f64::consts::PI;
         }
-        run_rig(&rec, &mut filters, &mut Joints::new(spec, aligned.unwrap_or(0), params), args.align)
+        let mut stage = match pose {
+            Some(_) => Joints::until_aligned(spec, unknown, args.joint_params),
+            None => Joints::new(spec, 0, unknown),
+        };
+        run_rig(&rec, &mut filters, &mut stage, args.align)
     } else {
         run_rig(&rec, &mut filters, &mut Alone, args.align)
     };
     let stage = if args.joints { "joints" } else { "every sensor alone" };
-    let t = rec.t();
+    let names: Vec<&str> = spec.sensors.iter().map(|s| s.name.as_str()).collect();
+    let mut angles_file = String::from("joints");
+    while names.contains(&angles_file.as_str()) {
+        angles_file += "_angles";
+    }
 
     let write = || -> std::io::Result<()> {
         std::fs::create_dir_all(&args.out_dir)?;
@@ -220,7 +243,7 @@ pub fn main(args: Vec<String>) {
             }
             line
         });
-        write_csv(&args.out_dir.join("joints.csv"), &header, rows)
+        write_csv(&args.out_dir.join(format!("{angles_file}.csv")), &header, rows)
     };
     if let Err(e) = write() {
         eprintln!("replay: cannot write to {}: {e}", args.out_dir.display());
@@ -237,20 +260,45 @@ pub fn main(args: Vec<String>) {
         args.rig.display(),
         run.elapsed.as_secs_f64() * 1e3,
         run.rejected,
-        match run.aligned_at {
-            Some(i) => format!("aligned at t = {}", t[i]),
-            None => "not aligned".into(),
+        match (run.aligned_at, pose) {
+            (Some(i), _) => format!("aligned at t = {}", t[i]),
+            (None, Some(i)) => format!(
+                "not aligned: at the reference pose's last row (t = {}) {} had no orientation yet{}",
+                t[i],
+                run.unaligned.iter().map(|&s| spec.sensors[s].name.as_str()).collect::<Vec<_>>().join(", "),
+                if args.joints { "; the joints find the headings from the motion" } else { "" }
+            ),
+            (None, None) => "not aligned".into(),
         }
     );
-    if !rec.has_truth() {
+    if angles_file != "joints" {
+        say!("joint angles: {}.csv (a sensor is named joints)", angles_file);
+    }
+    if !has_truth.contains(&true) {
         say!("no truth columns (quat_*): nothing to score");
         return;
     }
-    let truth: Vec<&[orient::Quat]> = rec.sensors.iter().map(|r| r.truth.as_slice()).collect();
+    let no_truth: Vec<&str> =
+        spec.sensors.iter().zip(&has_truth).filter(|(_, h)| !**h).map(|(s, _)| s.name.as_str()).collect();
+    if !no_truth.is_empty() {
+        let left_out: Vec<&str> = spec
+            .joints
+            .iter()
+            .filter(|j| !has_truth[j.parent] || !has_truth[j.child])
+            .map(|j| j.name.as_str())
+            .collect();
+        say!("no truth in {}: not scored: {}", no_truth.join(", "), left_out.join(", "));
+    }
+    let missing = vec![orient::Quat::new(f64::NAN, f64::NAN, f64::NAN, f64::NAN); t.len()];
+    let truth: Vec<&[orient::Quat]> = rec
+        .sensors
+        .iter()
+        .map(|r| if r.truth.is_empty() { &missing[..] } else { r.truth.as_slice() })
+        .collect();
     let errors = joint_errors(spec, &run.sensors, &truth);
     let s = score_rig(spec, t, &errors);
     say!(
-        "rig RMSE [deg]: all joints {:.2}  worst {:.2} ({})  last minute {:.2}   ({} rows per joint, t >= 10 s)",
+        "rig RMSE [deg]: all joints {:.2}  worst {:.2} ({})  last minute {:.2}   ({} rows over all joints, t >= 10 s)",
         s.all,
         s.worst.1,
         s.worst.0,
@@ -258,7 +306,8 @@ pub fn main(args: Vec<String>) {
         s.rows
     );
     for (j, e) in spec.joints.iter().zip(&s.joints) {
-        say!("  {:<20} {:>6} {e:7.2}", j.name, j.kind.name());
+        let e = if e.is_nan() { "not scored".to_string() } else { format!("{e:7.2}") };
+        say!("  {:<20} {:>6} {e}", j.name, j.kind.name());
     }
     if let Some(path) = &args.svg {
         let names: Vec<&str> = spec.joints.iter().map(|j| j.name.as_str()).collect();
