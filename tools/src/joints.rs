@@ -13,7 +13,8 @@ pub use orient::joints::JointParams;
 pub struct Joints {
     /// The library's estimator, the spec's joints in the spec's order.
     pub joints: joints::Joints,
-    /// The first row estimated (headings aligned there).
+    /// The first row estimated: with [`Joints::new`] where the headings were aligned, with
+    /// [`Joints::until_aligned`] the first.
     start: usize,
     /// With [`Joints::until_aligned`]: the tuning the joints start over with at the
     /// alignment, and the tree to start them on.

@@ -277,12 +277,7 @@ impl RigRecording {
                     ));
                 }
                 let within = 0.25 / spec.rate_hz;
-                if let Some(i) = first
-                    .t
-                    .iter()
-                    .zip(&rec.t)
-                    .position(|(a, b)| (a - b).abs() > within || a.is_nan() || b.is_nan())
-                {
+                if let Some(i) = first.t.iter().zip(&rec.t).position(|(a, b)| (a - b).abs() > within) {
                     return Err(format!(
                         "{}: row {} (line {}) is at t = {}, the first sensor's at {} (more than a \
                          quarter of the nominal period apart)",
@@ -460,22 +455,43 @@ pub fn score_rig(spec: &RigSpec, t: &[f64], errors: &[Vec<f64>]) -> RigScores {
 /// its defaults) as the anchor the issue measures against.
 pub enum SensorFilter {
     Orient(Box<Filter>),
-    Vqf { f: Box<vqf_rs::VQF>, mag: bool, q: Quat },
+    /// `started`: it has taken an accelerometer reading (before, `q` is no orientation).
+    Vqf {
+        f: Box<vqf_rs::VQF>,
+        mag: bool,
+        q: Quat,
+        started: bool,
+    },
 }
 
 impl SensorFilter {
     pub fn vqf(dt: f64, mag: bool) -> SensorFilter {
-        SensorFilter::Vqf { f: Box::new(vqf_rs::VQF::new(dt, None, None, None)), mag, q: Quat::IDENTITY }
+        SensorFilter::Vqf {
+            f: Box::new(vqf_rs::VQF::new(dt, None, None, None)),
+            mag,
+            q: Quat::IDENTITY,
+            started: false,
+        }
     }
 
-    /// Takes one sample; false when the filter rejected it.
+    /// Takes one sample; false when the filter rejected it. VQF takes a sample without
+    /// an accelerometer or magnetometer reading as its steps for the readings there are
+    /// (`update_gyr`, `update_acc`, `update_mag`, as `VQF::update` calls them), at its
+    /// fixed period; one without a gyroscope reading is rejected.
     pub fn update(&mut self, s: &Sample) -> bool {
         match self {
             SensorFilter::Orient(f) => f.update(s).is_ok(),
-            SensorFilter::Vqf { f, mag, q } => {
+            SensorFilter::Vqf { f, mag, q, started } => {
                 let v = |v: Vec3| [v.x, v.y, v.z];
-                let (Some(g), Some(a)) = (s.gyro, s.accel) else { return false };
-                f.update(v(g), v(a), if *mag { s.mag.map(v) } else { None });
+                let Some(g) = s.gyro else { return false };
+                f.update_gyr(v(g));
+                if let Some(a) = s.accel {
+                    f.update_acc(v(a));
+                    *started = true;
+                }
+                if let (true, Some(m)) = (*mag, s.mag) {
+                    f.update_mag(v(m));
+                }
                 let e = if *mag { f.quat_9d() } else { f.quat_6d() };
                 *q = Quat::new(e.0, e.1, e.2, e.3);
                 true
@@ -503,8 +519,8 @@ impl SensorFilter {
 
 /// Where a joint estimator plugs into [`run_rig`]: called once per row after every
 /// sensor's filter has taken that row's sample, with the row's samples and the sensors'
-/// orientations (sensor to earth, headings aligned at the reference pose), which it may
-/// correct in place; what it leaves there is the run's output for the row.
+/// orientations (sensor to earth; from the reference pose's last row on, headings aligned
+/// there when [`run_rig`] aligns them), which it may correct in place; what it leaves there is the run's output for the row.
 pub trait JointStage {
     /// `learns[s]`: sensor `s`'s filter learns its gyroscope bias in motion
     /// ([`SensorFilter::learns_bias_in_motion`]).
@@ -619,7 +635,10 @@ fn align_headings(
     offsets: &mut [Quat],
 ) -> Result<(), Vec<usize>> {
     let none: Vec<usize> = (0..filters.len())
-        .filter(|&s| matches!(&filters[s], SensorFilter::Orient(f) if !f.is_initialized()))
+        .filter(|&s| match &filters[s] {
+            SensorFilter::Orient(f) => !f.is_initialized(),
+            SensorFilter::Vqf { started, .. } => !started,
+        })
         .collect();
     if !none.is_empty() {
         return Err(none);

@@ -23,7 +23,8 @@
 //!   each child's heading relative to its parent from the joint constraints, from the
 //!   first row. The joints run on 6D estimates: every
 //!   magnetometer is left out, and the rig's common heading is the reference pose's (the
-//!   segments' mean at the alignment), which RIG-FORMAT.md leaves free. Each sensor's
+//!   segments' mean at the alignment; without one, wherever the filters started), which
+//!   RIG-FORMAT.md leaves free. Each sensor's
 //!   filter takes the settings for joints (`Config::for_joints`) before any `--set`. A
 //!   magnetometer read near a hand or a desk turns a 9D estimate faster than the joints
 //!   follow (a simulated 5-minute glove with a magnet under the desk: 4.0 deg with every
@@ -167,15 +168,17 @@ pub fn main(args: Vec<String>) {
     let rec = RigRecording::read(&args.rig, with_mag).unwrap_or_else(|e| fail(e));
     let spec = &rec.spec;
     let has_truth: Vec<bool> = rec.sensors.iter().map(|r| !r.truth.is_empty()).collect();
-    if args.svg.is_some() && !has_truth.contains(&true) {
-        fail("--svg: the recording has no truth columns (quat_*)");
+    // A joint is scored where both its sensors' files have truth.
+    let scored: Vec<bool> = spec.joints.iter().map(|j| has_truth[j.parent] && has_truth[j.child]).collect();
+    if args.svg.is_some() && !scored.contains(&true) {
+        fail("--svg: no truth to plot (no joint has quat_* columns in both its sensors' files)");
     }
-    // VQF takes one sampling period: the recording's mean, which `rate_hz` only names.
+    // VQF takes one sampling period: the recording's median step (a gap does not move
+    // it), which `rate_hz` only names.
     let t = rec.t();
-    let dt = match t.len() {
-        n if n > 1 && t[n - 1] > t[0] => (t[n - 1] - t[0]) / (n - 1) as f64,
-        _ => 1.0 / spec.rate_hz,
-    };
+    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).filter(|d| *d > 0.0).collect();
+    steps.sort_by(f64::total_cmp);
+    let dt = steps.get(steps.len() / 2).copied().unwrap_or(1.0 / spec.rate_hz);
     let mut filters: Vec<SensorFilter> = (0..spec.sensors.len())
         .map(|_| match args.kind {
             None => SensorFilter::vqf(dt, with_mag),
@@ -215,7 +218,8 @@ pub fn main(args: Vec<String>) {
     let stage = if args.joints { "joints" } else { "every sensor alone" };
     let names: Vec<&str> = spec.sensors.iter().map(|s| s.name.as_str()).collect();
     let mut angles_file = String::from("joints");
-    while names.contains(&angles_file.as_str()) {
+    // (A case-insensitive file system takes `Joints` for `joints`.)
+    while names.iter().any(|n| n.eq_ignore_ascii_case(&angles_file)) {
         angles_file += "_angles";
     }
 
@@ -280,14 +284,14 @@ pub fn main(args: Vec<String>) {
     }
     let no_truth: Vec<&str> =
         spec.sensors.iter().zip(&has_truth).filter(|(_, h)| !**h).map(|(s, _)| s.name.as_str()).collect();
-    if !no_truth.is_empty() {
-        let left_out: Vec<&str> = spec
-            .joints
-            .iter()
-            .filter(|j| !has_truth[j.parent] || !has_truth[j.child])
-            .map(|j| j.name.as_str())
-            .collect();
+    let left_out: Vec<&str> =
+        spec.joints.iter().zip(&scored).filter(|(_, s)| !**s).map(|(j, _)| j.name.as_str()).collect();
+    if !left_out.is_empty() {
         say!("no truth in {}: not scored: {}", no_truth.join(", "), left_out.join(", "));
+    }
+    if !scored.contains(&true) {
+        say!("no joint has truth in both its sensors' files: nothing to score");
+        return;
     }
     let missing = vec![orient::Quat::new(f64::NAN, f64::NAN, f64::NAN, f64::NAN); t.len()];
     let truth: Vec<&[orient::Quat]> = rec
@@ -310,7 +314,11 @@ pub fn main(args: Vec<String>) {
         say!("  {:<20} {:>6} {e}", j.name, j.kind.name());
     }
     if let Some(path) = &args.svg {
-        let names: Vec<&str> = spec.joints.iter().map(|j| j.name.as_str()).collect();
+        // The joints scored, each with its error over time.
+        let names: Vec<&str> =
+            spec.joints.iter().zip(&scored).filter(|(_, s)| **s).map(|(j, _)| j.name.as_str()).collect();
+        let errors: Vec<Vec<f64>> =
+            errors.into_iter().zip(&scored).filter(|(_, s)| **s).map(|(e, _)| e).collect();
         let title = format!("{} ({name} {dims}, {stage})", args.rig.display());
         if let Err(e) = plot::write_rig_svg(path, &title, t, &names, &errors) {
             eprintln!("replay: cannot write {}: {e}", path.display());
