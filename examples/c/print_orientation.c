@@ -2,7 +2,8 @@
  * Reads a recording (CSV with a header naming t, gyr_x..z, acc_x..z and optionally
  * mag_x..z) and prints the Madgwick orientation once per second and at the end.
  *
- *   cc -std=c99 print_orientation.c -Iinclude -Ltarget/release -lorient -lm
+ *   cc -std=c99 examples/c/print_orientation.c -Iinclude target/release/liborient.a -lm
+ *   (from the repository after `cargo build --release`; README.md, *C*, for the shared library)
  *   ./a.out examples/data/broad_01_excerpt.csv
  */
 #include "orient.h"

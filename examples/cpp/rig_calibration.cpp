@@ -6,7 +6,8 @@
 // (the optical truth there; a T-pose or a flat hand in a real rig), orient::calibrate_rig
 // computes the mountings, and afterwards the four filters agree on the segment.
 //
-//   c++ -std=c++17 rig_calibration.cpp -Iinclude -Ibindings/cpp -Ltarget/release -lorient
+//   c++ -std=c++17 examples/cpp/rig_calibration.cpp -Iinclude -Ibindings/cpp target/release/liborient.a -lm
+//   (from the repository after `cargo build --release`; README.md, *C*, for the shared library)
 //   ./a.out examples/data/broad_01_excerpt.csv
 #include "orient.hpp"
 

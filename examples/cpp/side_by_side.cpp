@@ -2,7 +2,8 @@
 // gets the same samples in one batch call per block; prints each filter's orientation
 // once per second and, when the recording has optical ground truth, its error.
 //
-//   c++ -std=c++17 side_by_side.cpp -Iinclude -Ibindings/cpp -Ltarget/release -lorient
+//   c++ -std=c++17 examples/cpp/side_by_side.cpp -Iinclude -Ibindings/cpp target/release/liborient.a -lm
+//   (from the repository after `cargo build --release`; README.md, *C*, for the shared library)
 //   ./a.out examples/data/broad_01_excerpt.csv
 #include "orient.hpp"
 
