@@ -771,7 +771,7 @@ fn params_codec(c: &mut dyn Codec, p: &mut JointParams) {
 }
 
 /// The snapshot kind byte of a rig's joints (the filters' are 1 to 6).
-const STATE_KIND: u8 = 0x4a;
+pub(crate) const STATE_KIND: u8 = 0x4a;
 
 fn same_bits(a: Quat, b: Quat) -> bool {
     [a.w, a.x, a.y, a.z].map(f64::to_bits) == [b.w, b.x, b.y, b.z].map(f64::to_bits)

@@ -49,12 +49,18 @@ impl core::fmt::Display for StateError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match *self {
             StateError::Truncated => write!(f, "state blob is truncated"),
-            StateError::Corrupt => write!(f, "not a state blob of this filter (bad magic, length or value)"),
+            StateError::Corrupt => write!(
+                f,
+                "state blob does not fit what loads it (bad magic, length or value; for joints, another rig's)"
+            ),
             StateError::Checksum => write!(f, "state blob checksum mismatch (corrupted)"),
             StateError::Version(v) => {
                 write!(f, "state blob format version {v}, this library reads {VERSION}")
             }
-            StateError::Kind(k) => write!(f, "state blob is from filter kind {k}, not this filter's"),
+            StateError::Kind(crate::joints::STATE_KIND) => {
+                write!(f, "state blob is of joints: it loads only into the joints of the same rig")
+            }
+            StateError::Kind(k) => write!(f, "state blob is of filter kind {k}: it loads only into a filter of that kind"),
             StateError::BufferTooSmall(n) => write!(f, "buffer too small: the state needs {n} bytes"),
         }
     }
@@ -258,6 +264,14 @@ pub fn open(blob: &[u8], kind: u8, payload_len: usize) -> Result<&[u8], StateErr
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn refusals_name_what_the_blob_is() {
+        let joints = StateError::Kind(crate::joints::STATE_KIND).to_string();
+        assert!(joints.contains("of joints") && !joints.contains("filter kind"), "{joints}");
+        assert!(StateError::Kind(3).to_string().contains("of filter kind 3"));
+        assert!(StateError::Corrupt.to_string().contains("another rig"));
+    }
 
     #[test]
     fn values_round_trip_bit_for_bit() {
