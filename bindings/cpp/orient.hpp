@@ -404,7 +404,8 @@ OrientStatus gyro_offset(const Readings& still, OrientSensorModel& model, double
 /// Rig calibration from a reference posture (orient_rig_calibrate): `handles[i]` (from
 /// Filter::native()) reads `references[i]` afterwards and its segment's orientation from
 /// then on. `heading` is the posture frame's yaw in the filters' earth frame (rad); leave
-/// it out (NaN) to estimate it from the rig.
+/// it out (NaN) to estimate it from the rig. The filters share one earth frame (a
+/// magnetometer); 6D rigs take calibrate_rig_each.
 inline OrientStatus calibrate_rig(OrientFilter* const* handles, const OrientQuaternion* references, std::size_t n,
                                   double heading = std::numeric_limits<double>::quiet_NaN()) noexcept {
     return orient_rig_calibrate(handles, references, n, heading);
@@ -417,6 +418,14 @@ OrientStatus calibrate_rig(const Handles& handles, const References& references,
                            double heading = std::numeric_limits<double>::quiet_NaN()) noexcept {
     if (std::size(handles) != std::size(references)) return ORIENT_STATUS_INVALID_ARGUMENT;
     return orient_rig_calibrate(std::data(handles), std::data(references), std::size(handles), heading);
+}
+
+/// Rig calibration of 6D filters, each heading its own (orient_rig_calibrate_each): each
+/// sensor taken as strapped along its segment, each mounting is its tilt there.
+template <class Handles, class References>
+OrientStatus calibrate_rig_each(const Handles& handles, const References& references) noexcept {
+    if (std::size(handles) != std::size(references)) return ORIENT_STATUS_INVALID_ARGUMENT;
+    return orient_rig_calibrate_each(std::data(handles), std::data(references), std::size(handles));
 }
 
 /// Heading-only rig alignment (orient_rig_align_heading): mountings kept.

@@ -951,20 +951,32 @@ namespace Orient
         /// hand flat on a table): references[i] is filter i's segment orientation. Sets a
         /// common heading offset and every mounting so that each filter reads its
         /// reference now and its segment afterwards. heading is the posture frame's yaw in
-        /// the filters' earth frame (radians); NaN (the default) estimates it.
+        /// the filters' earth frame (radians); NaN (the default) estimates it. The filters
+        /// share one earth frame (a magnetometer); 6D rigs take CalibrateEach.
         /// </summary>
         public void Calibrate(Native.Quaternion[] references, double heading = double.NaN)
         {
-            RigCall(references, heading, false);
+            RigCall(references, heading, 0);
+        }
+
+        /// <summary>
+        /// Rig calibration of 6D filters, each heading its own (orient_rig_calibrate_each):
+        /// each sensor taken as strapped along its segment, each mounting is its tilt there,
+        /// each heading offset its own.
+        /// </summary>
+        public void CalibrateEach(Native.Quaternion[] references)
+        {
+            RigCall(references, double.NaN, 2);
         }
 
         /// <summary>Heading-only alignment to the reference posture: mountings kept.</summary>
         public void AlignHeading(Native.Quaternion[] references)
         {
-            RigCall(references, double.NaN, true);
+            RigCall(references, double.NaN, 1);
         }
 
-        private unsafe void RigCall(Native.Quaternion[] references, double heading, bool headingOnly)
+        /// <summary>call: 0 calibrate, 1 align the headings, 2 calibrate each.</summary>
+        private unsafe void RigCall(Native.Quaternion[] references, double heading, int call)
         {
             if (references == null) throw new ArgumentNullException("references");
             if (references.Length != filters.Length)
@@ -977,8 +989,8 @@ namespace Orient
             fixed (IntPtr* ph = handles)
             fixed (Native.Quaternion* pr = references)
             {
-                s = headingOnly
-                    ? NativeMethods.orient_rig_align_heading(ph, pr, (UIntPtr)filters.Length)
+                s = call == 1 ? NativeMethods.orient_rig_align_heading(ph, pr, (UIntPtr)filters.Length)
+                    : call == 2 ? NativeMethods.orient_rig_calibrate_each(ph, pr, (UIntPtr)filters.Length)
                     : NativeMethods.orient_rig_calibrate(ph, pr, (UIntPtr)filters.Length, heading);
             }
             GC.KeepAlive(filters);

@@ -132,8 +132,9 @@ unsafe fn rig<'a>(
 /// the filters' earth frame (the way the subject faces); the outputs are then in the
 /// posture's frame. A NaN `heading` estimates it: the yaw that brings the sensors'
 /// headings nearest their segments' on average, exact when the mountings have no
-/// heading part on average. The filters must share one earth frame (a magnetometer,
-/// or headings aligned before); declinations are kept. Every handle and reference is
+/// heading part on average. The filters must share one earth frame (a magnetometer);
+/// 6D filters, whose headings are each their own, take orient_rig_calibrate_each, or
+/// else each one's heading goes into its mounting. Declinations are kept. Every handle and reference is
 /// checked before anything changes: INVALID_ARGUMENT for n = 0 or a handle listed
 /// twice, COUNT_TOO_LARGE for an `n` no array can hold, NULL_POINTER for a NULL handle
 /// and INVALID_HANDLE for one that is not live; NOT_INITIALIZED for a filter without
@@ -152,6 +153,29 @@ pub unsafe extern "C" fn orient_rig_calibrate(
         let (mut fs, refs) = rig(filters, references, n)?;
         let how = if heading.is_nan() { RigHeading::Estimated } else { RigHeading::Given(heading) };
         Filter::calibrate_rig(&mut fs, &refs, how)
+            .map_err(|(i, e)| fail_item(core::ptr::null_mut(), "filter", i, from_core(e)))
+    })
+}
+
+/// Rig calibration for filters that share no earth frame (6D: each heading is its
+/// filter's own), from a reference posture as orient_rig_calibrate's: sets each
+/// filter's heading offset so that its sensor's heading is its segment's, each sensor
+/// taken as strapped along its segment (a turn of the sensor about the segment's
+/// vertical is not seen without a magnetometer), and its mounting so that it reads its
+/// reference exactly, and its segment's orientation afterwards: each mounting is the
+/// sensor's tilt on its segment, whatever heading offsets were set before; the outputs
+/// are in the posture's frame. A host that knows its mountings sets them and calls
+/// orient_rig_align_heading instead. Errors and checks as orient_rig_calibrate (without
+/// `heading`).
+#[no_mangle]
+pub unsafe extern "C" fn orient_rig_calibrate_each(
+    filters: *const *mut OrientFilter,
+    references: *const OrientQuaternion,
+    n: usize,
+) -> OrientStatus {
+    guard(|| {
+        let (mut fs, refs) = rig(filters, references, n)?;
+        Filter::calibrate_rig(&mut fs, &refs, RigHeading::Each)
             .map_err(|(i, e)| fail_item(core::ptr::null_mut(), "filter", i, from_core(e)))
     })
 }

@@ -120,6 +120,29 @@ static void rig_calls(void) {
     CHECK_STATUS(orient_filter_quaternion(g, &got), ORIENT_STATUS_OK);
     CHECK(quat_angle(got, refs[1]) < 1e-9);
 
+    /* Rig calibration of 6D filters, each on its own: each reads its reference, and the
+     * checks of orient_rig_calibrate. Two calls from different offsets end alike. */
+    CHECK_STATUS(orient_rig_calibrate_each(both, refs, 0), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_rig_calibrate_each(twice, refs, 2), ORIENT_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(orient_rig_calibrate_each(both, NULL, 2), ORIENT_STATUS_NULL_POINTER);
+    both[1] = fresh;
+    CHECK_STATUS(orient_rig_calibrate_each(both, refs, 2), ORIENT_STATUS_NOT_INITIALIZED);
+    CHECK(strncmp(orient_last_error(), "filter 1: ", 10) == 0);
+    both[1] = g;
+    {
+        double first = 0.0, second = 0.0;
+        CHECK_STATUS(orient_rig_calibrate_each(both, refs, 2), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_quaternion(f, &got), ORIENT_STATUS_OK);
+        CHECK(quat_angle(got, refs[0]) < 1e-9);
+        CHECK_STATUS(orient_filter_quaternion(g, &got), ORIENT_STATUS_OK);
+        CHECK(quat_angle(got, refs[1]) < 1e-9);
+        CHECK_STATUS(orient_filter_heading_offset(g, &first), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_set_heading(g, 1.5), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_rig_calibrate_each(both, refs, 2), ORIENT_STATUS_OK);
+        CHECK_STATUS(orient_filter_heading_offset(g, &second), ORIENT_STATUS_OK);
+        CHECK(fabs(first - second) < 1e-12);
+    }
+
     /* Heading alignment: turn one filter away, align it back. */
     CHECK_STATUS(orient_filter_set_heading(g, 1.5), ORIENT_STATUS_OK);
     CHECK_STATUS(orient_rig_align_heading(both, refs, 2), ORIENT_STATUS_OK);

@@ -318,6 +318,12 @@ static void mounting_and_heading() {
     CHECK(angle(fs[1].quaternion(), refs[1]) < 1e-9);
     std::array<OrientQuaternion, 2> short_refs{};
     CHECK(orient::align_rig_heading(handles, short_refs) == ORIENT_STATUS_INVALID_ARGUMENT);
+    // 6D filters, each heading its own: each reads its reference, an offset set before
+    // changes nothing.
+    CHECK(fs[1].set_heading(2.0) == ORIENT_STATUS_OK);
+    CHECK(orient::calibrate_rig_each(handles, refs) == ORIENT_STATUS_OK);
+    for (int k = 0; k < 3; k++) CHECK(angle(fs[k].quaternion(), refs[k]) < 1e-9);
+    CHECK(orient::calibrate_rig_each(handles, short_refs) == ORIENT_STATUS_INVALID_ARGUMENT);
 }
 
 static void calibration() {

@@ -383,6 +383,9 @@ public static class OrientTests
         fs[1].SetHeading(-2);
         rig.AlignHeading(refs);
         Check(Angle(fs[1].Quaternion, refs[1]) < 1e-9, "AlignHeading");
+        fs[1].SetHeading(2);
+        rig.CalibrateEach(refs);
+        for (int k = 0; k < 3; k++) Check(Angle(fs[k].Quaternion, refs[k]) < 1e-9, "CalibrateEach " + k);
         Throws(Status.NotInitialized, () => new OrientRig(fs[0], new OrientFilter(Kind.Ekf)).Calibrate(
             new[] { refs[0], refs[1] }), "rig with an uninitialised filter", "filter 1");
         foreach (var g in fs) g.Dispose();

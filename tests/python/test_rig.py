@@ -53,6 +53,15 @@ def test_rig_calibration():
     assert angle(fs[1].quaternion, refs[1]) > 0.1
     orient.align_rig_heading(fs, refs)
     assert angle(fs[1].quaternion, refs[1]) < 1e-6
+    # 6D filters, each heading its own: an offset set before changes nothing.
+    fs[1].set_heading(2.0)
+    orient.calibrate_rig_each(fs, refs)
+    offset = fs[1].heading_offset
+    for f, r in zip(fs, refs):
+        assert angle(f.quaternion, r) < 1e-6
+    fs[1].set_heading(-1.0)
+    orient.calibrate_rig_each(fs, refs)
+    assert abs(fs[1].heading_offset - offset) < 1e-12
     with pytest.raises(ValueError):
         orient.calibrate_rig(fs, refs[:2])
     with pytest.raises(OrientError) as e:

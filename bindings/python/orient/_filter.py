@@ -786,9 +786,18 @@ def calibrate_rig(filters: Sequence[Filter], references: ArrayLike, heading: Opt
     ((n, 4) w, x, y, z, segment to posture frame), sets a common heading offset and every
     mounting so that filters[i] reads references[i] now and its segment afterwards.
     `heading` is the posture frame's yaw in the filters' earth frame (rad); None
-    estimates it from the rig."""
+    estimates it from the rig. The filters share one earth frame (a magnetometer); 6D
+    rigs take calibrate_rig_each."""
     h, q, count = _rig_args(filters, references)
     _check(lib.orient_rig_calibrate(h, q, count, float("nan") if heading is None else float(heading)))
+
+
+def calibrate_rig_each(filters: Sequence[Filter], references: ArrayLike) -> None:
+    """Rig calibration of 6D filters, each heading its own (orient_rig_calibrate_each):
+    each sensor taken as strapped along its segment, each mounting is its tilt there and
+    each heading offset its own."""
+    h, q, count = _rig_args(filters, references)
+    _check(lib.orient_rig_calibrate_each(h, q, count))
 
 
 def align_rig_heading(filters: Sequence[Filter], references: ArrayLike) -> None:

@@ -1180,6 +1180,14 @@ PROTOTYPES = {
             c_double,
         ],
     ),
+    "orient_rig_calibrate_each": (
+        c_int32,
+        [
+            POINTER(c_void_p),
+            POINTER(OrientQuaternion),
+            c_size_t,
+        ],
+    ),
     "orient_rig_align_heading": (c_int32, [POINTER(c_void_p), POINTER(OrientQuaternion), c_size_t]),
     "orient_filter_state_size": (c_int32, [c_void_p, POINTER(c_size_t)]),
     "orient_filter_save": (c_int32, [c_void_p, POINTER(c_uint8), c_size_t, POINTER(c_size_t)]),

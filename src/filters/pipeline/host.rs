@@ -149,6 +149,12 @@ pub enum RigHeading {
     /// average, which is the subject's when the mountings have no heading part on
     /// average (sensors strapped along their segments, tilted as they may be).
     Estimated,
+    /// Each filter's own, for filters that share no earth frame (6D: each heading is
+    /// its filter's): the yaw that brings its sensor's heading nearest its segment's,
+    /// each sensor taken as strapped along its segment (no turn about the segment's
+    /// vertical, which 6D cannot see): each mounting found is the sensor's tilt on its
+    /// segment. The outputs are then in the reference posture's frame.
+    Each,
 }
 
 impl Filter {
@@ -237,10 +243,11 @@ impl Filter {
     /// Rig calibration from a reference posture: while the rig's segments hold the known
     /// orientations `references[i]` (segment to reference frame; an N-pose, a T-pose, a
     /// hand flat on a table), sets every filter's heading offset to one common value
-    /// (see [`RigHeading`]) and its mounting so that `filters[i]` reads `references[i]`
-    /// exactly now, and the segment's orientation from then on. The filters must share
-    /// one earth frame: a magnetometer, or headings aligned before. Each filter's
-    /// declination is kept. On error nothing changes: `(i, error)` names the first bad
+    /// (see [`RigHeading`]; [`RigHeading::Each`]: each its own) and its mounting so that
+    /// `filters[i]` reads `references[i]` exactly now, and the segment's orientation from
+    /// then on. With a common value the filters must share one earth frame (a
+    /// magnetometer); 6D filters take [`RigHeading::Each`], or else each one's heading
+    /// would go into its mounting. Each filter's declination is kept. On error nothing changes: `(i, error)` names the first bad
     /// filter or reference (NotInitialized, or an unusable quaternion); `(0,
     /// MissingSensor(Quaternion))` when the lengths differ or are 0.
     pub fn calibrate_rig(
@@ -259,9 +266,10 @@ impl Filter {
             h.refresh(f.up_z());
             h.left
         };
-        let offset = match heading {
-            RigHeading::Given(h) => wrap(-h),
-            RigHeading::Estimated => {
+        let common = match heading {
+            RigHeading::Given(h) => Some(wrap(-h)),
+            RigHeading::Each => None,
+            RigHeading::Estimated => Some({
                 // The mean of each segment's heading from its sensor's: rotations about
                 // z, averaged as quaternions (signs aligned with the first).
                 let mut sum = Quat::new(0.0, 0.0, 0.0, 0.0);
@@ -272,10 +280,15 @@ impl Filter {
                     sum = Quat::new(sum.w + d.w, sum.x + d.x, sum.y + d.y, sum.z + d.z);
                 }
                 sum.try_normalized().map_or(0.0, z_angle)
-            }
+            }),
         };
         for (f, r) in filters.iter_mut().zip(references) {
             let up_z = f.up_z();
+            // Each: the turn about the vertical from the sensor's bare output to its segment.
+            let offset = common.unwrap_or_else(|| {
+                let sensor = bare(f) * f.frame_quaternion();
+                wrap(z_angle(twist_about(r.normalized() * sensor.conj(), Vec3::new(0.0, 0.0, 1.0))))
+            });
             f.host_mut().heading = offset;
             f.host_mut().refresh(up_z);
             let sensor = f.host().left * f.frame_quaternion();

@@ -101,3 +101,49 @@ fn a_calibrated_rig_reads_its_references() {
         assert!((f.heading_offset() + 0.7).abs() < 1e-15);
     }
 }
+
+/// A 6D rig: every filter's heading its own, each sensor tilted on its segment (no turn
+/// about the segment's vertical). Calibrated each on its own ([`RigHeading::Each`]), each
+/// mounting is the sensor's tilt, whatever offsets the filters had; with one common
+/// heading, each filter's own heading goes into its mounting.
+#[test]
+#[cfg_attr(miri, ignore = "libm's inline-asm sqrt or a long loop: too slow or unsupported under Miri")]
+fn a_6d_rig_calibrated_each_on_its_own_finds_its_sensors_tilts() {
+    let z = Vec3::new(0.0, 0.0, 1.0);
+    // A flat hand's segments: level, facing their own ways.
+    let refs = [0.0, 0.4, -0.3].map(|yaw| Quat::from_axis_angle(z, yaw));
+    // The sensors tilted about horizontal axes of their segments.
+    let tilts = [(0.2, 0.35), (1.9, -0.3), (-2.4, 0.25)].map(|(axis, angle): (f64, f64)| {
+        Quat::from_axis_angle(Vec3::new(axis.cos(), axis.sin(), 0.0), angle)
+    });
+    // Each 6D filter's heading, its own.
+    let headings = [1.1, -2.0, 0.3];
+    let rig = || -> Vec<Filter> {
+        (0..3)
+            .map(|i| {
+                let mut f = filter(Frame::Enu);
+                f.set_quaternion(Quat::from_axis_angle(z, headings[i]) * refs[i] * tilts[i]).unwrap();
+                f
+            })
+            .collect()
+    };
+    let mut each = rig();
+    // An offset set before changes nothing.
+    each[1].set_heading(0.7).unwrap();
+    let mut views: Vec<&mut Filter> = each.iter_mut().collect();
+    Filter::calibrate_rig(&mut views, &refs, RigHeading::Each).unwrap();
+    for (i, f) in each.iter().enumerate() {
+        assert!(f.quaternion().angle_to(refs[i]) < 1e-12);
+        assert!(f.mounting().angle_to(tilts[i]) < 1e-12, "{i}: {:?}", f.mounting());
+        assert!((f.heading_offset() - wrap(-headings[i])).abs() < 1e-12);
+    }
+    let mut common = rig();
+    let mut views: Vec<&mut Filter> = common.iter_mut().collect();
+    Filter::calibrate_rig(&mut views, &refs, RigHeading::Estimated).unwrap();
+    let mean = headings.iter().sum::<f64>() / 3.0;
+    for (i, f) in common.iter().enumerate() {
+        assert!(f.quaternion().angle_to(refs[i]) < 1e-12);
+        let off = f.mounting().angle_to(tilts[i]);
+        assert!(off > 0.5 * (headings[i] - mean).abs(), "{i}: {off}");
+    }
+}
