@@ -9,7 +9,10 @@
 // down). At Calibrate At seconds into the recording, while the real hand lies flat on a
 // table, every bone's mounting and a common heading are computed natively, so that each
 // bone reads its rest rotation then and follows its segment afterwards; the per-bone
-// Mounting fields below are then no longer needed. Call CalibrateFlatHand() from a key
+// Mounting fields below are then no longer needed. Without a magnetometer each bone's
+// heading is its filter's own, which one common heading would take into its mounting:
+// then each bone's heading is set on its own (orient_rig_calibrate_each), the sensors
+// taken as strapped along their bones. Call CalibrateFlatHand() from a key
 // or a button to calibrate again (e.g. after a sensor slipped).
 //
 // Joints (orient_joints_*): with Use Joints, the calibration also binds the bones through
@@ -63,8 +66,8 @@ public class OrientHandRig : MonoBehaviour
     [Tooltip("Filter kind for every bone (Robust is the recommended one)")]
     public Kind kind = Kind.Robust;
 
-    [Tooltip("Use the magnetometer columns when present")]
-    public bool useMagnetometer = true;
+    [Tooltip("Use the magnetometer columns when present (near a hand the field is rarely clean: leave it off under joints)")]
+    public bool useMagnetometer = false;
 
     [Tooltip("Rotation applied in front of every bone: aligns the recording's north with the scene")]
     public UnityEngine.Quaternion worldAlignment = UnityEngine.Quaternion.identity;
@@ -86,6 +89,8 @@ public class OrientHandRig : MonoBehaviour
     // Each bone's rotation at Start, as an ENU orientation: the flat-hand reference posture.
     private Orient.Native.Quaternion[] flatPose = new Orient.Native.Quaternion[0];
     private bool calibrated;
+    // Some bone runs without a magnetometer (6D): its heading is its filter's own.
+    private bool sixD;
 
     private OrientFilter[] filters = new OrientFilter[0];
     private OrientRigBone[] driven = new OrientRigBone[0];
@@ -131,6 +136,7 @@ public class OrientHandRig : MonoBehaviour
             }
             used.Add(b);
             loaded.Add(data.Key);
+            if (data.Key.Length > 0 && (data.Key[0].Flags & Consts.SampleMag) == 0) sixD = true;
             if (clockTimes == null || data.Value.Length < clockTimes.Length) clockTimes = data.Value;
         }
         driven = used.ToArray();
@@ -166,7 +172,8 @@ public class OrientHandRig : MonoBehaviour
     {
         try
         {
-            rig.Calibrate(flatPose);
+            if (sixD) rig.CalibrateEach(flatPose);
+            else rig.Calibrate(flatPose);
             calibrated = true;
             if (useJoints) BindJoints();
         }
