@@ -614,6 +614,9 @@ fn filter_calls_return_only_listed_statuses() {
                     check("orient_rig_align_heading", &w, &mut || unsafe {
                         orient_rig_align_heading(handles.as_ptr(), refs.as_ptr(), 2)
                     });
+                    check("orient_rig_calibrate_each", &w, &mut || unsafe {
+                        orient_rig_calibrate_each(handles.as_ptr(), refs.as_ptr(), 2)
+                    });
                 }
                 check("orient_filter_set_heading", &w, &mut || unsafe { orient_filter_set_heading(f, x) });
                 check("orient_filter_set_declination", &w, &mut || unsafe {
@@ -629,6 +632,9 @@ fn filter_calls_return_only_listed_statuses() {
                 });
                 check("orient_rig_align_heading", "handles", &mut || unsafe {
                     orient_rig_align_heading(handles.as_ptr(), refs.as_ptr(), n)
+                });
+                check("orient_rig_calibrate_each", "handles", &mut || unsafe {
+                    orient_rig_calibrate_each(handles.as_ptr(), refs.as_ptr(), n)
                 });
             }
             check("orient_filter_reset_heading", "", &mut || unsafe { orient_filter_reset_heading(f) });

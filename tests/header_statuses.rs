@@ -17,6 +17,7 @@ fn table_from_the_header() {
     assert!(t.allows("orient_filter_declination", 1) && t.allows("orient_filter_declination", 2));
     assert!(!t.allows("orient_filter_declination", 7));
     assert!(t.allows("orient_rig_align_heading", 13), "deferred: as orient_rig_calibrate");
+    assert!(t.allows("orient_rig_calibrate_each", 16), "deferred: as orient_rig_calibrate");
     assert!(t.allows("orient_filter_reset_heading", 13), "deferred: opens with set_heading(");
     assert!(t.allows("orient_filter_linear_accel_earth", 14), "deferred: opens with linear_accel(");
     assert!(t.allows("orient_filter_save", 19), "BUFFER_TOO_SMALL's doc names it");

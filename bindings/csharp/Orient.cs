@@ -956,7 +956,7 @@ namespace Orient
         /// </summary>
         public void Calibrate(Native.Quaternion[] references, double heading = double.NaN)
         {
-            RigCall(references, heading, 0);
+            RigCall(references, heading, RigCallKind.Calibrate);
         }
 
         /// <summary>
@@ -966,17 +966,18 @@ namespace Orient
         /// </summary>
         public void CalibrateEach(Native.Quaternion[] references)
         {
-            RigCall(references, double.NaN, 2);
+            RigCall(references, double.NaN, RigCallKind.CalibrateEach);
         }
 
         /// <summary>Heading-only alignment to the reference posture: mountings kept.</summary>
         public void AlignHeading(Native.Quaternion[] references)
         {
-            RigCall(references, double.NaN, 1);
+            RigCall(references, double.NaN, RigCallKind.AlignHeading);
         }
 
-        /// <summary>call: 0 calibrate, 1 align the headings, 2 calibrate each.</summary>
-        private unsafe void RigCall(Native.Quaternion[] references, double heading, int call)
+        private enum RigCallKind { Calibrate, CalibrateEach, AlignHeading }
+
+        private unsafe void RigCall(Native.Quaternion[] references, double heading, RigCallKind call)
         {
             if (references == null) throw new ArgumentNullException("references");
             if (references.Length != filters.Length)
@@ -989,8 +990,10 @@ namespace Orient
             fixed (IntPtr* ph = handles)
             fixed (Native.Quaternion* pr = references)
             {
-                s = call == 1 ? NativeMethods.orient_rig_align_heading(ph, pr, (UIntPtr)filters.Length)
-                    : call == 2 ? NativeMethods.orient_rig_calibrate_each(ph, pr, (UIntPtr)filters.Length)
+                s = call == RigCallKind.AlignHeading
+                        ? NativeMethods.orient_rig_align_heading(ph, pr, (UIntPtr)filters.Length)
+                    : call == RigCallKind.CalibrateEach
+                        ? NativeMethods.orient_rig_calibrate_each(ph, pr, (UIntPtr)filters.Length)
                     : NativeMethods.orient_rig_calibrate(ph, pr, (UIntPtr)filters.Length, heading);
             }
             GC.KeepAlive(filters);

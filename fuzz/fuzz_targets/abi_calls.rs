@@ -1160,7 +1160,8 @@ fuzz_target!(|data: &[u8]| {
                     }
                 }
                 16 if any => {
-                    // Rig calibration or heading alignment over live handles, repeats allowed.
+                    // Rig calibration (common or each), or heading alignment over live handles,
+                    // repeats allowed.
                     let n = b.pick(6);
                     let targets: Vec<*mut OrientFilter> =
                         (0..n).map(|_| hs.live[b.pick(hs.live.len())]).collect();
@@ -1172,10 +1173,10 @@ fuzz_target!(|data: &[u8]| {
                     distinct.dedup();
                     let before: Vec<_> = distinct.iter().map(|h| (*h, blob(*h))).collect();
                     let rp = if null_refs { std::ptr::null() } else { refs.as_ptr() };
-                    let (name, s) = if b.u8() % 2 == 0 {
-                        ("orient_rig_calibrate", orient_rig_calibrate(targets.as_ptr(), rp, n, heading))
-                    } else {
-                        ("orient_rig_align_heading", orient_rig_align_heading(targets.as_ptr(), rp, n))
+                    let (name, s) = match b.u8() % 3 {
+                        0 => ("orient_rig_calibrate", orient_rig_calibrate(targets.as_ptr(), rp, n, heading)),
+                        1 => ("orient_rig_calibrate_each", orient_rig_calibrate_each(targets.as_ptr(), rp, n)),
+                        _ => ("orient_rig_align_heading", orient_rig_align_heading(targets.as_ptr(), rp, n)),
                     };
                     let what = format!("{name}: {n} filters, heading {heading:e}, references {refs:?}");
                     let s = check(name, s, &what);

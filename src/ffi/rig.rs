@@ -126,22 +126,22 @@ unsafe fn rig<'a>(
 /// Rig calibration from a reference posture. While the rig's segments hold known
 /// orientations (an N-pose, a T-pose, a hand flat on a table), `references[i]` is the
 /// orientation of `filters[i]`'s segment (segment to the posture's frame). The call
-/// sets every filter's heading offset to one common value and its mounting so that
-/// each filter reads its reference exactly, and its segment's orientation afterwards.
+/// sets every filter's heading offset to one common value and its mounting so that each
+/// filter reads its reference exactly, and its segment's orientation afterwards.
 /// `heading` is the yaw (radians, about the frame's z axis) of the posture's frame in
 /// the filters' earth frame (the way the subject faces); the outputs are then in the
 /// posture's frame. A NaN `heading` estimates it: the yaw that brings the sensors'
 /// headings nearest their segments' on average, exact when the mountings have no
-/// heading part on average. The filters must share one earth frame (a magnetometer);
-/// 6D filters, whose headings are each their own, take orient_rig_calibrate_each, or
-/// else each one's heading goes into its mounting. Declinations are kept. Every handle and reference is
-/// checked before anything changes: INVALID_ARGUMENT for n = 0 or a handle listed
-/// twice, COUNT_TOO_LARGE for an `n` no array can hold, NULL_POINTER for a NULL handle
-/// and INVALID_HANDLE for one that is not live; NOT_INITIALIZED for a filter without
-/// an orientation; a reference is checked as orient_filter_set_quaternion checks its
-/// quaternion: NON_FINITE, ZERO_VECTOR (a norm too small to normalise) or TOO_LARGE (a
-/// norm that overflows); the detail names the index. NON_FINITE for an infinite
-/// `heading`.
+/// heading part on average. The filters must share one earth frame (a magnetometer); 6D
+/// filters, whose headings are each their own, take orient_rig_calibrate_each, or else
+/// each one's heading goes into its mounting. Declinations are kept. Every handle and
+/// reference is checked before anything changes: INVALID_ARGUMENT for n = 0 or a handle
+/// listed twice, COUNT_TOO_LARGE for an `n` no array can hold, NULL_POINTER for a NULL
+/// handle and INVALID_HANDLE for one that is not live; NOT_INITIALIZED for a filter
+/// without an orientation; a reference is checked as orient_filter_set_quaternion
+/// checks its quaternion: NON_FINITE, ZERO_VECTOR (a norm too small to normalise) or
+/// TOO_LARGE (a norm that overflows); the detail names the index. NON_FINITE for an
+/// infinite `heading`.
 #[no_mangle]
 pub unsafe extern "C" fn orient_rig_calibrate(
     filters: *const *mut OrientFilter,

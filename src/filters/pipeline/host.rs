@@ -138,7 +138,8 @@ impl Host {
     }
 }
 
-/// How [`Filter::calibrate_rig`] picks the common heading.
+/// How [`Filter::calibrate_rig`] picks the heading offsets: one common value, given or
+/// estimated, or each filter's own.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum RigHeading {
     /// The reference posture's frame is turned by this yaw (rad, about the frame's z
@@ -151,9 +152,10 @@ pub enum RigHeading {
     Estimated,
     /// Each filter's own, for filters that share no earth frame (6D: each heading is
     /// its filter's): the yaw that brings its sensor's heading nearest its segment's,
-    /// each sensor taken as strapped along its segment (no turn about the segment's
-    /// vertical, which 6D cannot see): each mounting found is the sensor's tilt on its
-    /// segment. The outputs are then in the reference posture's frame.
+    /// each sensor taken as strapped along its segment (no turn about the vertical at
+    /// the pose, which 6D cannot see): each mounting found is the sensor's tilt on its
+    /// segment (for a level segment, a turn about a horizontal axis). The outputs are
+    /// then in the reference posture's frame.
     Each,
 }
 
@@ -242,14 +244,15 @@ impl Filter {
 
     /// Rig calibration from a reference posture: while the rig's segments hold the known
     /// orientations `references[i]` (segment to reference frame; an N-pose, a T-pose, a
-    /// hand flat on a table), sets every filter's heading offset to one common value
-    /// (see [`RigHeading`]; [`RigHeading::Each`]: each its own) and its mounting so that
+    /// hand flat on a table), sets every filter's heading offset to one common value (see
+    /// [`RigHeading`]; [`RigHeading::Each`]: each its own) and its mounting so that
     /// `filters[i]` reads `references[i]` exactly now, and the segment's orientation from
     /// then on. With a common value the filters must share one earth frame (a
     /// magnetometer); 6D filters take [`RigHeading::Each`], or else each one's heading
-    /// would go into its mounting. Each filter's declination is kept. On error nothing changes: `(i, error)` names the first bad
-    /// filter or reference (NotInitialized, or an unusable quaternion); `(0,
-    /// MissingSensor(Quaternion))` when the lengths differ or are 0.
+    /// would go into its mounting. Each filter's declination is kept. On error nothing
+    /// changes: `(i, error)` names the first bad filter or reference (NotInitialized, or an
+    /// unusable quaternion); `(0, MissingSensor(Quaternion))` when the lengths differ or
+    /// are 0.
     pub fn calibrate_rig(
         filters: &mut [&mut Filter],
         references: &[Quat],

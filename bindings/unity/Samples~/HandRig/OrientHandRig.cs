@@ -166,8 +166,10 @@ public class OrientHandRig : MonoBehaviour
     }
 
     /// <summary>Rig calibration from the flat-hand pose: call while the hand lies flat as
-    /// the avatar's hand did at Start. The heading the hand faces is estimated from the
-    /// rig (sensors strapped along their bones, tilted as they may be).</summary>
+    /// the avatar's hand did at Start. With a magnetometer the heading the hand faces is
+    /// estimated from the rig (sensors strapped along their bones, tilted as they may
+    /// be); with 6D bones each bone's heading is set on its own, the sensors taken as
+    /// strapped along their bones.</summary>
     public void CalibrateFlatHand()
     {
         try

@@ -118,26 +118,36 @@ fn a_6d_rig_calibrated_each_on_its_own_finds_its_sensors_tilts() {
     });
     // Each 6D filter's heading, its own.
     let headings = [1.1, -2.0, 0.3];
-    let rig = || -> Vec<Filter> {
+    let rig = |frame: Frame, declination: f64| -> Vec<Filter> {
         (0..3)
             .map(|i| {
-                let mut f = filter(Frame::Enu);
+                let mut f = filter(frame);
+                f.set_declination(declination).unwrap();
                 f.set_quaternion(Quat::from_axis_angle(z, headings[i]) * refs[i] * tilts[i]).unwrap();
                 f
             })
             .collect()
     };
-    let mut each = rig();
-    // An offset set before changes nothing.
-    each[1].set_heading(0.7).unwrap();
-    let mut views: Vec<&mut Filter> = each.iter_mut().collect();
-    Filter::calibrate_rig(&mut views, &refs, RigHeading::Each).unwrap();
-    for (i, f) in each.iter().enumerate() {
-        assert!(f.quaternion().angle_to(refs[i]) < 1e-12);
-        assert!(f.mounting().angle_to(tilts[i]) < 1e-12, "{i}: {:?}", f.mounting());
-        assert!((f.heading_offset() - wrap(-headings[i])).abs() < 1e-12);
+    // In every frame (z is vertical in each), with a declination, which is kept.
+    for frame in Frame::ALL {
+        for declination in [0.0, 0.2] {
+            let mut each = rig(frame, declination);
+            // An offset set before changes nothing.
+            each[1].set_heading(0.7).unwrap();
+            let mut views: Vec<&mut Filter> = each.iter_mut().collect();
+            Filter::calibrate_rig(&mut views, &refs, RigHeading::Each).unwrap();
+            for (i, f) in each.iter().enumerate() {
+                assert!(f.quaternion().angle_to(refs[i]) < 1e-12, "{frame:?} {declination}");
+                assert!(
+                    f.mounting().angle_to(tilts[i]) < 1e-12,
+                    "{frame:?} {declination} {i}: {:?}",
+                    f.mounting()
+                );
+                assert_eq!(f.declination(), declination);
+            }
+        }
     }
-    let mut common = rig();
+    let mut common = rig(Frame::Enu, 0.0);
     let mut views: Vec<&mut Filter> = common.iter_mut().collect();
     Filter::calibrate_rig(&mut views, &refs, RigHeading::Estimated).unwrap();
     let mean = headings.iter().sum::<f64>() / 3.0;
