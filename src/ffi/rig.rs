@@ -5,7 +5,7 @@ use super::{
     fail, fail_item, from_core, guard, handle, handle_mut, items, need, put, quat_from, quat_to,
     OrientFilter, OrientQuaternion, OrientStatus,
 };
-use crate::filters::{Filter, RigHeading};
+use crate::filters::{Error, Filter, RigHeading};
 use crate::math::Quat;
 
 /// Sets the mounting: the rotation from the sensor's frame to its body segment's
@@ -97,6 +97,18 @@ pub unsafe extern "C" fn orient_filter_declination(
     guard(|| put(declination, || Ok(handle(filter)?.filter.declination())))
 }
 
+/// A rig call: checks its arguments ([`rig`]), runs `call` on the filters and
+/// references, and turns a refusal `(index, error)` into a status naming the filter.
+unsafe fn rig_call(
+    filters: *const *mut OrientFilter,
+    references: *const OrientQuaternion,
+    n: usize,
+    call: impl FnOnce(&mut [&mut Filter], &[Quat]) -> Result<(), (usize, Error)>,
+) -> Result<(), OrientStatus> {
+    let (mut fs, refs) = rig(filters, references, n)?;
+    call(&mut fs, &refs).map_err(|(i, e)| fail_item(core::ptr::null_mut(), "filter", i, from_core(e)))
+}
+
 /// Checks a rig call's arguments: `n` live, distinct handles and `n` references.
 unsafe fn rig<'a>(
     filters: *const *mut OrientFilter,
@@ -150,10 +162,8 @@ pub unsafe extern "C" fn orient_rig_calibrate(
     heading: f64,
 ) -> OrientStatus {
     guard(|| {
-        let (mut fs, refs) = rig(filters, references, n)?;
         let how = if heading.is_nan() { RigHeading::Estimated } else { RigHeading::Given(heading) };
-        Filter::calibrate_rig(&mut fs, &refs, how)
-            .map_err(|(i, e)| fail_item(core::ptr::null_mut(), "filter", i, from_core(e)))
+        rig_call(filters, references, n, |fs, refs| Filter::calibrate_rig(fs, refs, how))
     })
 }
 
@@ -173,11 +183,7 @@ pub unsafe extern "C" fn orient_rig_calibrate_each(
     references: *const OrientQuaternion,
     n: usize,
 ) -> OrientStatus {
-    guard(|| {
-        let (mut fs, refs) = rig(filters, references, n)?;
-        Filter::calibrate_rig(&mut fs, &refs, RigHeading::Each)
-            .map_err(|(i, e)| fail_item(core::ptr::null_mut(), "filter", i, from_core(e)))
-    })
+    guard(|| rig_call(filters, references, n, |fs, refs| Filter::calibrate_rig(fs, refs, RigHeading::Each)))
 }
 
 /// Rig heading alignment: while the segments hold `references[i]` (as for
@@ -191,9 +197,5 @@ pub unsafe extern "C" fn orient_rig_align_heading(
     references: *const OrientQuaternion,
     n: usize,
 ) -> OrientStatus {
-    guard(|| {
-        let (mut fs, refs) = rig(filters, references, n)?;
-        Filter::align_rig_heading(&mut fs, &refs)
-            .map_err(|(i, e)| fail_item(core::ptr::null_mut(), "filter", i, from_core(e)))
-    })
+    guard(|| rig_call(filters, references, n, Filter::align_rig_heading))
 }

@@ -343,11 +343,6 @@ impl RigRecording {
     pub fn t(&self) -> &[f64] {
         &self.sensors[0].t
     }
-
-    /// True when every sensor's file has truth.
-    pub fn has_truth(&self) -> bool {
-        self.sensors.iter().all(|r| !r.truth.is_empty())
-    }
 }
 
 pub use orient::joints::twist_angle;
